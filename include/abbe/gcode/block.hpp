@@ -1,0 +1,39 @@
+#pragma once
+// Block: one parsed line of an NC program. Positions are byte offsets into the
+// original line so that a post-processor can replace a coordinate's number and
+// keep every other byte of the line.
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace abbe::gcode {
+
+struct Word {
+  char letter = 0;             // upper-case letter
+  double value = 0.0;          // the number as written (program units)
+  std::uint32_t begin = 0;     // offset of the letter in the line
+  std::uint32_t number_begin = 0;  // offset of the first character of the number (sign included)
+  std::uint32_t end = 0;       // one past the last character of the number
+};
+
+struct Comment {
+  std::uint32_t begin = 0;  // offset of '(' or ';'
+  std::uint32_t end = 0;    // one past ')' or end of line
+  std::string text;         // inside the delimiters
+};
+
+struct Block {
+  std::size_t line = 0;              // 1-based line number in the file
+  bool block_delete = false;         // leading '/'
+  bool percent = false;              // a '%' tape delimiter line
+  std::optional<long> program_number;  // an O-number line (O1234), program number only
+  std::optional<Word> n;             // N line number, if any
+  std::vector<Word> words;           // all words but N, in the order written
+  std::vector<Comment> comments;
+  std::optional<int> checksum;       // *nn
+  bool has_words() const { return !words.empty(); }
+};
+
+}  // namespace abbe::gcode

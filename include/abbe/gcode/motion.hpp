@@ -1,0 +1,42 @@
+#pragma once
+// Motion: what the interpreter hands on, one per rapid, feed, arc or dwell.
+// All positions are tool-tip positions P in machine coordinates, mm
+// (DESIGN.md §2): program point + work offset + G92 offset; s = P + L·e_z.
+#include <cstddef>
+#include <cstdint>
+
+#include <Eigen/Core>
+
+namespace abbe::gcode {
+
+enum class MotionKind : std::uint8_t { rapid, linear, arc, dwell };
+
+const char* to_string(MotionKind kind);
+
+// Plane of an arc, named by its normal axis: XY (G17, normal Z), XZ (G18,
+// normal Y), YZ (G19, normal X).
+enum class Plane : std::uint8_t { xy, xz, yz };
+
+struct Motion {
+  MotionKind kind = MotionKind::rapid;
+  std::size_t line = 0;        // source line (1-based)
+  std::uint32_t sub = 0;       // index of this motion among those of its block (canned cycles)
+  Eigen::Vector3d start = Eigen::Vector3d::Zero();  // tool tip, machine coordinates, mm
+  Eigen::Vector3d end = Eigen::Vector3d::Zero();
+  double tool_length = 0.0;    // active L, mm (s = P + L·e_z)
+  double feed = 0.0;           // mm/min (0 for rapids: the rapid rate applies)
+  double dwell_seconds = 0.0;  // for kind == dwell
+
+  // Arc (kind == arc) — LinuxCNC's canonical form:
+  Plane plane = Plane::xy;
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();  // centre; its normal-axis coordinate equals start's
+  // rotation > 0: counter-clockwise seen from the + end of the normal axis
+  // (G3 in G17), < 0: clockwise; |rotation| - 1 = extra full turns (P word).
+  int rotation = 0;
+
+  // What is carried along from the block (not used for geometry).
+  double spindle = 0.0;  // S
+  int tool = 0;          // T (selected tool)
+};
+
+}  // namespace abbe::gcode

@@ -1,0 +1,69 @@
+// abbe — toolpath error predictor and NC-code post-processor.
+#include <algorithm>
+#include <iostream>
+#include <map>
+
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include "abbe/io/input_error.hpp"
+#include "command.hpp"
+
+namespace abbe::cli {
+std::vector<CommandInfo>& command_registry() {
+  static std::vector<CommandInfo> registry;
+  return registry;
+}
+}  // namespace abbe::cli
+
+int main(int argc, char** argv) {
+  using namespace abbe::cli;
+  CLI::App app{"abbe: predict how far a 3-axis machine tool deviates along an NC program, "
+               "and why.\n"
+               "Exit codes: 0 ok, 1 bad input, 2 usage, 3 internal error."};
+  app.set_version_flag("--version", std::string("abbe ") + ABBE_VERSION);
+  app.require_subcommand(1);
+  GlobalOptions global;
+  app.add_flag("-v,--verbose", global.verbose, "More log output (repeat for debug)");
+  app.add_flag("-q,--quiet", global.quiet, "Only errors on stderr");
+
+  auto logger = spdlog::stderr_color_mt("abbe");
+  spdlog::set_default_logger(logger);
+  spdlog::set_pattern("abbe: %^%l%$: %v");
+
+  auto& registry = command_registry();
+  std::sort(registry.begin(), registry.end(),
+            [](const CommandInfo& a, const CommandInfo& b) { return a.order < b.order; });
+  std::map<CLI::App*, CommandAction> actions;
+  for (auto& info : registry) {
+    CLI::App* sub = app.add_subcommand(info.name, info.description);
+    actions[sub] = info.setup(*sub, global);
+  }
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    int rc = app.exit(e);
+    return rc == 0 ? kOk : kUsage;
+  }
+  if (global.quiet)
+    spdlog::set_level(spdlog::level::err);
+  else if (global.verbose >= 2)
+    spdlog::set_level(spdlog::level::trace);
+  else if (global.verbose == 1)
+    spdlog::set_level(spdlog::level::debug);
+  else
+    spdlog::set_level(spdlog::level::info);
+
+  try {
+    for (auto& [sub, action] : actions)
+      if (sub->parsed()) return action();
+  } catch (const abbe::InputError& e) {
+    std::cerr << e.what() << "\n";
+    return kBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "abbe: internal error: " << e.what() << "\n";
+    return kInternal;
+  }
+  return kUsage;
+}
