@@ -1,0 +1,24 @@
+#include "abbe/gcode/program.hpp"
+
+#include "abbe/gcode/parser.hpp"
+
+namespace abbe::gcode {
+
+ProgramStats run_program(std::istream& in, const std::string& file, const InterpreterConfig& config,
+                         const MotionSink& sink) {
+  ProgramStats stats;
+  BlockReader reader(in, file);
+  Interpreter interpreter(config, file);
+  Block block;
+  auto counting_sink = [&](const Motion& m) {
+    ++stats.motions;
+    sink(m);
+  };
+  while (!interpreter.program_ended() && reader.next(block)) {
+    ++stats.lines;
+    interpreter.execute(block, reader.raw_line(), counting_sink);
+  }
+  return stats;
+}
+
+}  // namespace abbe::gcode
