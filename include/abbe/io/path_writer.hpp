@@ -1,0 +1,57 @@
+#pragma once
+// PathWriter: streams PathPoints as CSV or as a JSON array, formatting into a
+// large buffer that is handed to a byte sink in big chunks (fast enough to
+// keep up with the front end; memory does not grow with the path).
+//
+// CSV: header `x,y,z,tool_length,line,kind,feed,time,vx,vy,vz`, one row per
+// point. JSON: an array of objects with the same keys. Lengths in mm, feed in
+// mm/min, time in s, all written with 6 decimals (trailing zeros dropped);
+// kind ∈ {rapid, linear, arc}; vx, vy, vz ∈ {-1, 0, 1}.
+#include <fmt/format.h>
+
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <string_view>
+
+#include "abbe/path/path_point.hpp"
+
+namespace abbe::io {
+
+enum class PathFormat { csv, json };
+
+// "csv" or "json"; throws abbe::InputError (field "--format") otherwise.
+PathFormat parse_path_format(std::string_view name);
+
+// Receives the formatted bytes, a chunk at a time.
+using ByteSink = std::function<void(const char* data, std::size_t size)>;
+
+// Appends `value` rounded to 6 decimals, trailing zeros (and a bare '.')
+// dropped: 1.5 → "1.5", -350 → "-350", 1e-7 → "0". Non-finite → "nan"/"inf".
+void append_fixed6(fmt::memory_buffer& out, double value);
+
+class PathWriter {
+ public:
+  PathWriter(PathFormat format, ByteSink sink, std::size_t chunk_bytes = std::size_t{1} << 20);
+  ~PathWriter() =
+      default;  // does not flush: call finish() (an error path leaves the output incomplete)
+  PathWriter(const PathWriter&) = delete;
+  PathWriter& operator=(const PathWriter&) = delete;
+
+  void write(const path::PathPoint& point);
+  // Writes the trailer (JSON's closing bracket) and hands on what is buffered.
+  void finish();
+  std::size_t points() const { return points_; }
+
+ private:
+  void flush();
+
+  PathFormat format_;
+  ByteSink sink_;
+  std::size_t chunk_bytes_;
+  fmt::memory_buffer buffer_;
+  std::size_t points_ = 0;
+  bool finished_ = false;
+};
+
+}  // namespace abbe::io

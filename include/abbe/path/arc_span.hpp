@@ -1,0 +1,56 @@
+#pragma once
+// ArcSpan: a circular arc or helix as the interpreter describes it
+// (gcode::Motion with kind == arc), parametrised by t ∈ [0, 1] proportional to
+// arc length.
+//
+// In plane coordinates (a, b, n) — XY: (x, y, z), XZ (G18): (z, x, y),
+// YZ (G19): (y, z, x), so that a × b = n — the point at t is
+//   θ(t) = θ0 + φ·t,  r(t) = r0 + (r1 − r0)·t,  n(t) = n0 + (n1 − n0)·t,
+//   p = c + r(t)·(cos θ, sin θ) in (a, b),
+// where φ is the signed sweep (> 0 counter-clockwise seen from +n), including
+// the extra full turns. r0 and r1 are the start and end radii: an end point
+// that is off the circle within the interpreter's tolerance is reached by
+// letting the radius change linearly (as LinuxCNC does). A helix has constant
+// speed in θ, so equal steps in t are equal steps in arc length (up to the
+// tiny radius change).
+#include <Eigen/Core>
+#include <array>
+
+#include "abbe/gcode/motion.hpp"
+
+namespace abbe::path {
+
+// Indices of the (a, b, n) axes of a plane, see above.
+std::array<int, 3> plane_axes(gcode::Plane plane);
+
+class ArcSpan {
+ public:
+  // Throws std::invalid_argument if motion.rotation == 0.
+  explicit ArcSpan(const gcode::Motion& motion);
+
+  // Helix length sqrt((r̄·φ)² + h²), r̄ the mean radius, h the normal travel.
+  double length() const;
+  // Point at fraction t of the arc length; t = 1 gives the motion's end point
+  // bit-exactly, t = 0 its start point.
+  Eigen::Vector3d point(double t) const;
+  // Velocity d point / d t of the ideal circle through the point (the radius
+  // change is left out so that a direction sign does not flip where the
+  // tangential velocity of an axis vanishes).
+  Eigen::Vector3d velocity(double t) const;
+
+  double sweep() const { return sweep_; }  // signed, rad
+  double start_radius() const { return r0_; }
+  double end_radius() const { return r1_; }
+
+ private:
+  std::array<int, 3> axes_;  // a, b, n
+  Eigen::Vector3d p_start_;
+  Eigen::Vector3d p_end_;
+  Eigen::Vector3d center_;
+  double r0_ = 0.0;
+  double r1_ = 0.0;
+  double theta0_ = 0.0;
+  double sweep_ = 0.0;
+};
+
+}  // namespace abbe::path

@@ -1,0 +1,87 @@
+#include "abbe/path/arc_span.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace abbe::path {
+
+namespace {
+constexpr double kTwoPi = 6.283185307179586476925286766559;
+// Start and end closer than this (mm, in the plane) make a full circle.
+constexpr double kFullCircleTolerance = 1e-9;
+}  // namespace
+
+std::array<int, 3> plane_axes(gcode::Plane plane) {
+  switch (plane) {
+    case gcode::Plane::xz:
+      return {2, 0, 1};
+    case gcode::Plane::yz:
+      return {1, 2, 0};
+    case gcode::Plane::xy:
+    default:
+      return {0, 1, 2};
+  }
+}
+
+ArcSpan::ArcSpan(const gcode::Motion& motion)
+    : axes_(plane_axes(motion.plane)),
+      p_start_(motion.start),
+      p_end_(motion.end),
+      center_(motion.center) {
+  if (motion.rotation == 0)
+    throw std::invalid_argument("arc motion with rotation 0 (line " + std::to_string(motion.line) +
+                                ")");
+  const int a = axes_[0];
+  const int b = axes_[1];
+  const double sa = p_start_[a] - center_[a];
+  const double sb = p_start_[b] - center_[b];
+  const double ea = p_end_[a] - center_[a];
+  const double eb = p_end_[b] - center_[b];
+  r0_ = std::hypot(sa, sb);
+  r1_ = std::hypot(ea, eb);
+  theta0_ = std::atan2(sb, sa);
+  const double theta1 = std::atan2(eb, ea);
+  const bool ccw = motion.rotation > 0;
+  double sweep;
+  if (std::hypot(ea - sa, eb - sb) < kFullCircleTolerance) {
+    sweep = kTwoPi;
+  } else {
+    sweep = ccw ? theta1 - theta0_ : theta0_ - theta1;  // in (-2π, 2π)
+    if (sweep <= 0.0) sweep += kTwoPi;
+  }
+  const int turns = std::abs(motion.rotation) - 1;
+  sweep += kTwoPi * turns;
+  sweep_ = ccw ? sweep : -sweep;
+}
+
+double ArcSpan::length() const {
+  const int n = axes_[2];
+  const double planar = 0.5 * (r0_ + r1_) * std::abs(sweep_);
+  return std::hypot(planar, p_end_[n] - p_start_[n]);
+}
+
+Eigen::Vector3d ArcSpan::point(double t) const {
+  if (t >= 1.0) return p_end_;
+  if (t <= 0.0) return p_start_;
+  const int a = axes_[0], b = axes_[1], n = axes_[2];
+  const double theta = theta0_ + sweep_ * t;
+  const double r = r0_ + (r1_ - r0_) * t;
+  Eigen::Vector3d p;
+  p[a] = center_[a] + r * std::cos(theta);
+  p[b] = center_[b] + r * std::sin(theta);
+  p[n] = p_start_[n] + (p_end_[n] - p_start_[n]) * t;
+  return p;
+}
+
+Eigen::Vector3d ArcSpan::velocity(double t) const {
+  const int a = axes_[0], b = axes_[1], n = axes_[2];
+  const double theta = theta0_ + sweep_ * t;
+  const double r = r0_ + (r1_ - r0_) * t;
+  Eigen::Vector3d v;
+  v[a] = -r * sweep_ * std::sin(theta);
+  v[b] = r * sweep_ * std::cos(theta);
+  v[n] = p_end_[n] - p_start_[n];
+  return v;
+}
+
+}  // namespace abbe::path
