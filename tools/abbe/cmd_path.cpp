@@ -1,0 +1,156 @@
+// abbe path: parse → interpret → fragment → write, block by block.
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "abbe/gcode/program.hpp"
+#include "abbe/io/atomic_file.hpp"
+#include "abbe/io/input_error.hpp"
+#include "abbe/io/path_writer.hpp"
+#include "abbe/machine/machine.hpp"
+#include "abbe/path/fragmenter.hpp"
+#include "command.hpp"
+
+namespace abbe::cli {
+namespace {
+
+struct PathOptions {
+  std::string program;
+  std::string output = "-";
+  std::string format = "csv";
+  double step = 5.0;
+  double rapid_rate = 10000.0;
+  std::optional<double> tool_length;
+  std::vector<std::string> tools;  // "H=L"
+  std::string machine;
+  bool count_only = false;
+};
+
+[[noreturn]] void bad_option(const std::string& field, const std::string& message) {
+  SourceLocation where;
+  where.file = "<command line>";
+  where.field = field;
+  throw InputError(where, message);
+}
+
+// "H=L": tool length L (mm) for G43 Hn.
+std::pair<int, double> parse_tool(const std::string& text) {
+  const auto eq = text.find('=');
+  int h = 0;
+  if (eq == std::string::npos || eq == 0)
+    bad_option("--tool", "expected H=L (e.g. 1=200), got '" + text + "'");
+  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + eq, h);
+  if (ec != std::errc() || ptr != text.data() + eq || h < 0)
+    bad_option("--tool", "tool number must be a non-negative integer in '" + text + "'");
+  const std::string value = text.substr(eq + 1);
+  char* end = nullptr;
+  errno = 0;
+  const double length = std::strtod(value.c_str(), &end);
+  if (value.empty() || end != value.c_str() + value.size() || errno != 0 || !std::isfinite(length))
+    bad_option("--tool", "tool length must be a number of mm in '" + text + "'");
+  return {h, length};
+}
+
+gcode::InterpreterConfig make_config(const PathOptions& o) {
+  gcode::InterpreterConfig config;
+  if (!o.machine.empty()) {
+    const machine::Machine m = machine::Machine::load(o.machine);
+    config.default_tool_length = m.tool_length();
+    config.tool_lengths = m.tool_table();
+    config.work_offsets = m.work_offsets();
+  }
+  if (o.tool_length) config.default_tool_length = *o.tool_length;
+  for (const auto& t : o.tools) {
+    const auto [h, length] = parse_tool(t);
+    config.tool_lengths[h] = length;
+  }
+  return config;
+}
+
+int run_path(const PathOptions& o) {
+  const gcode::InterpreterConfig config = make_config(o);
+  const io::PathFormat format = io::parse_path_format(o.format);
+
+  std::ifstream file;
+  std::istream* in = &std::cin;
+  const bool from_stdin = o.program == "-";
+  if (!from_stdin) {
+    file.open(o.program, std::ios::binary);
+    if (!file) {
+      SourceLocation where;
+      where.file = o.program;
+      throw InputError(where, std::string("cannot open NC program: ") + std::strerror(errno));
+    }
+    in = &file;
+  }
+
+  path::FragmentOptions fragment_options;
+  fragment_options.step = o.step;
+  fragment_options.rapid_rate = o.rapid_rate;
+  path::Fragmenter fragmenter(fragment_options);
+
+  if (o.count_only) {
+    // Fragments everything but writes only a summary (benchmarks, checks).
+    std::size_t points = 0;
+    const path::PointSink count = [&](const path::PathPoint&) { ++points; };
+    const auto stats = gcode::run_program(
+        *in, o.program, config, [&](const gcode::Motion& m) { fragmenter.add(m, count); });
+    fmt::print("lines={} motions={} points={} time_s={:.3f}\n", stats.lines, stats.motions, points,
+               fragmenter.time());
+    return kOk;
+  }
+
+  io::AtomicOutputFile out(o.output);
+  io::PathWriter writer(format, [&](const char* data, std::size_t size) { out.write(data, size); });
+  const path::PointSink write = [&](const path::PathPoint& p) { writer.write(p); };
+  const auto stats = gcode::run_program(*in, o.program, config,
+                                        [&](const gcode::Motion& m) { fragmenter.add(m, write); });
+  writer.finish();
+  out.commit();
+  spdlog::debug("{}: {} lines, {} motions, {} points, {:.1f} s estimated", o.program, stats.lines,
+                stats.motions, writer.points(), fragmenter.time());
+  return kOk;
+}
+
+const CommandRegistrar registrar(
+    "path",
+    "Fragment an NC program into points (at most --step apart) and write them as CSV or JSON", 20,
+    [](CLI::App& sub, const GlobalOptions&) -> CommandAction {
+      auto o = std::make_shared<PathOptions>();
+      sub.add_option("program", o->program, "NC program (RS274/LinuxCNC G-code), - for stdin")
+          ->required();
+      sub.add_option("-o,--output", o->output, "Output file (written atomically), - for stdout")
+          ->capture_default_str();
+      sub.add_option("--format", o->format, "csv or json")
+          ->check(CLI::IsMember({"csv", "json"}))
+          ->capture_default_str();
+      sub.add_option("--step", o->step, "Largest distance between points, mm")
+          ->check(CLI::PositiveNumber)
+          ->capture_default_str();
+      sub.add_option("--rapid-rate", o->rapid_rate,
+                     "Rate of rapid (G0) motions for the time estimate, mm/min")
+          ->check(CLI::PositiveNumber)
+          ->capture_default_str();
+      sub.add_option("--tool-length", o->tool_length,
+                     "Tool length when no G43 is active, mm (overrides the machine file)");
+      sub.add_option("--tool", o->tools, "Tool length for G43 Hn as n=L (mm), repeatable");
+      sub.add_option("--machine", o->machine,
+                     "Machine file (YAML): tool length, tool table and work offsets");
+      sub.add_flag("--count,--null", o->count_only,
+                   "Fragment but write only a one-line summary to stdout (no points)");
+      return [o] { return run_path(*o); };
+    });
+
+}  // namespace
+}  // namespace abbe::cli
