@@ -14,6 +14,11 @@ namespace abbe::gcode {
 // `line` must not contain the line terminator (a trailing '\r' is allowed and ignored).
 Block parse_line(std::string_view line, std::size_t line_number, const std::string& file);
 
+// The same, into an existing Block whose vectors are reused (no allocation per
+// line once they have grown). `block` is completely overwritten.
+void parse_line(std::string_view line, std::size_t line_number, const std::string& file,
+                Block& block);
+
 // Reads an NC program line by line (LF or CRLF), parses each line and hands
 // the Block together with its raw text to the callback. Streaming: memory does
 // not grow with the program length.
@@ -23,6 +28,9 @@ class BlockReader {
   // Returns false at end of input. Throws abbe::InputError on a bad line.
   bool next(Block& block);
   const std::string& raw_line() const { return line_; }  // without terminator
+  // The terminator the current line had in the input: "\n", "\r\n" or "" (last
+  // line without one), so that a rewritten program keeps its line endings.
+  const char* line_ending() const { return line_ending_; }
   const std::string& file() const { return file_; }
   std::size_t line_number() const { return line_number_; }
 
@@ -31,6 +39,7 @@ class BlockReader {
   std::string file_;
   std::string line_;
   std::size_t line_number_ = 0;
+  const char* line_ending_ = "";
 };
 
 }  // namespace abbe::gcode

@@ -1,0 +1,26 @@
+#pragma once
+// Declaration of the line rule (definition in grammar/gcode_def.hpp, one
+// instantiation in src/gcode/gcode_grammar.cpp). See grammar/gcode.ebnf.
+#include <boost/spirit/home/x3.hpp>
+#include <cstddef>
+
+#include "grammar/ast.hpp"
+
+namespace abbe::gcode::grammar {
+
+namespace x3 = boost::spirit::x3;
+
+// At most this many words and comments in one block (not counting N, '/', '*'):
+// bounds the memory a single absurd line can take.
+inline constexpr std::size_t kMaxItemsPerBlock = 1024;
+
+struct line_class;
+using line_type = x3::rule<line_class, ast::Line>;
+BOOST_SPIRIT_DECLARE(line_type)
+
+// The rule for one line. It always succeeds and consumes the longest prefix
+// of the line that belongs to the language; the caller checks that the whole
+// line was consumed and otherwise explains why not (src/gcode/parser.cpp).
+const line_type& line();
+
+}  // namespace abbe::gcode::grammar

@@ -1,0 +1,177 @@
+// Turns the AST of grammar/ into abbe::gcode::Block and reads programs line
+// by line. The grammar accepts the longest valid prefix of a line; anything
+// left over is explained by parse_diagnosis.cpp.
+#include "abbe/gcode/parser.hpp"
+
+#include <fmt/format.h>
+
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include "abbe/io/input_error.hpp"
+#include "grammar/ast.hpp"
+#include "grammar/gcode.hpp"
+#include "parse_diagnosis.hpp"
+
+namespace abbe::gcode {
+
+namespace {
+
+// Numbers longer than this (digits and '.') are refused: no CAM post emits
+// them and they can only be garbage.
+constexpr std::size_t kMaxNumberChars = 64;
+
+char upper(char c) { return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c; }
+
+struct LineContext {
+  std::string_view line;
+  std::size_t line_number;
+  const std::string& file;
+
+  std::uint32_t offset(ast::Iterator it) const {
+    return static_cast<std::uint32_t>(it - line.data());
+  }
+  InputError error(ast::Iterator at, const std::string& message) const {
+    return detail::line_error(line, line_number, file, offset(at), message);
+  }
+};
+
+// The value of a number as the grammar matched it: optional sign, blanks,
+// digits with an optional '.'. Blanks and '+' are dropped before conversion.
+double number_value(const ast::Span& number, const LineContext& ctx) {
+  char buffer[kMaxNumberChars + 2];
+  std::size_t n = 0;
+  for (char c : number) {
+    if (c == ' ' || c == '\t' || c == '+') continue;
+    if (n == sizeof(buffer))
+      throw ctx.error(number.begin(), "number is too long (more than 64 characters)");
+    buffer[n++] = c;
+  }
+  const std::size_t significant = (n > 0 && buffer[0] == '-') ? n - 1 : n;
+  if (significant > kMaxNumberChars)
+    throw ctx.error(number.begin(), "number is too long (more than 64 characters)");
+  double value = 0.0;
+  const auto [end, ec] = std::from_chars(buffer, buffer + n, value);
+  if (ec != std::errc() || end != buffer + n || !std::isfinite(value))
+    throw ctx.error(number.begin(), "number is out of range");
+  return value;
+}
+
+// Unsigned integer made of digits only (N, O, checksum), at most `max`.
+long integer_value(const ast::Span& digits, long max, const char* what, const LineContext& ctx) {
+  long value = 0;
+  for (char c : digits) {
+    const long digit = c - '0';
+    if (value > (max - digit) / 10)
+      throw ctx.error(digits.begin(), fmt::format("{} is too large (at most {})", what, max));
+    value = value * 10 + digit;
+  }
+  return value;
+}
+
+Word make_word(char letter, const ast::Item& item, const LineContext& ctx) {
+  Word w;
+  w.letter = letter;
+  w.value = number_value(item.body, ctx);
+  w.begin = ctx.offset(item.head.begin());
+  w.number_begin = ctx.offset(item.body.begin());
+  w.end = ctx.offset(item.body.end());
+  return w;
+}
+
+void reset(Block& block, std::size_t line_number) {
+  block.line = line_number;
+  block.block_delete = false;
+  block.percent = false;
+  block.program_number.reset();
+  block.n.reset();
+  block.words.clear();
+  block.checksum.reset();
+}
+
+}  // namespace
+
+void parse_line(std::string_view line, std::size_t line_number, const std::string& file,
+                Block& block) {
+  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  const LineContext ctx{line, line_number, file};
+  if (line.size() > std::numeric_limits<std::uint32_t>::max())
+    throw detail::line_error(line, line_number, file, 0, "line is longer than 4 GiB");
+
+  // The AST is scratch space; keeping it per thread avoids an allocation per line.
+  thread_local ast::Line items;
+  items.clear();
+  ast::Iterator first = line.data();
+  const ast::Iterator last = line.data() + line.size();
+  boost::spirit::x3::parse(first, last, grammar::line(), items);
+  if (first != last)
+    throw detail::explain_parse_stop(line, static_cast<std::size_t>(first - line.data()), items,
+                                     line_number, file);
+
+  reset(block, line_number);
+  std::size_t n_comments = 0;
+  for (const auto& item : items)
+    if (*item.head.begin() == '(' || *item.head.begin() == ';') ++n_comments;
+  // Resize rather than clear: the strings of kept comments reuse their capacity.
+  block.comments.resize(n_comments);
+  std::size_t comment_index = 0;
+
+  for (const auto& item : items) {
+    const char head = upper(*item.head.begin());
+    switch (head) {
+      case '/':
+        block.block_delete = true;
+        break;
+      case '%':
+        block.percent = true;
+        break;
+      case 'O':
+        block.program_number = integer_value(item.body, 999'999'999L, "program number", ctx);
+        break;
+      case 'N':
+        block.n = make_word('N', item, ctx);
+        break;
+      case '*':
+        block.checksum = static_cast<int>(integer_value(item.body, 999'999'999L, "checksum", ctx));
+        break;
+      case '(':
+      case ';': {
+        Comment& c = block.comments[comment_index++];
+        c.begin = ctx.offset(item.head.begin());
+        c.end = ctx.offset(item.body.end()) + (head == '(' ? 1U : 0U);
+        c.text.assign(item.body.begin(), item.body.end());
+        break;
+      }
+      default:
+        block.words.push_back(make_word(head, item, ctx));
+    }
+  }
+}
+
+Block parse_line(std::string_view line, std::size_t line_number, const std::string& file) {
+  Block block;
+  parse_line(line, line_number, file, block);
+  return block;
+}
+
+BlockReader::BlockReader(std::istream& in, std::string file) : in_(in), file_(std::move(file)) {}
+
+bool BlockReader::next(Block& block) {
+  if (!std::getline(in_, line_)) {
+    if (in_.bad())
+      throw InputError(SourceLocation{file_, line_number_ + 1, 0, "", ""}, "read error");
+    return false;
+  }
+  ++line_number_;
+  line_ending_ = in_.eof() ? "" : "\n";
+  if (!line_.empty() && line_.back() == '\r') {
+    line_.pop_back();
+    line_ending_ = *line_ending_ != '\0' ? "\r\n" : "\r";
+  }
+  parse_line(line_, line_number_, file_, block);
+  return true;
+}
+
+}  // namespace abbe::gcode
