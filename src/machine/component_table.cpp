@@ -1,0 +1,233 @@
+#include "abbe/machine/component_table.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string_view>
+
+#include "abbe/io/input_error.hpp"
+
+namespace abbe::machine {
+
+namespace {
+
+constexpr std::array<std::string_view, 5> kColumns{"axis", "component", "position_mm", "direction",
+                                                   "value"};
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
+    s.remove_suffix(1);
+  return s;
+}
+
+struct Field {
+  std::string_view text;
+  std::size_t column;  // 1-based column of the field's first character
+};
+
+}  // namespace
+
+const char* to_string(TableDirection d) {
+  switch (d) {
+    case TableDirection::fwd:
+      return "fwd";
+    case TableDirection::rev:
+      return "rev";
+    case TableDirection::mean:
+      return "mean";
+  }
+  return "?";
+}
+
+ComponentTable ComponentTable::load(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError({path, 0, 0, "", ""}, "cannot open the component table");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  return parse(buffer.str(), path);
+}
+
+ComponentTable ComponentTable::parse(const std::string& text, const std::string& file) {
+  ComponentTable table;
+  table.file_ = file;
+  table.slot_.fill(0);
+
+  std::string_view rest(text);
+  std::size_t line_no = 0;
+  bool header_seen = false;
+  std::array<Field, 5> fields;
+  std::string_view line;
+
+  auto error = [&](std::size_t column, std::string_view field, const std::string& msg) {
+    throw InputError({file, line_no, column, std::string(field), std::string(trim(line))}, msg);
+  };
+
+  while (!rest.empty()) {
+    std::size_t nl = rest.find('\n');
+    line = rest.substr(0, nl);
+    rest = nl == std::string_view::npos ? std::string_view{} : rest.substr(nl + 1);
+    ++line_no;
+    std::string_view content = trim(line);
+    if (content.empty() || content.front() == '#') continue;
+
+    // Split into exactly five fields.
+    std::size_t n = 0, start = 0;
+    for (std::size_t i = 0; i <= line.size(); ++i) {
+      if (i == line.size() || line[i] == ',') {
+        if (n == fields.size()) error(i + 1, "", fmt::format("more than {} fields", fields.size()));
+        std::string_view raw = line.substr(start, i - start);
+        std::size_t lead = 0;
+        while (lead < raw.size() && (raw[lead] == ' ' || raw[lead] == '\t')) ++lead;
+        fields[n++] = {trim(raw), start + lead + 1};
+        start = i + 1;
+      }
+    }
+    if (!header_seen) {
+      for (std::size_t i = 0; i < kColumns.size(); ++i)
+        if (i >= n || fields[i].text != kColumns[i])
+          error(i < n ? fields[i].column : 1, "header",
+                "the header must be \"axis,component,position_mm,direction,value\"");
+      header_seen = true;
+      continue;
+    }
+    if (n != fields.size())
+      error(line.size() + 1, kColumns[n], fmt::format("{} fields instead of 5", n));
+
+    auto axis = parse_axis(fields[0].text);
+    if (!axis)
+      error(fields[0].column, "axis",
+            fmt::format("unknown axis \"{}\" (expected X, Y or Z)", fields[0].text));
+    auto comp = parse_component(fields[1].text);
+    if (!comp) {
+      std::string hint;
+      if (fields[1].text == "EC0Y" || fields[1].text == "EB0Z" || fields[1].text == "EA0Z")
+        hint = " (squareness belongs in the machine file's `squareness`, not in the table)";
+      error(fields[1].column, "component",
+            fmt::format("unknown component \"{}\"; components of axis j are EXj, EYj, EZj, EAj, "
+                        "EBj, ECj{}",
+                        fields[1].text, hint));
+    }
+    if (comp->axis != *axis)
+      error(fields[1].column, "component",
+            fmt::format("component {} belongs to axis {}, not {}", fields[1].text,
+                        axis_letter(comp->axis), axis_letter(*axis)));
+    double position = 0.0, value = 0.0;
+    for (int f : {2, 4}) {
+      const Field& fld = fields[static_cast<std::size_t>(f)];
+      double& out = f == 2 ? position : value;
+      const char* b = fld.text.data();
+      const char* e = b + fld.text.size();
+      if (b != e && *b == '+') ++b;
+      auto [ptr, ec] = std::from_chars(b, e, out);
+      if (fld.text.empty() || ec != std::errc() || ptr != e)
+        error(fld.column, kColumns[static_cast<std::size_t>(f)],
+              fmt::format("\"{}\" is not a number", fld.text));
+      if (!std::isfinite(out))
+        error(fld.column, kColumns[static_cast<std::size_t>(f)],
+              fmt::format("{} must be finite", kColumns[static_cast<std::size_t>(f)]));
+    }
+    TableDirection dir = TableDirection::mean;
+    if (fields[3].text == "fwd")
+      dir = TableDirection::fwd;
+    else if (fields[3].text == "rev")
+      dir = TableDirection::rev;
+    else if (fields[3].text == "mean")
+      dir = TableDirection::mean;
+    else
+      error(fields[3].column, "direction",
+            fmt::format("direction \"{}\" is not one of fwd, rev, mean", fields[3].text));
+
+    // Mean and fwd/rev are exclusive for one component.
+    bool is_mean = dir == TableDirection::mean;
+    for (TableDirection other : {TableDirection::fwd, TableDirection::rev, TableDirection::mean}) {
+      bool other_mean = other == TableDirection::mean;
+      if (is_mean != other_mean && table.slot_[slot(*comp, other)] != 0) {
+        const auto& s =
+            table.series_[static_cast<std::size_t>(table.slot_[slot(*comp, other)] - 1)];
+        error(fields[3].column, "direction",
+              fmt::format("{} of axis {} mixes `mean` with `fwd`/`rev` rows (line {} has `{}`): "
+                          "give either one mean series or both fwd and rev",
+                          fields[1].text, fields[0].text, s.line.front(), to_string(other)));
+      }
+    }
+
+    int& sl = table.slot_[slot(*comp, dir)];
+    if (sl == 0) {
+      table.series_.push_back(ComponentSeries{*comp, dir, {}, {}, {}});
+      sl = static_cast<int>(table.series_.size());
+    }
+    ComponentSeries& s = table.series_[static_cast<std::size_t>(sl - 1)];
+    if (!s.position_mm.empty() && position <= s.position_mm.back())
+      error(fields[2].column, "position_mm",
+            fmt::format("position {} of {} {} is {} the previous one ({} on line {}); positions "
+                        "must be strictly increasing per axis, component and direction",
+                        fields[2].text, fields[1].text, fields[3].text,
+                        position == s.position_mm.back() ? "a duplicate of" : "below",
+                        s.position_mm.back(), s.line.back()));
+    s.position_mm.push_back(position);
+    s.value.push_back(value);
+    s.line.push_back(line_no);
+  }
+  if (!header_seen)
+    throw InputError({file, 1, 1, "header", ""},
+                     "empty table: the header \"axis,component,position_mm,direction,value\" is "
+                     "required");
+
+  // Whole-series checks: bidirectional pairs complete, units plausible.
+  for (const ComponentSeries& s : table.series_) {
+    std::string name = component_name(s.id);
+    if (s.direction != TableDirection::mean) {
+      TableDirection other =
+          s.direction == TableDirection::fwd ? TableDirection::rev : TableDirection::fwd;
+      if (table.slot_[slot(s.id, other)] == 0)
+        throw InputError({file, s.line.front(), 0, "direction", ""},
+                         fmt::format("{} has `{}` rows but no `{}` rows: a bidirectional "
+                                     "component needs both (or give one `mean` series)",
+                                     name, to_string(s.direction), to_string(other)));
+    }
+    std::size_t imax = 0;
+    for (std::size_t i = 0; i < s.value.size(); ++i)
+      if (std::abs(s.value[i]) > std::abs(s.value[imax])) imax = i;
+    double vmax = std::abs(s.value[imax]);
+    double span = s.position_mm.back() - s.position_mm.front();
+    if (s.id.linear() && vmax > 0.0 && vmax < kMinLinearMaxUm && span > kUnitCheckSpanMm)
+      throw InputError(
+          {file, s.line[imax], 0, "value", ""},
+          fmt::format("{} {}: the largest |value| is {} µm over {} mm of travel — this looks "
+                      "like mm; linear components are in µm (unit check: 0 < max|value| < {} µm "
+                      "over more than {} mm)",
+                      name, to_string(s.direction), vmax, span, kMinLinearMaxUm, kUnitCheckSpanMm));
+    if (!s.id.linear() && vmax > kMaxAngularUrad)
+      throw InputError({file, s.line[imax], 0, "value", ""},
+                       fmt::format("{} {}: |value| = {} µrad is implausibly large (unit check: "
+                                   "angular components are in µrad and must stay within {} µrad)",
+                                   name, to_string(s.direction), vmax, kMaxAngularUrad));
+  }
+  return table;
+}
+
+const ComponentSeries* ComponentTable::find(ComponentId id, TableDirection d) const {
+  int sl = slot_[slot(id, d)];
+  return sl == 0 ? nullptr : &series_[static_cast<std::size_t>(sl - 1)];
+}
+
+bool ComponentTable::has(ComponentId id) const {
+  return find(id, TableDirection::mean) || find(id, TableDirection::fwd);
+}
+
+bool ComponentTable::bidirectional(ComponentId id) const {
+  return find(id, TableDirection::fwd) != nullptr;
+}
+
+bool ComponentTable::axis_has_components(Axis a) const {
+  for (int d = 0; d < kComponentsPerAxis; ++d)
+    if (has(ComponentId{a, d})) return true;
+  return false;
+}
+
+}  // namespace abbe::machine

@@ -1,0 +1,299 @@
+// Machine::load / Machine::parse: the YAML machine file (docs/formats.md).
+// Every key is checked; errors name the file, the line (yaml-cpp Mark) and
+// the field path, e.g. "machine.yaml:12:7 [axes.X.points.all]".
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "abbe/io/input_error.hpp"
+#include "abbe/machine/machine.hpp"
+
+namespace abbe::machine {
+
+namespace {
+
+class Reader {
+ public:
+  Reader(const std::string& text, std::string file) : file_(std::move(file)) {
+    std::istringstream in(text);
+    std::string l;
+    while (std::getline(in, l)) lines_.push_back(l);
+  }
+
+  [[noreturn]] void fail(const YAML::Mark& mark, const std::string& field,
+                         const std::string& msg) const {
+    SourceLocation where{file_, 0, 0, field, ""};
+    if (mark.line >= 0) {
+      where.line = static_cast<std::size_t>(mark.line) + 1;
+      where.column = static_cast<std::size_t>(mark.column) + 1;
+      if (static_cast<std::size_t>(mark.line) < lines_.size())
+        where.source_line = lines_[static_cast<std::size_t>(mark.line)];
+    }
+    throw InputError(where, msg);
+  }
+  [[noreturn]] void fail(const YAML::Node& node, const std::string& field,
+                         const std::string& msg) const {
+    fail(node.Mark(), field, msg);
+  }
+
+  void expect_map(const YAML::Node& node, const std::string& field) const {
+    if (!node.IsMap()) fail(node, field, fmt::format("`{}` must be a mapping", field));
+  }
+
+  // Every key of `node` must be in `allowed`.
+  void check_keys(const YAML::Node& node, const std::string& field,
+                  const std::set<std::string>& allowed) const {
+    expect_map(node, field);
+    for (const auto& kv : node) {
+      std::string key = scalar_key(kv.first, field);
+      if (!allowed.count(key))
+        fail(kv.first, join(field, key),
+             fmt::format("unknown key `{}` (allowed: {})", key, fmt::join(allowed, ", ")));
+    }
+  }
+
+  std::string scalar_key(const YAML::Node& key, const std::string& field) const {
+    if (!key.IsScalar()) fail(key, field, "keys must be plain scalars");
+    return key.Scalar();
+  }
+
+  YAML::Node required(const YAML::Node& parent, const std::string& key,
+                      const std::string& field) const {
+    const YAML::Node n = parent[key];
+    if (!n) fail(parent, join(field, key), fmt::format("missing key `{}`", key));
+    return n;
+  }
+
+  double number(const YAML::Node& node, const std::string& field) const {
+    if (!node.IsScalar()) fail(node, field, "expected a number");
+    double v = 0.0;
+    try {
+      v = node.as<double>();
+    } catch (const YAML::Exception&) {
+      fail(node, field, fmt::format("\"{}\" is not a number", node.Scalar()));
+    }
+    if (!std::isfinite(v)) fail(node, field, "the value must be finite (no NaN or inf)");
+    return v;
+  }
+
+  std::string string(const YAML::Node& node, const std::string& field) const {
+    if (!node.IsScalar()) fail(node, field, "expected a string");
+    return node.Scalar();
+  }
+
+  std::vector<double> numbers(const YAML::Node& node, const std::string& field,
+                              std::size_t n) const {
+    if (!node.IsSequence() || node.size() != n)
+      fail(node, field, fmt::format("expected a list of {} numbers", n));
+    std::vector<double> out;
+    for (std::size_t i = 0; i < n; ++i)
+      out.push_back(number(node[i], fmt::format("{}[{}]", field, i)));
+    return out;
+  }
+
+  Eigen::Vector3d vec3(const YAML::Node& node, const std::string& field) const {
+    auto v = numbers(node, field, 3);
+    return {v[0], v[1], v[2]};
+  }
+
+  static std::string join(const std::string& a, const std::string& b) {
+    return a.empty() ? b : a + "." + b;
+  }
+
+ private:
+  std::string file_;
+  std::vector<std::string> lines_;
+};
+
+AxisRecord read_record(const Reader& r, const YAML::Node& node, Axis axis,
+                       const std::string& field) {
+  r.check_keys(node, field, {"measured_at", "points"});
+  AxisRecord rec;
+  rec.present = true;
+  const YAML::Node at = r.required(node, "measured_at", field);
+  std::string fat = field + ".measured_at";
+  r.check_keys(at, fat, {"x", "y", "z", "tool_length"});
+  rec.measured_tip = {r.number(r.required(at, "x", fat), fat + ".x"),
+                      r.number(r.required(at, "y", fat), fat + ".y"),
+                      r.number(r.required(at, "z", fat), fat + ".z")};
+  rec.measured_tool_length = r.number(r.required(at, "tool_length", fat), fat + ".tool_length");
+
+  const YAML::Node points = r.required(node, "points", field);
+  std::string fp = field + ".points";
+  std::set<std::string> allowed{"all"};
+  for (int k = 0; k < 3; ++k) allowed.insert(component_name({axis, k}));
+  r.expect_map(points, fp);
+  for (const auto& kv : points) {
+    std::string key = r.scalar_key(kv.first, fp);
+    if (!allowed.count(key)) {
+      auto id = parse_component(key);
+      std::string why = !id ? "is not a component name"
+                        : id->axis != axis
+                            ? fmt::format("belongs to axis {}", axis_letter(id->axis))
+                            : "is angular (angular errors need no measurement point)";
+      r.fail(kv.first, Reader::join(fp, key),
+             fmt::format("`{}` {}; allowed keys: {}", key, why, fmt::join(allowed, ", ")));
+    }
+  }
+  std::optional<Eigen::Vector3d> all;
+  if (points["all"]) all = r.vec3(points["all"], fp + ".all");
+  for (int k = 0; k < 3; ++k) {
+    std::string name = component_name({axis, k});
+    if (points[name])
+      rec.point[static_cast<std::size_t>(k)] = r.vec3(points[name], Reader::join(fp, name));
+    else if (all)
+      rec.point[static_cast<std::size_t>(k)] = *all;
+    else
+      r.fail(points, Reader::join(fp, name),
+             fmt::format("no measurement point for {} (give `all` or `{}`)", name, name));
+  }
+  return rec;
+}
+
+}  // namespace
+
+Machine Machine::load(const std::string& yaml_path) {
+  std::ifstream in(yaml_path, std::ios::binary);
+  if (!in) throw InputError({yaml_path, 0, 0, "", ""}, "cannot open the machine file");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  std::filesystem::path base = std::filesystem::path(yaml_path).parent_path();
+  return parse(buffer.str(), yaml_path, base.string());
+}
+
+Machine Machine::parse(const std::string& yaml_text, const std::string& file,
+                       const std::string& base_dir) {
+  Reader r(yaml_text, file);
+  YAML::Node loaded;
+  try {
+    loaded = YAML::Load(yaml_text);
+  } catch (const YAML::ParserException& e) {
+    r.fail(e.mark, "", fmt::format("YAML syntax error: {}", e.msg));
+  }
+  const YAML::Node root = loaded;  // const: lookups never insert keys
+  if (!root.IsMap()) r.fail(root, "", "a machine file is a YAML mapping (see docs/formats.md)");
+  r.check_keys(root, "",
+               {"name", "chain", "travel", "tool_length", "tool_table", "work_offsets",
+                "squareness", "table", "out_of_range", "axes"});
+
+  MachineSpec spec;
+  spec.file = file;
+  spec.name = r.string(r.required(root, "name", ""), "name");
+
+  const YAML::Node chain = r.required(root, "chain", "");
+  try {
+    spec.chain = KinematicChain::parse(r.string(chain, "chain"));
+  } catch (const std::invalid_argument& e) {
+    r.fail(chain, "chain", e.what());
+  }
+
+  const YAML::Node travel = r.required(root, "travel", "");
+  r.check_keys(travel, "travel", {"x", "y", "z"});
+  for (Axis a : kAxes) {
+    std::string key(1, static_cast<char>(std::tolower(axis_letter(a))));
+    std::string f = "travel." + key;
+    const YAML::Node t = r.required(travel, key, "travel");
+    auto mm = r.numbers(t, f, 2);
+    if (!(mm[0] < mm[1]))
+      r.fail(t, f, fmt::format("travel min ({}) must be below max ({})", mm[0], mm[1]));
+    spec.travel[static_cast<std::size_t>(index(a))] = {mm[0], mm[1]};
+  }
+
+  const YAML::Node tl = r.required(root, "tool_length", "");
+  spec.tool_length = r.number(tl, "tool_length");
+  if (spec.tool_length < 0.0) r.fail(tl, "tool_length", "the tool length must not be negative");
+
+  if (const YAML::Node tt = root["tool_table"]) {
+    r.expect_map(tt, "tool_table");
+    for (const auto& kv : tt) {
+      std::string key = r.scalar_key(kv.first, "tool_table");
+      std::string f = "tool_table." + key;
+      int h = 0;
+      try {
+        std::size_t used = 0;
+        h = std::stoi(key, &used);
+        if (used != key.size()) throw std::invalid_argument(key);
+      } catch (const std::exception&) {
+        r.fail(kv.first, f, fmt::format("`{}` is not an H number (an integer)", key));
+      }
+      if (h < 0) r.fail(kv.first, f, "H numbers are not negative");
+      double l = r.number(kv.second, f);
+      if (l < 0.0) r.fail(kv.second, f, "the tool length must not be negative");
+      spec.tool_table[h] = l;
+    }
+  }
+
+  if (const YAML::Node wo = root["work_offsets"]) {
+    r.check_keys(wo, "work_offsets", {"G54", "G55", "G56", "G57", "G58", "G59"});
+    for (int g = 0; g < 6; ++g) {
+      std::string key = fmt::format("G{}", 54 + g);
+      if (wo[key])
+        spec.work_offsets[static_cast<std::size_t>(g)] = r.vec3(wo[key], "work_offsets." + key);
+    }
+  }
+
+  if (const YAML::Node sq = root["squareness"]) {
+    r.check_keys(sq, "squareness", {"EC0Y", "EB0Z", "EA0Z"});
+    if (sq["EC0Y"]) spec.squareness.ec0y = r.number(sq["EC0Y"], "squareness.EC0Y");
+    if (sq["EB0Z"]) spec.squareness.eb0z = r.number(sq["EB0Z"], "squareness.EB0Z");
+    if (sq["EA0Z"]) spec.squareness.ea0z = r.number(sq["EA0Z"], "squareness.EA0Z");
+  }
+
+  if (const YAML::Node oor = root["out_of_range"]) {
+    std::string p = r.string(oor, "out_of_range");
+    if (p == "clamp")
+      spec.out_of_range = OutOfRangePolicy::clamp;
+    else if (p == "extrapolate")
+      spec.out_of_range = OutOfRangePolicy::extrapolate;
+    else if (p == "error")
+      spec.out_of_range = OutOfRangePolicy::error;
+    else
+      r.fail(oor, "out_of_range", fmt::format("\"{}\" is not one of clamp, extrapolate, error", p));
+  }
+
+  const YAML::Node axes = root["axes"];
+  if (axes) {
+    r.check_keys(axes, "axes", {"X", "Y", "Z"});
+    for (Axis a : kAxes) {
+      std::string key(1, axis_letter(a));
+      if (axes[key])
+        spec.axes[static_cast<std::size_t>(index(a))] = read_record(r, axes[key], a, "axes." + key);
+    }
+  }
+
+  const YAML::Node table = r.required(root, "table", "");
+  std::string table_name = r.string(table, "table");
+  std::filesystem::path tp(table_name);
+  if (tp.is_relative() && !base_dir.empty()) tp = std::filesystem::path(base_dir) / tp;
+  spec.table_file = tp.string();
+  {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(tp, ec))
+      r.fail(table, "table",
+             fmt::format("cannot open the component table \"{}\" (resolved to {})", table_name,
+                         spec.table_file));
+  }
+  spec.table = ComponentTable::load(spec.table_file);
+
+  // Every axis with table data needs its measurement record (the arms).
+  for (Axis a : kAxes) {
+    if (spec.table.axis_has_components(a) &&
+        !spec.axes[static_cast<std::size_t>(index(a))].present) {
+      std::string f = fmt::format("axes.{}", axis_letter(a));
+      r.fail(axes ? axes : root, f,
+             fmt::format("the component table {} has errors of axis {} but the machine file has "
+                         "no measurement record `{}` (measured_at, points) for it",
+                         spec.table_file, axis_letter(a), f));
+    }
+  }
+  return Machine(std::move(spec));
+}
+
+}  // namespace abbe::machine

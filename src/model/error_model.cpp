@@ -1,0 +1,85 @@
+#include "abbe/model/error_model.hpp"
+
+#include <fmt/format.h>
+
+#include "abbe/io/input_error.hpp"
+
+namespace abbe::model {
+
+using machine::Axis;
+
+ErrorModel::ErrorModel(const machine::Machine& machine, ModelKind kind)
+    : kind_(kind),
+      policy_(machine.out_of_range()),
+      order_(machine.chain().order()),
+      squareness_(machine.squareness()) {
+  auto tables = std::make_shared<Tables>();
+  tables->file = machine.spec().table_file;
+  for (Axis a : machine::kAxes) {
+    auto ai = static_cast<std::size_t>(machine::index(a));
+    for (int dir = -1; dir <= 1; ++dir)
+      tables->by_axis_dir[ai][static_cast<std::size_t>(dir + 1)] =
+          AxisErrorTable::build(machine.table(), a, dir, policy_);
+    AxisGeometry& g = geometry_[ai];
+    auto mask = machine.chain().moves_mask(a);
+    g.moves = Eigen::Array3d(mask[0], mask[1], mask[2]);
+    const machine::AxisRecord& rec = machine.record(a);
+    Eigen::Array3d s_meas = rec.measured_axes().array();
+    for (int k = 0; k < 3; ++k)
+      g.m0.col(k) = (rec.point[static_cast<std::size_t>(k)].array() - g.moves * s_meas).matrix();
+  }
+  tables_ = std::move(tables);
+}
+
+void ErrorModel::lookup(const EvalPoint& point, ModelData& data) const {
+  const Eigen::Vector3d s = point.p + Eigen::Vector3d(0.0, 0.0, point.tool_length);
+  for (std::size_t j = 0; j < 3; ++j) {
+    int dir = point.dir[j] > 0 ? 2 : point.dir[j] < 0 ? 0 : 1;
+    const AxisErrorTable& t = tables_->by_axis_dir[j][static_cast<std::size_t>(dir)];
+    if (!t.eval(s[static_cast<Eigen::Index>(j)], data.cursor_[j][static_cast<std::size_t>(dir)],
+                data.errors[j])) {
+      if (policy_ == machine::OutOfRangePolicy::error)
+        throw InputError(
+            {tables_->file, 0, 0, std::string(1, "XYZ"[j]), ""},
+            fmt::format("axis {} position s = {:.4f} mm is outside the measured range [{}, {}] "
+                        "mm of the component table (out_of_range: error)",
+                        "XYZ"[j], s[static_cast<Eigen::Index>(j)], t.lo(), t.hi()));
+      ++data.out_of_range_lookups;
+    }
+  }
+}
+
+Deviation ErrorModel::evaluate(const EvalPoint& point, ModelData& data) const {
+  lookup(point, data);
+  ++data.evaluations;
+  const Eigen::Vector3d s = point.p + Eigen::Vector3d(0.0, 0.0, point.tool_length);
+  switch (kind_) {
+    case ModelKind::ae_arm:
+      return evaluate_ae_arm(point, s, data);
+    case ModelKind::htm:
+      return evaluate_htm(point, s, data);
+    case ModelKind::dual:
+      return evaluate_dual(point, s, data);
+  }
+  return {};
+}
+
+// (−EC0Y·y + EB0Z·z, −EA0Z·z, 0): µrad × mm = nm, hence the 1e-3.
+Eigen::Vector3d ErrorModel::squareness_um(const Eigen::Vector3d& p) const {
+  return 1e-3 * Eigen::Vector3d(-squareness_.ec0y * p.y() + squareness_.eb0z * p.z(),
+                                -squareness_.ea0z * p.z(), 0.0);
+}
+
+Eigen::Vector3d ErrorModel::measurement_point(Axis j, int k, const EvalPoint& point) const {
+  const AxisGeometry& g = geometry_[static_cast<std::size_t>(machine::index(j))];
+  Eigen::Array3d s = (point.p + Eigen::Vector3d(0.0, 0.0, point.tool_length)).array();
+  return g.m0.col(k) + (g.moves * s).matrix();
+}
+
+Eigen::Vector3d ErrorModel::frame_origin(Axis j, const EvalPoint& point) const {
+  const AxisGeometry& g = geometry_[static_cast<std::size_t>(machine::index(j))];
+  Eigen::Array3d s = (point.p + Eigen::Vector3d(0.0, 0.0, point.tool_length)).array();
+  return (g.moves * s).matrix();
+}
+
+}  // namespace abbe::model
