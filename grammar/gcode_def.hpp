@@ -36,32 +36,43 @@ const x3::rule<class paren_comment_class, ast::Item> paren_comment = "comment";
 const x3::rule<class semicolon_comment_class, ast::Item> semicolon_comment = "comment";
 const x3::rule<class block_delete_class, ast::Item> block_delete = "block delete";
 const x3::rule<class percent_class, ast::Item> percent = "tape delimiter";
+const x3::rule<class comment_class, ast::Item> comment = "comment";
+const x3::rule<class item_class, ast::Item> item = "word or comment";
 const line_type nc_line = "line";
 
-const auto word_def =
-    raw[word_letter] >> blanks >> raw[-char_("+-") >> blanks >> unsigned_real] >> number_end;
-const auto line_number_def = raw[char_("Nn")] >> blanks >> raw[digits] >> number_end;
-const auto program_number_def = raw[char_("Oo")] >> blanks >> raw[digits] >> number_end;
-const auto checksum_def = raw[lit('*')] >> raw[digits] >> number_end;
-const auto paren_comment_def = raw[lit('(')] >> raw[*~char_("()")] >> lit(')');
+// Every item swallows the blanks after it, so that the repetitions below
+// store each item straight into the line's vector (no temporary containers).
+const auto word_def = raw[word_letter] >> blanks >> raw[-char_("+-") >> blanks >> unsigned_real] >>
+                      number_end >> blanks;
+const auto line_number_def = raw[char_("Nn")] >> blanks >> raw[digits] >> number_end >> blanks;
+const auto program_number_def = raw[char_("Oo")] >> blanks >> raw[digits] >> number_end >> blanks;
+const auto checksum_def = raw[lit('*')] >> raw[digits] >> number_end >> blanks;
+const auto paren_comment_def = raw[lit('(')] >> raw[*~char_("()")] >> lit(')') >> blanks;
 const auto semicolon_comment_def = raw[lit(';')] >> raw[*char_];
-const auto block_delete_def = raw[lit('/')] >> attr(ast::Span());
-const auto percent_def = raw[lit('%')] >> attr(ast::Span());
+const auto block_delete_def = raw[lit('/')] >> attr(ast::Span()) >> blanks;
+const auto percent_def = raw[lit('%')] >> attr(ast::Span()) >> blanks;
 
-const auto comment = paren_comment | semicolon_comment;
-const auto percent_line = percent >> blanks >> -(comment >> blanks);
-const auto program_line = program_number >> blanks >> -(comment >> blanks) >> -(checksum >> blanks);
-const auto block = -(line_number >> blanks) >>
-                   x3::repeat(std::size_t{0}, kMaxItemsPerBlock)[(word | comment) >> blanks] >>
-                   -(checksum >> blanks);
+const auto comment_def = paren_comment | semicolon_comment;
+const auto item_def = word | comment;
+
+// Stores an item in the line. The line is filled by this action rather than by
+// X3's container attribute propagation, which builds and appends temporary
+// vectors in sequences: this way a line costs no allocation once its vector
+// has grown.
+const auto store = [](auto& ctx) { x3::_val(ctx).push_back(x3::_attr(ctx)); };
+
+const auto percent_line = percent[store] >> -comment[store];
+const auto program_line = program_number[store] >> -comment[store] >> -checksum[store];
+const auto block = -line_number[store] >>
+                   x3::repeat(std::size_t{0}, kMaxItemsPerBlock)[item[store]] >> -checksum[store];
 
 // Every alternative is chosen by its first character and nothing can fail
 // after an item has been stored, so no half-parsed item is ever left behind.
 const auto nc_line_def = blanks >>
-                         (percent_line | (-(block_delete >> blanks) >> (program_line | block)));
+                         (percent_line | (-block_delete[store] >> (program_line | block)));
 
 BOOST_SPIRIT_DEFINE(word, line_number, program_number, checksum, paren_comment, semicolon_comment,
-                    block_delete, percent, nc_line)
+                    block_delete, percent, comment, item, nc_line)
 
 const line_type& line() { return nc_line; }
 

@@ -39,19 +39,43 @@ struct LineContext {
 };
 
 // The value of a number as the grammar matched it: optional sign, blanks,
-// digits with an optional '.'. Blanks and '+' are dropped before conversion.
+// digits with an optional '.'.
 double number_value(const ast::Span& number, const LineContext& ctx) {
-  char buffer[kMaxNumberChars + 2];
-  std::size_t n = 0;
+  // Fast path (Clinger): an integer mantissa below 2^53 and a power of ten up
+  // to 1e22 are exact doubles, so one division rounds correctly and gives the
+  // same double as from_chars. Typical CAM numbers (X-123.4567) take it.
+  static constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                      1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                      1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+  constexpr std::uint64_t kMaxExactMantissa = std::uint64_t{1} << 53;
+  bool negative = false;
+  std::uint64_t mantissa = 0;
+  std::size_t n_digits = 0;
+  std::size_t n_fraction = 0;
+  bool in_fraction = false;
   for (char c : number) {
-    if (c == ' ' || c == '\t' || c == '+') continue;
-    if (n == sizeof(buffer))
-      throw ctx.error(number.begin(), "number is too long (more than 64 characters)");
-    buffer[n++] = c;
+    if (c == '-') {
+      negative = true;
+    } else if (c == '.') {
+      in_fraction = true;
+    } else if (c >= '0' && c <= '9') {
+      if (n_digits < 19) mantissa = mantissa * 10 + static_cast<std::uint64_t>(c - '0');
+      ++n_digits;
+      if (in_fraction) ++n_fraction;
+    }
   }
-  const std::size_t significant = (n > 0 && buffer[0] == '-') ? n - 1 : n;
+  const std::size_t significant = n_digits + (in_fraction ? 1 : 0);
   if (significant > kMaxNumberChars)
     throw ctx.error(number.begin(), "number is too long (more than 64 characters)");
+  if (n_digits <= 19 && mantissa <= kMaxExactMantissa && n_fraction <= 22) {
+    const double magnitude = static_cast<double>(mantissa) / kPow10[n_fraction];
+    return negative ? -magnitude : magnitude;
+  }
+  // General case: correctly rounded conversion of the text without blanks and '+'.
+  char buffer[kMaxNumberChars + 2];
+  std::size_t n = 0;
+  for (char c : number)
+    if (c != ' ' && c != '\t' && c != '+') buffer[n++] = c;
   double value = 0.0;
   const auto [end, ec] = std::from_chars(buffer, buffer + n, value);
   if (ec != std::errc() || end != buffer + n || !std::isfinite(value))

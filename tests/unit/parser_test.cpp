@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdlib>
+#include <random>
 #include <sstream>
 #include <string>
 
@@ -218,6 +221,24 @@ TEST(Parser, NumbersAreExact) {
   EXPECT_EQ(parse("X-0").words[0].value, 0.0);
   // 64 significant characters are still accepted.
   EXPECT_EQ(parse("X" + std::string(63, '0') + "1").words[0].value, 1.0);
+}
+
+TEST(Parser, NumbersConvertLikeStrtod) {
+  // Random decimal texts of every length, with and without fraction; the
+  // parser's value must be the correctly rounded double strtod gives.
+  std::mt19937_64 rng(42);
+  for (int i = 0; i < 20000; ++i) {
+    std::string text = (rng() % 2) ? "-" : "";
+    const int n_int = static_cast<int>(rng() % 22);
+    const int n_frac = static_cast<int>(rng() % 26);
+    for (int k = 0; k < n_int; ++k) text += static_cast<char>('0' + rng() % 10);
+    if (n_frac > 0 || n_int == 0) text += '.';
+    for (int k = 0; k < std::max(n_frac, n_int == 0 ? 1 : 0); ++k)
+      text += static_cast<char>('0' + rng() % 10);
+    const Block b = parse("X" + text);
+    ASSERT_EQ(b.words.size(), 1U) << text;
+    EXPECT_EQ(b.words[0].value, std::strtod(text.c_str(), nullptr)) << text;
+  }
 }
 
 // Message and 1-based column of the refusal of `line`.
