@@ -1,0 +1,31 @@
+#pragma once
+// Generates a TruthMachine and a matching CampaignSetup from a seed and a
+// profile ("mazak": shaped after the thesis' Mazak AJV 25-405, Tables 4–6;
+// "generic": random magnitudes in realistic ranges). Distributions and
+// magnitudes: docs/virtual-machine.md.
+#include <cstdint>
+#include <string>
+
+#include "abbe/sim/campaign_setup.hpp"
+#include "abbe/sim/truth_machine.hpp"
+
+namespace abbe::sim {
+
+struct GeneratedMachine {
+  TruthMachine truth;
+  CampaignSetup campaign;
+};
+
+struct GeneratorOptions {
+  std::uint64_t seed = 1;
+  std::string profile = "mazak";  // "mazak" | "generic"
+  double spacing_mm = 25.0;
+  int runs = 5;
+  double noise_scale = 1.0;    // multiplies every reading noise (0: noise-free campaign)
+  double angular_scale = 1.0;  // multiplies every angular component (e.g. 50 for ≈ 1 mrad)
+};
+
+// Throws std::invalid_argument for an unknown profile.
+GeneratedMachine generate_machine(const GeneratorOptions& options);
+
+}  // namespace abbe::sim
