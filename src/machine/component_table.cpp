@@ -79,7 +79,8 @@ ComponentTable ComponentTable::parse(const std::string& text, const std::string&
     std::size_t n = 0, start = 0;
     for (std::size_t i = 0; i <= line.size(); ++i) {
       if (i == line.size() || line[i] == ',') {
-        if (n == fields.size()) error(i + 1, "", fmt::format("more than {} fields", fields.size()));
+        if (n == fields.size())
+          error(start + 1, "", fmt::format("more than {} fields", fields.size()));
         std::string_view raw = line.substr(start, i - start);
         std::size_t lead = 0;
         while (lead < raw.size() && (raw[lead] == ' ' || raw[lead] == '\t')) ++lead;

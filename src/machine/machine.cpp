@@ -33,7 +33,10 @@ Machine::Machine(MachineSpec spec) : spec_(std::move(spec)) {
     for (int d = 0; d < kComponentsPerAxis; ++d)
       if (!spec_.table.has(ComponentId{a, d})) missing.push_back(component_name({a, d}));
   }
-  if (!missing.empty())
+  if (missing.size() == 3 * kComponentsPerAxis)
+    spdlog::info("machine \"{}\": the component table is empty (every error taken as zero)",
+                 spec_.name);
+  else if (!missing.empty())
     spdlog::info("machine \"{}\": no table data for {} (taken as zero)", spec_.name,
                  fmt::join(missing, ", "));
 }

@@ -1,0 +1,135 @@
+// The YAML machine file: a complete file, and every rejection with the file,
+// line and field it names.
+#include <gtest/gtest.h>
+
+#include "abbe/io/input_error.hpp"
+#include "abbe/machine/machine.hpp"
+
+namespace abbe::machine {
+namespace {
+
+const std::string kDir = std::string(ABBE_TEST_DATA_DIR) + "/machines";
+
+TEST(MachineLoad, SampleMachine) {
+  Machine m = Machine::load(kDir + "/sample.yaml");
+  EXPECT_EQ(m.name(), "sample machine (synthetic)");
+  EXPECT_EQ(m.chain().text(), "w X' b Y Z t");
+  EXPECT_EQ(m.travel(Axis::x).min, -990.0);
+  EXPECT_EQ(m.travel(Axis::z).max, 0.0);
+  EXPECT_EQ(m.tool_length(), 130.0);
+  EXPECT_EQ(m.tool_table().at(2), 95.5);
+  EXPECT_EQ(m.work_offsets()[0], Eigen::Vector3d(-500.0, -250.0, -400.0));
+  EXPECT_EQ(m.work_offsets()[2], Eigen::Vector3d::Zero());
+  EXPECT_EQ(m.squareness().eb0z, -24.362);
+  EXPECT_EQ(m.out_of_range(), OutOfRangePolicy::clamp);
+  const AxisRecord& y = m.record(Axis::y);
+  EXPECT_TRUE(y.present);
+  EXPECT_EQ(y.point[0], Eigen::Vector3d(-480.0, -250.0, -300.0));  // EXY override
+  EXPECT_EQ(y.point[1], Eigen::Vector3d(-500.0, -250.0, -300.0));  // from `all`
+  EXPECT_EQ(y.measured_axes(), Eigen::Vector3d(-500.0, -250.0, -150.0));
+  EXPECT_TRUE(m.table().bidirectional({Axis::x, 0}));
+  EXPECT_EQ(m.table().series().size(), 21u);  // 3 axes × (5 mean + fwd + rev)
+}
+
+const std::string kGood = R"(name: t
+chain: "w X' b Y Z t"
+travel:
+  x: [-990, 0]
+  y: [-500, 0]
+  z: [-460, 0]
+tool_length: 130.0
+table: sample-errors.csv
+axes:
+  X:
+    measured_at: {x: -500.0, y: -256.0, z: -280.0, tool_length: 130.0}
+    points:
+      all: [-800.0, -256.0, -478.0]
+  Y:
+    measured_at: {x: -500.0, y: -250.0, z: -280.0, tool_length: 130.0}
+    points:
+      all: [-500.0, -250.0, -300.0]
+  Z:
+    measured_at: {x: -500.0, y: -250.0, z: -300.0, tool_length: 130.0}
+    points:
+      all: [-500.0, -250.0, -250.0]
+)";
+
+std::string replace(std::string text, const std::string& from, const std::string& to) {
+  auto pos = text.find(from);
+  EXPECT_NE(pos, std::string::npos) << from;
+  return text.replace(pos, from.size(), to);
+}
+
+TEST(MachineLoad, GoodTextParses) {
+  Machine m = Machine::parse(kGood, "m.yaml", kDir);
+  EXPECT_EQ(m.record(Axis::z).point[2], Eigen::Vector3d(-500.0, -250.0, -250.0));
+  EXPECT_EQ(m.out_of_range(), OutOfRangePolicy::clamp);
+}
+
+struct Bad {
+  std::string from, to;  // the edit applied to kGood
+  std::size_t line;
+  std::string field;
+  std::string says;
+};
+
+class MachineRejects : public ::testing::TestWithParam<Bad> {};
+
+TEST_P(MachineRejects, NamesFileLineAndField) {
+  const Bad& b = GetParam();
+  std::string text = replace(kGood, b.from, b.to);
+  try {
+    Machine::parse(text, "m.yaml", kDir);
+    FAIL() << "accepted:\n" << text;
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().file, "m.yaml");
+    EXPECT_EQ(e.where().line, b.line) << e.what();
+    EXPECT_EQ(e.where().field, b.field) << e.what();
+    EXPECT_NE(e.message().find(b.says), std::string::npos) << e.what();
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, MachineRejects,
+    ::testing::Values(
+        Bad{"name: t\n", "", 1, "name", "missing key `name`"},
+        Bad{"name: t\n", "name: t\ncolour: red\n", 2, "colour", "unknown key"},
+        Bad{"\"w X' b Y Z t\"", "\"w X b Y' Z t\"", 2, "chain", "invalid kinematic chain"},
+        Bad{"\"w X' b Y Z t\"", "\"w X b Y t\"", 2, "chain", "invalid kinematic chain"},
+        Bad{"\"w X' b Y Z t\"", "[w, b]", 2, "chain", "expected a string"},
+        Bad{"x: [-990, 0]", "x: [0, -990]", 4, "travel.x", "below max"},
+        Bad{"x: [-990, 0]", "x: [-990, 0, 5]", 4, "travel.x", "list of 2 numbers"},
+        Bad{"x: [-990, 0]", "x: [-990, abc]", 4, "travel.x[1]", "not a number"},
+        Bad{"  z: [-460, 0]\n", "", 4, "travel.z", "missing key `z`"},
+        Bad{"tool_length: 130.0", "tool_length: .nan", 7, "tool_length", "finite"},
+        Bad{"tool_length: 130.0", "tool_length: -5", 7, "tool_length", "negative"},
+        Bad{"tool_length: 130.0", "tool_length: 130.0\ntool_table: {T1: 5}", 8, "tool_table.T1",
+            "H number"},
+        Bad{"tool_length: 130.0", "tool_length: 130.0\nwork_offsets: {G60: [0, 0, 0]}", 8,
+            "work_offsets.G60", "unknown key"},
+        Bad{"tool_length: 130.0", "tool_length: 130.0\nsquareness: {EC0X: 1}", 8, "squareness.EC0X",
+            "unknown key"},
+        Bad{"tool_length: 130.0", "tool_length: 130.0\nout_of_range: wrap", 8, "out_of_range",
+            "not one of"},
+        Bad{"table: sample-errors.csv", "table: nothere.csv", 8, "table",
+            "cannot open the component table"},
+        Bad{"      all: [-800.0, -256.0, -478.0]", "      EXX: [-800.0, -256.0, -478.0]", 13,
+            "axes.X.points.EYX", "no measurement point for EYX"},
+        Bad{"      all: [-800.0, -256.0, -478.0]", "      EXY: [-800.0, -256.0, -478.0]", 13,
+            "axes.X.points.EXY", "belongs to axis Y"},
+        Bad{"      all: [-800.0, -256.0, -478.0]", "      EAX: [-800.0, -256.0, -478.0]", 13,
+            "axes.X.points.EAX", "angular"},
+        Bad{"      all: [-800.0, -256.0, -478.0]", "      all: [-800.0, -256.0]", 13,
+            "axes.X.points.all", "list of 3 numbers"},
+        Bad{"{x: -500.0, y: -256.0, z: -280.0, tool_length: 130.0}",
+            "{x: -500.0, y: -256.0, z: -280.0}", 11, "axes.X.measured_at.tool_length",
+            "missing key"},
+        Bad{"  Z:\n    measured_at: {x: -500.0, y: -250.0, z: -300.0, tool_length: 130.0}\n"
+            "    points:\n      all: [-500.0, -250.0, -250.0]\n",
+            "", 10, "axes.Z", "no measurement record"},
+        Bad{"travel:\n  x: [-990, 0]\n  y: [-500, 0]\n  z: [-460, 0]\n", "travel: [1, 2]\n", 3,
+            "travel", "must be a mapping"},
+        Bad{"name: t", "name: [t", 2, "", "YAML syntax error"}));
+
+}  // namespace
+}  // namespace abbe::machine
