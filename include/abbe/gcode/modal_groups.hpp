@@ -1,0 +1,81 @@
+#pragma once
+// Modal groups: sorts the words of one Block into G codes per modal group,
+// M codes per group and the other letters, and refuses (InputError naming the
+// word's file:line:col) two codes of one group, repeated letters, unknown
+// codes and constructs abbe does not support. Group numbering follows the
+// RS274/NGC (LinuxCNC) tables.
+#include <array>
+#include <cstddef>
+#include <optional>
+#include <string>
+
+#include "abbe/gcode/block.hpp"
+
+namespace abbe::gcode {
+
+// G codes are held as ten times their number (G91.1 -> 911), so that the
+// decimal codes compare exactly.
+constexpr int gcode_id(int whole, int tenth = 0) { return whole * 10 + tenth; }
+
+enum class GGroup : std::uint8_t {
+  non_modal,     // group 0: G4 G53 G92 G92.1 G92.2 G92.3
+  motion,        // group 1: G0 G1 G2 G3 G73 G80 G81 G82 G83 G85 G89
+  plane,         // group 2: G17 G18 G19
+  distance,      // group 3: G90 G91
+  arc_distance,  // group 4: G90.1 G91.1
+  feed_mode,     // group 5: G94
+  units,         // group 6: G20 G21
+  cutter_comp,   // group 7: G40
+  tool_length,   // group 8: G43 G49
+  retract,       // group 10: G98 G99
+  coord_system,  // group 12: G54 .. G59
+  path_control,  // group 13: G61 G61.1 G64
+  spindle_mode,  // group 14: G97
+  count
+};
+
+enum class MGroup : std::uint8_t {
+  stopping,     // M0 M1 M2 M30 M60
+  tool_change,  // M6
+  spindle,      // M3 M4 M5
+  coolant,      // M7 M8 M9
+  overrides,    // M48 M49
+  count
+};
+
+struct CodeWord {
+  int code = 0;                // G: gcode_id; M: the integer number
+  const Word* word = nullptr;  // where it was written
+};
+
+// Error context of one block: formats InputErrors at a word's column.
+struct BlockContext {
+  const std::string& file;
+  std::size_t line;
+  const std::string& raw_line;
+  [[noreturn]] void fail(const Word* at, const std::string& message) const;
+};
+
+struct BlockCodes {
+  std::array<std::optional<CodeWord>, static_cast<std::size_t>(GGroup::count)> g;
+  std::array<std::optional<CodeWord>, static_cast<std::size_t>(MGroup::count)> m;
+  std::array<const Word*, 26> letters{};  // every other letter, nullptr if absent
+
+  const std::optional<CodeWord>& group(GGroup which) const {
+    return g[static_cast<std::size_t>(which)];
+  }
+  const std::optional<CodeWord>& group(MGroup which) const {
+    return m[static_cast<std::size_t>(which)];
+  }
+  const Word* word(char letter) const { return letters[static_cast<std::size_t>(letter - 'A')]; }
+  bool has(char letter) const { return word(letter) != nullptr; }
+  bool has_axis_word() const { return has('X') || has('Y') || has('Z'); }
+};
+
+// Sorts the block's words; throws InputError on conflicts or unsupported codes.
+BlockCodes classify_block(const Block& block, const BlockContext& where);
+
+// "G91.1", "G0", "M30": the code as a programmer writes it.
+std::string gcode_name(int id);
+
+}  // namespace abbe::gcode

@@ -1,0 +1,77 @@
+#include "abbe/gcode/canned_cycle.hpp"
+
+#include "abbe/gcode/modal_groups.hpp"
+
+namespace abbe::gcode {
+
+Eigen::Vector3d expand_canned_cycle(const CannedCycle& c,
+                                    const std::function<void(const CycleStep&)>& emit) {
+  using Kind = CycleStep::Kind;
+  auto move = [&](Kind kind, double aa, double bb, double cc) {
+    emit(CycleStep{kind, Eigen::Vector3d(aa, bb, cc), 0.0});
+  };
+  double old_cc = c.initial_level;
+  double current_cc = c.current.z();
+  // Below the R plane: first straight up to it, where we stand.
+  if (old_cc < c.r) {
+    move(Kind::traverse, c.current.x(), c.current.y(), c.r);
+    old_cc = c.r;
+    current_cc = c.r;
+  }
+  const double clear = c.retract_to_r ? c.r : old_cc;
+  double aa = c.hole.x();
+  double bb = c.hole.y();
+  for (int repeat = 0; repeat < c.repeats; ++repeat) {
+    aa += c.increment.x();
+    bb += c.increment.y();
+    // Position over the hole: the first time at the current height (when it
+    // is above R), afterwards at the clearance height; then down to R.
+    if (repeat == 0 && current_cc > c.r) {
+      move(Kind::traverse, aa, bb, current_cc);
+      move(Kind::traverse, aa, bb, c.r);
+    } else {
+      move(Kind::traverse, aa, bb, clear);
+      if (clear > c.r) move(Kind::traverse, aa, bb, c.r);
+    }
+    switch (c.code) {
+      case gcode_id(81):
+        move(Kind::feed, aa, bb, c.bottom);
+        move(Kind::traverse, aa, bb, clear);
+        break;
+      case gcode_id(82):
+        move(Kind::feed, aa, bb, c.bottom);
+        emit(CycleStep{Kind::dwell, Eigen::Vector3d(aa, bb, c.bottom), c.dwell});
+        move(Kind::traverse, aa, bb, clear);
+        break;
+      case gcode_id(85):
+        move(Kind::feed, aa, bb, c.bottom);
+        move(Kind::feed, aa, bb, c.r);
+        if (clear > c.r) move(Kind::traverse, aa, bb, clear);
+        break;
+      case gcode_id(89):
+        move(Kind::feed, aa, bb, c.bottom);
+        emit(CycleStep{Kind::dwell, Eigen::Vector3d(aa, bb, c.bottom), c.dwell});
+        move(Kind::feed, aa, bb, clear);
+        break;
+      case gcode_id(73):
+      case gcode_id(83): {
+        // Peck: feed one Q deeper each time; G83 rapids out to the clearance
+        // height and back down to just above the previous depth, G73 only
+        // backs off by the peck clearance.
+        for (double depth = c.r - c.peck; depth > c.bottom; depth -= c.peck) {
+          move(Kind::feed, aa, bb, depth);
+          if (c.code == gcode_id(83)) move(Kind::traverse, aa, bb, clear);
+          move(Kind::traverse, aa, bb, depth + c.peck_clearance);
+        }
+        move(Kind::feed, aa, bb, c.bottom);
+        move(Kind::traverse, aa, bb, clear);
+        break;
+      }
+      default:
+        break;
+    }
+  }
+  return Eigen::Vector3d(aa, bb, clear);
+}
+
+}  // namespace abbe::gcode

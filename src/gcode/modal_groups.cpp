@@ -1,0 +1,266 @@
+#include "abbe/gcode/modal_groups.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "abbe/io/input_error.hpp"
+
+namespace abbe::gcode {
+
+namespace {
+
+struct GInfo {
+  std::optional<GGroup> group;    // empty: refused
+  const char* refusal = nullptr;  // what the construct is, for the error message
+};
+
+GInfo g_info(int id) {
+  switch (id) {
+    case gcode_id(4):
+    case gcode_id(53):
+    case gcode_id(92):
+    case gcode_id(92, 1):
+    case gcode_id(92, 2):
+    case gcode_id(92, 3):
+      return {GGroup::non_modal};
+    case gcode_id(0):
+    case gcode_id(1):
+    case gcode_id(2):
+    case gcode_id(3):
+    case gcode_id(73):
+    case gcode_id(80):
+    case gcode_id(81):
+    case gcode_id(82):
+    case gcode_id(83):
+    case gcode_id(85):
+    case gcode_id(89):
+      return {GGroup::motion};
+    case gcode_id(17):
+    case gcode_id(18):
+    case gcode_id(19):
+      return {GGroup::plane};
+    case gcode_id(90):
+    case gcode_id(91):
+      return {GGroup::distance};
+    case gcode_id(90, 1):
+    case gcode_id(91, 1):
+      return {GGroup::arc_distance};
+    case gcode_id(94):
+      return {GGroup::feed_mode};
+    case gcode_id(20):
+    case gcode_id(21):
+      return {GGroup::units};
+    case gcode_id(40):
+      return {GGroup::cutter_comp};
+    case gcode_id(43):
+    case gcode_id(49):
+      return {GGroup::tool_length};
+    case gcode_id(98):
+    case gcode_id(99):
+      return {GGroup::retract};
+    case gcode_id(54):
+    case gcode_id(55):
+    case gcode_id(56):
+    case gcode_id(57):
+    case gcode_id(58):
+    case gcode_id(59):
+      return {GGroup::coord_system};
+    case gcode_id(61):
+    case gcode_id(61, 1):
+    case gcode_id(64):
+      return {GGroup::path_control};
+    case gcode_id(97):
+      return {GGroup::spindle_mode};
+    // Known constructs abbe refuses, with their names.
+    case gcode_id(5):
+    case gcode_id(5, 1):
+    case gcode_id(5, 2):
+    case gcode_id(5, 3):
+      return {std::nullopt, "splines and NURBS"};
+    case gcode_id(7):
+    case gcode_id(8):
+      return {std::nullopt, "lathe diameter/radius mode"};
+    case gcode_id(10):
+      return {std::nullopt, "setting offsets or tool data from the program"};
+    case gcode_id(15):
+    case gcode_id(16):
+      return {std::nullopt, "polar coordinates"};
+    case gcode_id(17, 1):
+    case gcode_id(18, 1):
+    case gcode_id(19, 1):
+      return {std::nullopt, "planes of the U, V, W axes"};
+    case gcode_id(28):
+    case gcode_id(28, 1):
+    case gcode_id(30):
+    case gcode_id(30, 1):
+      return {std::nullopt, "return to a stored home position"};
+    case gcode_id(33):
+    case gcode_id(33, 1):
+    case gcode_id(76):
+      return {std::nullopt, "threading and spindle-synchronised motion"};
+    case gcode_id(38, 2):
+    case gcode_id(38, 3):
+    case gcode_id(38, 4):
+    case gcode_id(38, 5):
+      return {std::nullopt, "probing"};
+    case gcode_id(41):
+    case gcode_id(41, 1):
+    case gcode_id(42):
+    case gcode_id(42, 1):
+      return {std::nullopt, "cutter radius compensation"};
+    case gcode_id(43, 1):
+    case gcode_id(43, 2):
+      return {std::nullopt, "dynamic tool length offset"};
+    case gcode_id(52):
+      return {std::nullopt, "local coordinate system offset"};
+    case gcode_id(59, 1):
+    case gcode_id(59, 2):
+    case gcode_id(59, 3):
+      return {std::nullopt, "coordinate systems beyond G59"};
+    case gcode_id(68):
+    case gcode_id(69):
+      return {std::nullopt, "coordinate system rotation"};
+    case gcode_id(70):
+    case gcode_id(71):
+    case gcode_id(71, 1):
+    case gcode_id(71, 2):
+    case gcode_id(72):
+    case gcode_id(72, 1):
+    case gcode_id(72, 2):
+      return {std::nullopt, "lathe cycles"};
+    case gcode_id(74):
+    case gcode_id(84):
+      return {std::nullopt, "tapping cycle"};
+    case gcode_id(86):
+    case gcode_id(87):
+    case gcode_id(88):
+      return {std::nullopt, "boring cycle with spindle stop"};
+    case gcode_id(93):
+      return {std::nullopt, "inverse-time feed mode"};
+    case gcode_id(95):
+      return {std::nullopt, "feed per revolution mode"};
+    case gcode_id(96):
+      return {std::nullopt, "constant surface speed"};
+    default:
+      return {std::nullopt, nullptr};
+  }
+}
+
+std::optional<MGroup> m_group(int number) {
+  switch (number) {
+    case 0:
+    case 1:
+    case 2:
+    case 30:
+    case 60:
+      return MGroup::stopping;
+    case 6:
+      return MGroup::tool_change;
+    case 3:
+    case 4:
+    case 5:
+      return MGroup::spindle;
+    case 7:
+    case 8:
+    case 9:
+      return MGroup::coolant;
+    case 48:
+    case 49:
+      return MGroup::overrides;
+    default:
+      return std::nullopt;
+  }
+}
+
+std::string format_number(double v) {
+  std::string s = fmt::format("{:.4f}", v);
+  while (!s.empty() && s.back() == '0') s.pop_back();
+  if (!s.empty() && s.back() == '.') s.pop_back();
+  return s;
+}
+
+}  // namespace
+
+void BlockContext::fail(const Word* at, const std::string& message) const {
+  SourceLocation where;
+  where.file = file;
+  where.line = line;
+  where.column = at ? at->begin + 1 : 0;
+  where.source_line = raw_line;
+  throw InputError(where, message);
+}
+
+std::string gcode_name(int id) {
+  if (id % 10 == 0) return fmt::format("G{}", id / 10);
+  return fmt::format("G{}.{}", id / 10, id % 10);
+}
+
+BlockCodes classify_block(const Block& block, const BlockContext& where) {
+  BlockCodes codes;
+  for (const Word& w : block.words) {
+    const char letter = w.letter;
+    if (letter == 'G') {
+      const double tenfold = w.value * 10.0;
+      const double rounded = std::round(tenfold);
+      if (w.value < 0 || std::abs(tenfold - rounded) > 1e-6 || rounded > 10000.0)
+        where.fail(&w, fmt::format("unknown G code G{}", format_number(w.value)));
+      const int id = static_cast<int>(rounded);
+      const GInfo info = g_info(id);
+      if (!info.group) {
+        if (info.refusal)
+          where.fail(&w, fmt::format("{} ({}) is not supported", info.refusal, gcode_name(id)));
+        where.fail(&w, fmt::format("unknown G code {}", gcode_name(id)));
+      }
+      auto& slot = codes.g[static_cast<std::size_t>(*info.group)];
+      if (slot) {
+        if (*info.group == GGroup::motion)
+          where.fail(&w, fmt::format("two motion codes in one block ({} and {})",
+                                     gcode_name(slot->code), gcode_name(id)));
+        where.fail(&w, fmt::format("two G codes of the same modal group in one block ({} and {})",
+                                   gcode_name(slot->code), gcode_name(id)));
+      }
+      slot = CodeWord{id, &w};
+    } else if (letter == 'M') {
+      const double rounded = std::round(w.value);
+      if (w.value < 0 || std::abs(w.value - rounded) > 1e-9 || rounded > 1e6)
+        where.fail(&w, fmt::format("unknown M code M{}", format_number(w.value)));
+      const int number = static_cast<int>(rounded);
+      const auto group = m_group(number);
+      if (!group) where.fail(&w, fmt::format("M code M{} is not supported", number));
+      auto& slot = codes.m[static_cast<std::size_t>(*group)];
+      if (slot)
+        where.fail(&w, fmt::format("two M codes of the same modal group in one block (M{} and M{})",
+                                   slot->code, number));
+      slot = CodeWord{number, &w};
+    } else if (letter >= 'A' && letter <= 'Z') {
+      switch (letter) {
+        case 'A':
+        case 'B':
+        case 'C':
+        case 'U':
+        case 'V':
+        case 'W':
+          where.fail(&w, fmt::format("{} axis words are not supported (3-axis machines: X, Y, Z)",
+                                     letter));
+        case 'D':
+          where.fail(&w, "D word (cutter radius compensation tool) is not supported");
+        case 'E':
+          where.fail(&w, "E word is not supported");
+        case 'N':
+        case 'O':
+          where.fail(&w, fmt::format("{} word in the middle of a block is not supported", letter));
+        default:
+          break;
+      }
+      auto& slot = codes.letters[static_cast<std::size_t>(letter - 'A')];
+      if (slot) where.fail(&w, fmt::format("repeated {} word in one block", letter));
+      slot = &w;
+    } else {
+      where.fail(&w, fmt::format("unexpected word '{}'", letter));
+    }
+  }
+  return codes;
+}
+
+}  // namespace abbe::gcode
