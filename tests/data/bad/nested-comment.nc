@@ -1,0 +1,1 @@
+G21 (metric (mm))

@@ -1,0 +1,2 @@
+G21
+  o<drill> call [1] [2]
