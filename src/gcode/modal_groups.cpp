@@ -213,6 +213,12 @@ BlockCodes classify_block(const Block& block, const BlockContext& where) {
         where.fail(&w, fmt::format("unknown G code {}", gcode_name(id)));
       }
       auto& slot = codes.g[static_cast<std::size_t>(*info.group)];
+      // rs274ngc lets G80 share a block with another motion code, which wins.
+      if (slot && *info.group == GGroup::motion &&
+          (slot->code == gcode_id(80) || id == gcode_id(80))) {
+        if (slot->code == gcode_id(80)) slot = CodeWord{id, &w};
+        continue;
+      }
       if (slot) {
         if (*info.group == GGroup::motion)
           where.fail(&w, fmt::format("two motion codes in one block ({} and {})",

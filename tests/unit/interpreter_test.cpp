@@ -188,6 +188,10 @@ TEST(Interpreter, ModalConflictsAreErrors) {
   EXPECT_NE(error_of({"M3 M4"}).find("two M codes of the same modal group"), std::string::npos);
   EXPECT_NE(error_of({"M2 M30"}).find("two M codes"), std::string::npos);
   EXPECT_NE(error_of({"G0 X1 X2"}).find("test.nc:1:7: error: repeated X word"), std::string::npos);
+  EXPECT_NE(error_of({"G0 G2 X1"}).find("two motion codes in one block (G0 and G2)"),
+            std::string::npos);
+  EXPECT_EQ(error_of({"G80 G0 X1"}), "");  // G80 may share a block; the other code wins
+  EXPECT_EQ(run_lines({"G0 G80 X1"}).size(), 1u);
   EXPECT_NE(error_of({"G92 G0 X1"}).find("both use axis words"), std::string::npos);
   EXPECT_NE(error_of({"G80 X1"}).find("axis words with G80"), std::string::npos);
   EXPECT_NE(error_of({"X1"}).find("axis words without a motion code"), std::string::npos);

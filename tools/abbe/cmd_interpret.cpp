@@ -1,0 +1,182 @@
+// abbe interpret: parse + interpret only (no fragmenting). Without --canon a
+// one-line summary (the interpret-only mode the benchmarks compare with
+// rs274); with --canon one line per motion in a canonical form close to
+// LinuxCNC's rs274 (used by the interoperability test, docs/interop.md).
+#include <fmt/format.h>
+
+#include <array>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "abbe/gcode/program.hpp"
+#include "abbe/io/input_error.hpp"
+#include "abbe/machine/machine.hpp"
+#include "command.hpp"
+
+namespace abbe::cli {
+namespace {
+
+struct InterpretOptions {
+  std::string program;
+  bool canon = false;
+  std::string machine;
+  std::optional<double> tool_length;
+  std::vector<std::string> tools;  // "H=L"
+};
+
+[[noreturn]] void bad_option(const std::string& field, const std::string& message) {
+  SourceLocation where;
+  where.file = "<command line>";
+  where.field = field;
+  throw InputError(where, message);
+}
+
+std::pair<int, double> parse_tool_option(const std::string& text) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0)
+    bad_option("--tool", "expected H=L (e.g. 1=200), got '" + text + "'");
+  int h = 0;
+  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + eq, h);
+  if (ec != std::errc() || ptr != text.data() + eq || h < 0)
+    bad_option("--tool", "tool number must be a non-negative integer in '" + text + "'");
+  const std::string value = text.substr(eq + 1);
+  char* end = nullptr;
+  errno = 0;
+  const double length = std::strtod(value.c_str(), &end);
+  if (value.empty() || end != value.c_str() + value.size() || errno != 0 || !std::isfinite(length))
+    bad_option("--tool", "tool length must be a number of mm in '" + text + "'");
+  return {h, length};
+}
+
+gcode::InterpreterConfig make_config(const InterpretOptions& o) {
+  gcode::InterpreterConfig config;
+  if (!o.machine.empty()) {
+    const machine::Machine m = machine::Machine::load(o.machine);
+    config.default_tool_length = m.tool_length();
+    config.tool_lengths = m.tool_table();
+    config.work_offsets = m.work_offsets();
+  }
+  if (o.tool_length) {
+    if (!std::isfinite(*o.tool_length))
+      bad_option("--tool-length", "must be a finite number of mm");
+    config.default_tool_length = *o.tool_length;
+  }
+  for (const auto& t : o.tools) {
+    const auto [h, length] = parse_tool_option(t);
+    config.tool_lengths[h] = length;
+  }
+  return config;
+}
+
+const char* plane_name(gcode::Plane plane) {
+  switch (plane) {
+    case gcode::Plane::xz:
+      return "XZ";
+    case gcode::Plane::yz:
+      return "YZ";
+    default:
+      return "XY";
+  }
+}
+
+// One line per motion; coordinates are the tool tip P in machine
+// coordinates, mm. ARC_FEED follows rs274's argument order: end and centre in
+// the plane's (first, second) axes (XY: X,Y; XZ: Z,X; YZ: Y,Z), rotation,
+// then the normal axis' end coordinate.
+void append_canon(fmt::memory_buffer& out, const gcode::Motion& m) {
+  using gcode::MotionKind;
+  fmt::format_to(std::back_inserter(out), "N{} ", m.line);
+  switch (m.kind) {
+    case MotionKind::rapid:
+      fmt::format_to(std::back_inserter(out), "STRAIGHT_TRAVERSE({:.6f}, {:.6f}, {:.6f})",
+                     m.end.x(), m.end.y(), m.end.z());
+      break;
+    case MotionKind::linear:
+      fmt::format_to(std::back_inserter(out), "STRAIGHT_FEED({:.6f}, {:.6f}, {:.6f})", m.end.x(),
+                     m.end.y(), m.end.z());
+      break;
+    case MotionKind::arc: {
+      int a1 = 0, a2 = 1, n = 2;
+      if (m.plane == gcode::Plane::xz) a1 = 2, a2 = 0, n = 1;
+      if (m.plane == gcode::Plane::yz) a1 = 1, a2 = 2, n = 0;
+      fmt::format_to(std::back_inserter(out),
+                     "ARC_FEED({:.6f}, {:.6f}, {:.6f}, {:.6f}, {}, {:.6f})", m.end[a1], m.end[a2],
+                     m.center[a1], m.center[a2], m.rotation, m.end[n]);
+      fmt::format_to(std::back_inserter(out), " PLANE={}", plane_name(m.plane));
+      break;
+    }
+    case MotionKind::dwell:
+      fmt::format_to(std::back_inserter(out), "DWELL({:.6f})", m.dwell_seconds);
+      break;
+  }
+  fmt::format_to(std::back_inserter(out), " F={:.6f} TL={:.6f}\n", m.feed, m.tool_length);
+}
+
+int run_interpret(const InterpretOptions& o) {
+  const gcode::InterpreterConfig config = make_config(o);
+  std::ifstream file;
+  std::istream* in = &std::cin;
+  if (o.program != "-") {
+    file.open(o.program, std::ios::binary);
+    if (!file) {
+      SourceLocation where;
+      where.file = o.program;
+      throw InputError(where, std::string("cannot open NC program: ") + std::strerror(errno));
+    }
+    in = &file;
+  }
+
+  std::array<std::size_t, 4> by_kind{};
+  fmt::memory_buffer out;
+  auto flush = [&] {
+    std::fwrite(out.data(), 1, out.size(), stdout);
+    out.clear();
+  };
+  const auto stats = gcode::run_program(*in, o.program, config, [&](const gcode::Motion& m) {
+    ++by_kind[static_cast<std::size_t>(m.kind)];
+    if (o.canon) {
+      append_canon(out, m);
+      if (out.size() > (1u << 16)) flush();
+    }
+  });
+  if (o.canon) {
+    flush();
+  } else {
+    fmt::print("lines={} motions={} rapid={} linear={} arc={} dwell={}\n", stats.lines,
+               stats.motions, by_kind[0], by_kind[1], by_kind[2], by_kind[3]);
+  }
+  std::fflush(stdout);
+  return kOk;
+}
+
+const CommandRegistrar registrar(
+    "interpret",
+    "Parse and interpret an NC program without fragmenting: a summary, or the canonical "
+    "motions (--canon)",
+    15, [](CLI::App& sub, const GlobalOptions&) -> CommandAction {
+      auto o = std::make_shared<InterpretOptions>();
+      sub.add_option("program", o->program, "NC program (RS274/LinuxCNC G-code), - for stdin")
+          ->required();
+      sub.add_flag("--canon", o->canon,
+                   "One line per motion (tool tip, machine coordinates, mm): STRAIGHT_TRAVERSE, "
+                   "STRAIGHT_FEED, ARC_FEED, DWELL");
+      sub.add_option("--machine", o->machine,
+                     "Machine file (YAML): tool length, tool table and work offsets");
+      sub.add_option("--tool-length", o->tool_length,
+                     "Tool length when no G43 is active, mm (overrides the machine file)");
+      sub.add_option("--tool", o->tools, "Tool length for G43 Hn as n=L (mm), repeatable");
+      return [o] { return run_interpret(*o); };
+    });
+
+}  // namespace
+}  // namespace abbe::cli
