@@ -18,7 +18,7 @@ TEST(MachineLoad, SampleMachine) {
   EXPECT_EQ(m.travel(Axis::z).max, 0.0);
   EXPECT_EQ(m.tool_length(), 130.0);
   EXPECT_EQ(m.tool_table().at(2), 95.5);
-  EXPECT_EQ(m.work_offsets()[0], Eigen::Vector3d(-500.0, -250.0, -400.0));
+  EXPECT_EQ(m.work_offsets()[1], Eigen::Vector3d(-500.0, -250.0, -400.0));
   EXPECT_EQ(m.work_offsets()[2], Eigen::Vector3d::Zero());
   EXPECT_EQ(m.squareness().eb0z, -24.362);
   EXPECT_EQ(m.out_of_range(), OutOfRangePolicy::clamp);

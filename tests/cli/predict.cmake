@@ -1,0 +1,93 @@
+# Command-level tests of `abbe predict`. Included from tests/CMakeLists.txt to
+# register the tests; the error cases run in script mode (cmake -P).
+if(NOT CMAKE_SCRIPT_MODE_FILE)
+  set(ABBE_MACHINES ${CMAKE_CURRENT_SOURCE_DIR}/data/machines)
+
+  # Worked examples 1 + 2 of docs/models.md at a CSV point, all three models:
+  # htm (-2.5, 5, 3), ae-arm (2.28, -1, -5), dual = ae-arm + a small ε² part.
+  add_test(NAME cli_predict_worked_example_all_models
+           COMMAND $<TARGET_FILE:abbe> predict ${ABBE_MACHINES}/worked-example-points.csv
+                   --machine ${ABBE_MACHINES}/worked-example.yaml --model all)
+  set_tests_properties(cli_predict_worked_example_all_models PROPERTIES LABELS cli
+    PASS_REGULAR_EXPRESSION
+    "\n-300,-200,-250,2,-300\\.0025,-199\\.995,-249\\.997,-2\\.5,5,3,6\\.344289,-299\\.99772,-200\\.001,-250\\.005,2\\.28,-1,-5,5\\.585553,[^\n]*,-0\\.000025,0,-0\\.000021\n")
+
+  # An NC program through the front end, summary only, JSON summary file.
+  add_test(NAME cli_predict_nc_summary
+           COMMAND $<TARGET_FILE:abbe> predict ${PROJECT_SOURCE_DIR}/nc-samples/thesis-toolpath-1.ngc
+                   --machine ${ABBE_MACHINES}/sample.yaml --model all --summary-only
+                   --summary-json ${CMAKE_CURRENT_BINARY_DIR}/cli_predict_summary.json)
+  set_tests_properties(cli_predict_nc_summary PROPERTIES LABELS cli
+    PASS_REGULAR_EXPRESSION "[0-9]+ points.*\n.*\n  htm +[0-9.]+.*\n  ae-arm +[0-9.]+.*\n  dual +[0-9.]+")
+
+  # JSON output: the points array and the summary.
+  add_test(NAME cli_predict_json
+           COMMAND $<TARGET_FILE:abbe> predict ${ABBE_MACHINES}/worked-example-points.csv
+                   --machine ${ABBE_MACHINES}/worked-example.yaml --model dual --format json)
+  set_tests_properties(cli_predict_json PROPERTIES LABELS cli
+    PASS_REGULAR_EXPRESSION "\\{\"points\": \\[\n\\{\"x\": -300, .*\"dual\": \\{\"px\": .*\"summary\": \\{")
+
+  add_test(NAME cli_predict_errors
+           COMMAND ${CMAKE_COMMAND} -DABBE=$<TARGET_FILE:abbe> -DMACHINES=${ABBE_MACHINES}
+                   -DWORK=${CMAKE_CURRENT_BINARY_DIR}/cli_predict_work
+                   -P ${CMAKE_CURRENT_LIST_FILE})
+  set_tests_properties(cli_predict_errors PROPERTIES LABELS cli)
+  return()
+endif()
+
+# ---- script mode: bad input gives exit code 1, names file and line, and
+# leaves an existing output untouched ----
+file(REMOVE_RECURSE ${WORK})
+file(MAKE_DIRECTORY ${WORK})
+file(WRITE ${WORK}/out.csv "previous contents\n")
+
+function(expect_failure what pattern)
+  execute_process(COMMAND ${ABBE} predict ${ARGN} -o ${WORK}/out.csv
+                  RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_VARIABLE out)
+  if(NOT rc EQUAL 1)
+    message(FATAL_ERROR "${what}: expected exit code 1, got '${rc}'\n${err}")
+  endif()
+  if(NOT err MATCHES "${pattern}")
+    message(FATAL_ERROR "${what}: the error does not match '${pattern}':\n${err}")
+  endif()
+  file(READ ${WORK}/out.csv contents)
+  if(NOT contents STREQUAL "previous contents\n")
+    message(FATAL_ERROR "${what}: the output was changed")
+  endif()
+  file(GLOB leftovers ${WORK}/out.csv.tmp*)
+  if(leftovers)
+    message(FATAL_ERROR "${what}: temporary file left: ${leftovers}")
+  endif()
+endfunction()
+
+# out_of_range: error names the point's file and line, the axis and the range.
+expect_failure("out of range" "narrow-points\\.csv:4 \\[X\\]: error: .*\\[-400, -200\\]"
+               ${MACHINES}/narrow-points.csv --machine ${MACHINES}/narrow.yaml)
+
+file(WRITE ${WORK}/bad-points.csv "x,y,z\n1,2,3\n1,2,zz\n")
+expect_failure("bad points" "bad-points\\.csv:3:5 \\[z\\]: error: \"zz\" is not a finite number"
+               ${WORK}/bad-points.csv --machine ${MACHINES}/worked-example.yaml)
+
+file(WRITE ${WORK}/no-z.csv "x,y,dz\n1,2,3\n")
+expect_failure("missing column" "no-z\\.csv:1.*no `z` column"
+               ${WORK}/no-z.csv --machine ${MACHINES}/worked-example.yaml)
+
+file(WRITE ${WORK}/bad.yaml "name: x\nchain: \"w X b X Z t\"\n")
+expect_failure("bad machine" "bad\\.yaml:2:8 \\[chain\\]: error: invalid kinematic chain"
+               ${MACHINES}/narrow-points.csv --machine ${WORK}/bad.yaml)
+
+file(WRITE ${WORK}/bad.ngc "G21 G90\nG1 X10 Y10 F100\nG1 X20 Y&5\n")
+expect_failure("bad program" "bad\\.ngc:3"
+               ${WORK}/bad.ngc --machine ${MACHINES}/worked-example.yaml)
+
+# A good run replaces the output.
+execute_process(COMMAND ${ABBE} predict ${MACHINES}/worked-example-points.csv
+                        --machine ${MACHINES}/worked-example.yaml -o ${WORK}/out.csv
+                RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_VARIABLE out)
+file(READ ${WORK}/out.csv contents)
+if(NOT rc EQUAL 0 OR NOT contents MATCHES "^x,y,z,px,py,pz,dx,dy,dz,d,line\n")
+  message(FATAL_ERROR "good run: rc '${rc}', output:\n${contents}\n${err}")
+endif()
+if(NOT out MATCHES "ae-arm +2\\.2800 +1\\.0000 +5\\.0000")
+  message(FATAL_ERROR "good run: the summary (on stdout with -o FILE) is missing:\n${out}")
+endif()

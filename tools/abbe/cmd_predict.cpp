@@ -1,0 +1,430 @@
+// abbe predict: the predicted deviation of the tool tip along an NC program
+// (parse → interpret → fragment → error model, block by block) or at the
+// points of a CSV file (a CMM or laser grid), for one error model or all
+// three side by side. Output is streamed; a summary per model goes to stderr
+// (stdout when -o names a file).
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "abbe/gcode/program.hpp"
+#include "abbe/io/atomic_file.hpp"
+#include "abbe/io/input_error.hpp"
+#include "abbe/io/path_writer.hpp"
+#include "abbe/machine/machine.hpp"
+#include "abbe/model/error_model.hpp"
+#include "abbe/path/fragmenter.hpp"
+#include "command.hpp"
+
+namespace abbe::cli {
+namespace {
+
+struct PredictOptions {
+  std::string input;
+  std::string machine;
+  std::string model = "ae-arm";
+  std::string output = "-";
+  std::string format = "csv";
+  std::string summary_json;
+  double step = 5.0;
+  double rapid_rate = 10000.0;
+  bool points = false;  // input is a CSV of points even without the .csv extension
+  bool summary_only = false;
+};
+
+// Running statistics of one model over all points.
+struct ModelStats {
+  std::size_t points = 0;
+  Eigen::Vector3d max_abs = Eigen::Vector3d::Zero();  // µm
+  double sum_d2 = 0.0;                                // µm²
+  double max_d = 0.0;                                 // µm
+  void add(const Eigen::Vector3d& e) {
+    ++points;
+    max_abs = max_abs.cwiseMax(e.cwiseAbs());
+    double d = e.norm();
+    sum_d2 += d * d;
+    max_d = std::max(max_d, d);
+  }
+  double rms() const { return points ? std::sqrt(sum_d2 / static_cast<double>(points)) : 0.0; }
+};
+
+// Suffix of the per-model columns in `--model all` output.
+std::string column_suffix(model::ModelKind k) {
+  return k == model::ModelKind::ae_arm ? "ae_arm" : model::to_string(k);
+}
+
+// Reads a CSV of points: header with x, y, z and optional vx, vy, vz and
+// tool_length (other columns, e.g. the measured deviations, are ignored).
+class PointReader {
+ public:
+  PointReader(std::istream& in, std::string file, double default_tool_length)
+      : in_(in), file_(std::move(file)), default_l_(default_tool_length) {
+    if (!next_line())
+      throw InputError({file_, 1, 1, "header", ""}, "empty points file: a header is required");
+    auto names = split(line_);
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      std::string_view n = trim(names[i].first);
+      for (std::size_t k = 0; k < kNames.size(); ++k)
+        if (n == kNames[k]) {
+          if (col_[k] >= 0)
+            error(names[i].second, std::string(n), fmt::format("column `{}` appears twice", n));
+          col_[k] = static_cast<int>(i);
+        }
+    }
+    for (std::size_t k = 0; k < 3; ++k)
+      if (col_[k] < 0)
+        error(1, "header",
+              fmt::format("the header has no `{}` column (x, y, z are required)", kNames[k]));
+  }
+
+  bool next(model::EvalPoint& p, std::size_t& line) {
+    while (next_line()) {
+      if (trim(line_).empty()) continue;
+      auto fields = split(line_);
+      auto get = [&](std::size_t k) -> std::optional<double> {
+        if (col_[k] < 0) return std::nullopt;
+        auto c = static_cast<std::size_t>(col_[k]);
+        if (c >= fields.size())
+          error(line_.size() + 1, std::string(kNames[k]),
+                fmt::format("{} fields, but `{}` is column {}", fields.size(), kNames[k], c + 1));
+        std::string_view t = trim(fields[c].first);
+        if (t.empty()) {
+          if (k < 3) error(fields[c].second, std::string(kNames[k]), "empty coordinate");
+          return std::nullopt;
+        }
+        double v = 0.0;
+        const char* b = t.data();
+        if (*b == '+') ++b;
+        auto [ptr, ec] = std::from_chars(b, t.data() + t.size(), v);
+        if (ec != std::errc() || ptr != t.data() + t.size() || !std::isfinite(v))
+          error(fields[c].second, std::string(kNames[k]),
+                fmt::format("\"{}\" is not a finite number", t));
+        return v;
+      };
+      for (std::size_t k = 0; k < 3; ++k) p.p[static_cast<Eigen::Index>(k)] = *get(k);
+      for (std::size_t k = 0; k < 3; ++k) {
+        auto v = get(3 + k);
+        if (v && *v != -1.0 && *v != 0.0 && *v != 1.0)
+          error(fields[static_cast<std::size_t>(col_[3 + k])].second, std::string(kNames[3 + k]),
+                "the direction of motion must be -1, 0 or 1");
+        p.dir[k] = static_cast<std::int8_t>(v ? *v : 0.0);
+      }
+      auto l = get(6);
+      p.tool_length = l ? *l : default_l_;
+      p.time = 0.0;
+      line = line_no_;
+      return true;
+    }
+    return false;
+  }
+
+ private:
+  static constexpr std::array<std::string_view, 7> kNames{"x",  "y",  "z",          "vx",
+                                                          "vy", "vz", "tool_length"};
+  static std::string_view trim(std::string_view s) {
+    while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+    while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
+      s.remove_suffix(1);
+    return s;
+  }
+  // Fields and their 1-based columns.
+  static std::vector<std::pair<std::string_view, std::size_t>> split(std::string_view l) {
+    std::vector<std::pair<std::string_view, std::size_t>> out;
+    std::size_t start = 0;
+    for (std::size_t i = 0; i <= l.size(); ++i)
+      if (i == l.size() || l[i] == ',') {
+        out.emplace_back(l.substr(start, i - start), start + 1);
+        start = i + 1;
+      }
+    return out;
+  }
+  bool next_line() {
+    if (!std::getline(in_, line_)) return false;
+    ++line_no_;
+    return true;
+  }
+  [[noreturn]] void error(std::size_t column, const std::string& field, const std::string& msg) {
+    throw InputError({file_, line_no_, column, field, line_}, msg);
+  }
+
+  std::istream& in_;
+  std::string file_;
+  double default_l_;
+  std::string line_;
+  std::size_t line_no_ = 0;
+  std::array<int, 7> col_{-1, -1, -1, -1, -1, -1, -1};
+};
+
+// Formats the per-point output into a buffer handed to the file in chunks.
+class PredictionWriter {
+ public:
+  PredictionWriter(io::PathFormat format, std::vector<model::ModelKind> kinds, io::ByteSink sink)
+      : format_(format), kinds_(std::move(kinds)), sink_(std::move(sink)) {
+    bool all = kinds_.size() > 1;
+    if (format_ == io::PathFormat::csv) {
+      std::string header = all ? "x,y,z,line" : "x,y,z,px,py,pz,dx,dy,dz,d";
+      for (auto k : kinds_) {
+        std::string s = all ? "_" + column_suffix(k) : "";
+        if (all) header += fmt::format(",px{0},py{0},pz{0},dx{0},dy{0},dz{0},d{0}", s);
+        if (k == model::ModelKind::dual) header += fmt::format(",dx2{0},dy2{0},dz2{0}", s);
+      }
+      if (!all) header += ",line";
+      put(header + "\n");
+    } else {
+      put("{\"points\": [\n");
+    }
+  }
+
+  void write(const model::EvalPoint& p, std::size_t line,
+             const std::vector<model::Deviation>& devs) {
+    bool all = kinds_.size() > 1;
+    if (format_ == io::PathFormat::csv) {
+      num3(p.p);
+      if (all) fmt::format_to(std::back_inserter(buf_), ",{}", line);
+      for (std::size_t i = 0; i < kinds_.size(); ++i) {
+        const model::Deviation& d = devs[i];
+        buf_.push_back(',');
+        num3(p.p + 1e-3 * d.e_um);
+        buf_.push_back(',');
+        num3(d.e_um);
+        buf_.push_back(',');
+        io::append_fixed6(buf_, d.e_um.norm());
+        if (kinds_[i] == model::ModelKind::dual) {
+          buf_.push_back(',');
+          num3(d.second_order_um);
+        }
+      }
+      if (!all) fmt::format_to(std::back_inserter(buf_), ",{}", line);
+      buf_.push_back('\n');
+    } else {
+      if (points_) put(",\n");
+      put("{\"x\": ");
+      io::append_fixed6(buf_, p.p.x());
+      put(", \"y\": ");
+      io::append_fixed6(buf_, p.p.y());
+      put(", \"z\": ");
+      io::append_fixed6(buf_, p.p.z());
+      fmt::format_to(std::back_inserter(buf_), ", \"line\": {}", line);
+      for (std::size_t i = 0; i < kinds_.size(); ++i) {
+        const model::Deviation& d = devs[i];
+        fmt::format_to(std::back_inserter(buf_), ", \"{}\": {{", model::to_string(kinds_[i]));
+        const Eigen::Vector3d pred = p.p + 1e-3 * d.e_um;
+        const char* keys[] = {"px", "py", "pz", "dx", "dy", "dz"};
+        for (int k = 0; k < 6; ++k) {
+          fmt::format_to(std::back_inserter(buf_), "{}\"{}\": ", k ? ", " : "", keys[k]);
+          io::append_fixed6(buf_, k < 3 ? pred[k] : d.e_um[k - 3]);
+        }
+        put(", \"d\": ");
+        io::append_fixed6(buf_, d.e_um.norm());
+        if (kinds_[i] == model::ModelKind::dual) {
+          const char* k2[] = {"dx2", "dy2", "dz2"};
+          for (int k = 0; k < 3; ++k) {
+            fmt::format_to(std::back_inserter(buf_), ", \"{}\": ", k2[k]);
+            io::append_fixed6(buf_, d.second_order_um[k]);
+          }
+        }
+        put("}");
+      }
+      put("}");
+    }
+    ++points_;
+    if (buf_.size() > (std::size_t{1} << 20)) flush();
+  }
+
+  void finish(const nlohmann::json& summary) {
+    if (format_ == io::PathFormat::json) put("\n],\n\"summary\": " + summary.dump(2) + "}\n");
+    flush();
+  }
+
+ private:
+  void put(std::string_view s) { buf_.append(s.data(), s.data() + s.size()); }
+  void num3(const Eigen::Vector3d& v) {
+    io::append_fixed6(buf_, v.x());
+    buf_.push_back(',');
+    io::append_fixed6(buf_, v.y());
+    buf_.push_back(',');
+    io::append_fixed6(buf_, v.z());
+  }
+  void flush() {
+    sink_(buf_.data(), buf_.size());
+    buf_.clear();
+  }
+
+  io::PathFormat format_;
+  std::vector<model::ModelKind> kinds_;
+  io::ByteSink sink_;
+  fmt::memory_buffer buf_;
+  std::size_t points_ = 0;
+};
+
+bool ends_with(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+int run_predict(const PredictOptions& o) {
+  const machine::Machine machine = machine::Machine::load(o.machine);
+  std::vector<model::ModelKind> kinds;
+  if (o.model == "all") {
+    kinds = {model::ModelKind::htm, model::ModelKind::ae_arm, model::ModelKind::dual};
+  } else if (auto k = model::parse_model_kind(o.model)) {
+    kinds = {*k};
+  } else {
+    throw InputError({"<command line>", 0, 0, "--model", ""},
+                     fmt::format("unknown model \"{}\" (htm, ae-arm, dual or all)", o.model));
+  }
+  const io::PathFormat format = io::parse_path_format(o.format);
+  std::vector<model::ErrorModel> models;
+  for (auto k : kinds) models.emplace_back(machine, k);
+  std::vector<model::ModelData> data(kinds.size());
+  std::vector<ModelStats> stats(kinds.size());
+  std::vector<model::Deviation> devs(kinds.size());
+
+  std::ifstream file;
+  std::istream* in = &std::cin;
+  if (o.input != "-") {
+    file.open(o.input, std::ios::binary);
+    if (!file)
+      throw InputError({o.input, 0, 0, "", ""},
+                       std::string("cannot open the input: ") + std::strerror(errno));
+    in = &file;
+  }
+
+  std::unique_ptr<io::AtomicOutputFile> out;
+  std::unique_ptr<PredictionWriter> writer;
+  if (!o.summary_only) {
+    out = std::make_unique<io::AtomicOutputFile>(o.output);
+    writer = std::make_unique<PredictionWriter>(
+        format, kinds, [&](const char* d, std::size_t n) { out->write(d, n); });
+  }
+
+  std::size_t n_points = 0;
+  auto evaluate = [&](const model::EvalPoint& p, std::size_t line) {
+    for (std::size_t i = 0; i < models.size(); ++i) {
+      try {
+        devs[i] = models[i].evaluate(p, data[i]);
+      } catch (const InputError& e) {
+        throw InputError({o.input, line, 0, e.where().field, ""},
+                         fmt::format("at the point ({:.4f}, {:.4f}, {:.4f}) mm: {}", p.p.x(),
+                                     p.p.y(), p.p.z(), e.message()));
+      }
+      stats[i].add(devs[i].e_um);
+    }
+    ++n_points;
+    if (writer) writer->write(p, line, devs);
+  };
+
+  const bool points_input = o.points || ends_with(o.input, ".csv") || ends_with(o.input, ".CSV");
+  if (points_input) {
+    PointReader reader(*in, o.input, machine.tool_length());
+    model::EvalPoint p;
+    std::size_t line = 0;
+    while (reader.next(p, line)) evaluate(p, line);
+  } else {
+    gcode::InterpreterConfig config;
+    config.default_tool_length = machine.tool_length();
+    config.tool_lengths = machine.tool_table();
+    config.work_offsets = machine.work_offsets();
+    path::FragmentOptions fo;
+    fo.step = o.step;
+    fo.rapid_rate = o.rapid_rate;
+    path::Fragmenter fragmenter(fo);
+    const path::PointSink sink = [&](const path::PathPoint& pp) {
+      model::EvalPoint p;
+      p.p = pp.p;
+      p.tool_length = pp.tool_length;
+      p.dir = pp.dir;
+      p.time = pp.time;
+      evaluate(p, pp.line);
+    };
+    gcode::run_program(*in, o.input, config,
+                       [&](const gcode::Motion& m) { fragmenter.add(m, sink); });
+  }
+
+  // Summary.
+  nlohmann::json summary;
+  summary["machine"] = machine.name();
+  summary["input"] = o.input;
+  summary["points"] = n_points;
+  summary["out_of_range_policy"] = machine::to_string(machine.out_of_range());
+  summary["models"] = nlohmann::json::array();
+  std::string text =
+      fmt::format("{}: {} points, machine \"{}\"\n", o.input, n_points, machine.name());
+  text +=
+      fmt::format("  {:<7} {:>10} {:>10} {:>10} {:>10} {:>10} {:>12}\n", "model", "max|dx| µm",
+                  "max|dy| µm", "max|dz| µm", "rms|d| µm", "max|d| µm",
+                  machine.out_of_range() == machine::OutOfRangePolicy::extrapolate ? "extrapolated"
+                                                                                   : "clamped");
+  for (std::size_t i = 0; i < kinds.size(); ++i) {
+    const ModelStats& s = stats[i];
+    summary["models"].push_back({{"model", model::to_string(kinds[i])},
+                                 {"points", s.points},
+                                 {"max_abs_dx_um", s.max_abs.x()},
+                                 {"max_abs_dy_um", s.max_abs.y()},
+                                 {"max_abs_dz_um", s.max_abs.z()},
+                                 {"rms_d_um", s.rms()},
+                                 {"max_d_um", s.max_d},
+                                 {"out_of_range_lookups", data[i].out_of_range_lookups}});
+    text += fmt::format("  {:<7} {:>10.4f} {:>10.4f} {:>10.4f} {:>10.4f} {:>10.4f} {:>12}\n",
+                        model::to_string(kinds[i]), s.max_abs.x(), s.max_abs.y(), s.max_abs.z(),
+                        s.rms(), s.max_d, data[i].out_of_range_lookups);
+  }
+  if (writer) {
+    writer->finish(summary);
+    out->commit();
+  }
+  if (!o.summary_json.empty()) {
+    io::AtomicOutputFile js(o.summary_json);
+    std::string body = summary.dump(2) + "\n";
+    js.write(body.data(), body.size());
+    js.commit();
+  }
+  // The table goes to stdout unless the points do.
+  const bool points_on_stdout = writer && (o.output == "-" || o.output.empty());
+  std::fputs(text.c_str(), points_on_stdout ? stderr : stdout);
+  return kOk;
+}
+
+const CommandRegistrar registrar(
+    "predict",
+    "Predict the deviation of the tool tip along an NC program or at the points of a CSV file", 30,
+    [](CLI::App& sub, const GlobalOptions&) -> CommandAction {
+      auto o = std::make_shared<PredictOptions>();
+      sub.add_option("input", o->input,
+                     "NC program, or a CSV of points (x,y,z[,vx,vy,vz,tool_length]); - for stdin")
+          ->required();
+      sub.add_option("--machine", o->machine, "Machine file (YAML, docs/formats.md)")->required();
+      sub.add_option("--model", o->model, "Error model: htm, ae-arm, dual or all")
+          ->check(CLI::IsMember({"htm", "ae-arm", "dual", "all"}))
+          ->capture_default_str();
+      sub.add_option("-o,--output", o->output, "Output file (written atomically), - for stdout")
+          ->capture_default_str();
+      sub.add_option("--format", o->format, "csv or json")
+          ->check(CLI::IsMember({"csv", "json"}))
+          ->capture_default_str();
+      sub.add_option("--step", o->step, "Largest distance between points along the path, mm")
+          ->check(CLI::PositiveNumber)
+          ->capture_default_str();
+      sub.add_option("--rapid-rate", o->rapid_rate, "Rate of rapid motions for the time, mm/min")
+          ->check(CLI::PositiveNumber)
+          ->capture_default_str();
+      sub.add_flag("--points", o->points, "The input is a CSV of points (also for non-.csv names)");
+      sub.add_flag("--summary-only", o->summary_only, "Write no points, only the summary");
+      sub.add_option("--summary-json", o->summary_json, "Also write the summary as JSON to FILE");
+      return [o] { return run_predict(*o); };
+    });
+
+}  // namespace
+}  // namespace abbe::cli
