@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <iterator>
 
 #include "abbe/io/input_error.hpp"
@@ -13,35 +14,195 @@ namespace {
 constexpr double kScale = 1e6;       // 6 decimals
 constexpr double kFastLimit = 9e12;  // |value| · 1e6 fits an int64 well below this
 
-const char* kind_name(gcode::MotionKind kind) {
+// Kind names padded to 8 bytes so that the fast path copies a fixed size.
+struct KindName {
+  char text[8];
+  std::size_t size;
+};
+const KindName& kind_name(gcode::MotionKind kind) {
+  static const KindName kRapid{"rapid", 5}, kLinear{"linear", 6}, kArc{"arc", 3},
+      kDwell{"dwell", 5};
   switch (kind) {
     case gcode::MotionKind::rapid:
-      return "rapid";
+      return kRapid;
     case gcode::MotionKind::linear:
-      return "linear";
+      return kLinear;
     case gcode::MotionKind::arc:
-      return "arc";
+      return kArc;
     case gcode::MotionKind::dwell:
-      return "dwell";
+      break;
   }
-  return "unknown";
+  return kDwell;
 }
+
+// "00" "01" … "99": two digits per table lookup.
+constexpr char kDigitPairs[] =
+    "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
+    "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
+    "8081828384858687888990919293949596979899";
+
+int count_digits(unsigned long long v) {
+  int n = 1;
+  for (;;) {
+    if (v < 10) return n;
+    if (v < 100) return n + 1;
+    if (v < 1000) return n + 2;
+    if (v < 10000) return n + 3;
+    v /= 10000;
+    n += 4;
+  }
+}
+
+// Writes the n = count_digits(v) digits of v ending at p + n, backwards.
+void write_digits_backwards(char* end, unsigned long long v) {
+  while (v >= 100) {
+    const auto pair = static_cast<std::size_t>(v % 100) * 2;
+    v /= 100;
+    end -= 2;
+    std::memcpy(end, kDigitPairs + pair, 2);
+  }
+  if (v >= 10) {
+    end -= 2;
+    std::memcpy(end, kDigitPairs + static_cast<std::size_t>(v) * 2, 2);
+  } else {
+    *--end = static_cast<char>('0' + v);
+  }
+}
+
+char* write_uint(char* p, unsigned long long v) {
+  const int n = count_digits(v);
+  write_digits_backwards(p + n, v);
+  return p + n;
+}
+
+// The format of append_fixed6 for |value| < kFastLimit: at most 21 characters
+// at p; returns one past the last.
+char* write_fixed6_fast(char* p, double value) {
+  // Round half away from zero (printf differs only at exact binary ties).
+  const double scaled = value * kScale;
+  const long long r = static_cast<long long>(scaled < 0.0 ? scaled - 0.5 : scaled + 0.5);
+  if (r < 0) *p++ = '-';
+  const unsigned long long u =
+      r < 0 ? 0ULL - static_cast<unsigned long long>(r) : static_cast<unsigned long long>(r);
+  p = write_uint(p, u / 1000000ULL);
+  const auto frac = static_cast<unsigned>(u % 1000000ULL);
+  if (frac == 0) return p;
+  // ".dddddd", then drop the trailing zeros.
+  p[0] = '.';
+  std::memcpy(p + 1, kDigitPairs + (frac / 10000) * 2, 2);
+  std::memcpy(p + 3, kDigitPairs + (frac / 100 % 100) * 2, 2);
+  std::memcpy(p + 5, kDigitPairs + (frac % 100) * 2, 2);
+  char* end = p + 7;
+  while (end[-1] == '0') --end;
+  return end;
+}
+
+bool fast_number(double value) { return std::abs(value) < kFastLimit; }  // false for NaN
 
 void append_str(fmt::memory_buffer& out, std::string_view s) {
   out.append(s.data(), s.data() + s.size());
 }
 
-void append_uint(fmt::memory_buffer& out, std::size_t value) {
-  const fmt::format_int f(static_cast<unsigned long long>(value));
-  out.append(f.data(), f.data() + f.size());
+// Row output into memory with room for kMaxFastRow bytes (all numbers on the fast path).
+struct CharOut {
+  char* p;
+  template <std::size_t N>
+  void str(const char (&s)[N]) {  // a literal: fixed-size copy
+    std::memcpy(p, s, N - 1);
+    p += N - 1;
+  }
+  void kind(const KindName& k) {
+    std::memcpy(p, k.text, sizeof(k.text));
+    p += k.size;
+  }
+  void ch(char c) { *p++ = c; }
+  void num(double v) { p = write_fixed6_fast(p, v); }
+  void uint(std::size_t v) { p = write_uint(p, static_cast<unsigned long long>(v)); }
+};
+
+// Row output appended to the buffer (any number, including the slow ones).
+struct BufferOut {
+  fmt::memory_buffer& b;
+  template <std::size_t N>
+  void str(const char (&s)[N]) {
+    b.append(s, s + N - 1);
+  }
+  void kind(const KindName& k) { b.append(k.text, k.text + k.size); }
+  void ch(char c) { b.push_back(c); }
+  void num(double v) { append_fixed6(b, v); }
+  void uint(std::size_t v) {
+    char digits[24];
+    b.append(digits, write_uint(digits, static_cast<unsigned long long>(v)));
+  }
+};
+
+template <class Out>
+void sign(Out& out, std::int8_t s) {
+  if (s < 0)
+    out.str("-1");
+  else
+    out.ch(s > 0 ? '1' : '0');
 }
 
-void append_sign(fmt::memory_buffer& out, std::int8_t s) {
-  if (s < 0)
-    append_str(out, "-1");
-  else
-    out.push_back(s > 0 ? '1' : '0');
+template <class Out>
+void format_row(Out& out, PathFormat format, const path::PathPoint& pt, bool first) {
+  if (format == PathFormat::csv) {
+    out.num(pt.p.x());
+    out.ch(',');
+    out.num(pt.p.y());
+    out.ch(',');
+    out.num(pt.p.z());
+    out.ch(',');
+    out.num(pt.tool_length);
+    out.ch(',');
+    out.uint(pt.line);
+    out.ch(',');
+    out.kind(kind_name(pt.kind));
+    out.ch(',');
+    out.num(pt.feed);
+    out.ch(',');
+    out.num(pt.time);
+    out.ch(',');
+    sign(out, pt.dir[0]);
+    out.ch(',');
+    sign(out, pt.dir[1]);
+    out.ch(',');
+    sign(out, pt.dir[2]);
+    out.ch('\n');
+  } else {
+    if (first)
+      out.str("{\"x\":");
+    else
+      out.str(",\n{\"x\":");
+    out.num(pt.p.x());
+    out.str(",\"y\":");
+    out.num(pt.p.y());
+    out.str(",\"z\":");
+    out.num(pt.p.z());
+    out.str(",\"tool_length\":");
+    out.num(pt.tool_length);
+    out.str(",\"line\":");
+    out.uint(pt.line);
+    out.str(",\"kind\":\"");
+    out.kind(kind_name(pt.kind));
+    out.str("\",\"feed\":");
+    out.num(pt.feed);
+    out.str(",\"time\":");
+    out.num(pt.time);
+    out.str(",\"vx\":");
+    sign(out, pt.dir[0]);
+    out.str(",\"vy\":");
+    sign(out, pt.dir[1]);
+    out.str(",\"vz\":");
+    sign(out, pt.dir[2]);
+    out.ch('}');
+  }
 }
+
+// Longest row of the fast path: 6 numbers of at most 21 characters, a line
+// number of at most 20, the JSON keys and punctuation (< 120), the kind
+// copied as 8 bytes.
+constexpr std::size_t kMaxFastRow = 6 * 21 + 20 + 160;
 }  // namespace
 
 PathFormat parse_path_format(std::string_view name) {
@@ -58,35 +219,17 @@ void append_fixed6(fmt::memory_buffer& out, double value) {
     append_str(out, std::isnan(value) ? "nan" : (value > 0 ? "inf" : "-inf"));
     return;
   }
-  if (std::abs(value) >= kFastLimit) {
+  if (!fast_number(value)) {
     fmt::format_to(std::back_inserter(out), "{:.6f}", value);
     return;
   }
-  const long long scaled = std::llround(value * kScale);
-  if (scaled < 0) out.push_back('-');
-  const unsigned long long u = scaled < 0 ? 0ULL - static_cast<unsigned long long>(scaled)
-                                          : static_cast<unsigned long long>(scaled);
-  const fmt::format_int integer(u / 1000000ULL);
-  out.append(integer.data(), integer.data() + integer.size());
-  unsigned long long frac = u % 1000000ULL;
-  if (frac == 0) return;
-  char digits[7];
-  int n = 6;
-  while (frac % 10 == 0) {  // drop trailing zeros
-    frac /= 10;
-    --n;
-  }
-  digits[0] = '.';
-  for (int i = n; i >= 1; --i) {
-    digits[i] = static_cast<char>('0' + frac % 10);
-    frac /= 10;
-  }
-  out.append(digits, digits + n + 1);
+  char digits[32];
+  out.append(digits, write_fixed6_fast(digits, value));
 }
 
 PathWriter::PathWriter(PathFormat format, ByteSink sink, std::size_t chunk_bytes)
     : format_(format), sink_(std::move(sink)), chunk_bytes_(chunk_bytes) {
-  buffer_.reserve(chunk_bytes_ + 1024);
+  buffer_.reserve(chunk_bytes_ + 2 * kMaxFastRow);
   if (format_ == PathFormat::csv)
     append_str(buffer_, "x,y,z,tool_length,line,kind,feed,time,vx,vy,vz\n");
   else
@@ -94,57 +237,21 @@ PathWriter::PathWriter(PathFormat format, ByteSink sink, std::size_t chunk_bytes
 }
 
 void PathWriter::write(const path::PathPoint& pt) {
-  auto& b = buffer_;
-  if (format_ == PathFormat::csv) {
-    append_fixed6(b, pt.p.x());
-    b.push_back(',');
-    append_fixed6(b, pt.p.y());
-    b.push_back(',');
-    append_fixed6(b, pt.p.z());
-    b.push_back(',');
-    append_fixed6(b, pt.tool_length);
-    b.push_back(',');
-    append_uint(b, pt.line);
-    b.push_back(',');
-    append_str(b, kind_name(pt.kind));
-    b.push_back(',');
-    append_fixed6(b, pt.feed);
-    b.push_back(',');
-    append_fixed6(b, pt.time);
-    b.push_back(',');
-    append_sign(b, pt.dir[0]);
-    b.push_back(',');
-    append_sign(b, pt.dir[1]);
-    b.push_back(',');
-    append_sign(b, pt.dir[2]);
-    b.push_back('\n');
+  const bool fast = fast_number(pt.p.x()) && fast_number(pt.p.y()) && fast_number(pt.p.z()) &&
+                    fast_number(pt.tool_length) && fast_number(pt.feed) && fast_number(pt.time);
+  if (fast) {
+    // Format in place at the end of the buffer (no intermediate copy).
+    const std::size_t old_size = buffer_.size();
+    buffer_.resize(old_size + kMaxFastRow);
+    CharOut out{buffer_.data() + old_size};
+    format_row(out, format_, pt, points_ == 0);
+    buffer_.resize(static_cast<std::size_t>(out.p - buffer_.data()));
   } else {
-    append_str(b, points_ == 0 ? "{\"x\":" : ",\n{\"x\":");
-    append_fixed6(b, pt.p.x());
-    append_str(b, ",\"y\":");
-    append_fixed6(b, pt.p.y());
-    append_str(b, ",\"z\":");
-    append_fixed6(b, pt.p.z());
-    append_str(b, ",\"tool_length\":");
-    append_fixed6(b, pt.tool_length);
-    append_str(b, ",\"line\":");
-    append_uint(b, pt.line);
-    append_str(b, ",\"kind\":\"");
-    append_str(b, kind_name(pt.kind));
-    append_str(b, "\",\"feed\":");
-    append_fixed6(b, pt.feed);
-    append_str(b, ",\"time\":");
-    append_fixed6(b, pt.time);
-    append_str(b, ",\"vx\":");
-    append_sign(b, pt.dir[0]);
-    append_str(b, ",\"vy\":");
-    append_sign(b, pt.dir[1]);
-    append_str(b, ",\"vz\":");
-    append_sign(b, pt.dir[2]);
-    b.push_back('}');
+    BufferOut out{buffer_};
+    format_row(out, format_, pt, points_ == 0);
   }
   ++points_;
-  if (b.size() >= chunk_bytes_) flush();
+  if (buffer_.size() >= chunk_bytes_) flush();
 }
 
 void PathWriter::flush() {

@@ -84,4 +84,21 @@ Eigen::Vector3d ArcSpan::velocity(double t) const {
   return v;
 }
 
+void ArcSpan::sample(double t, Eigen::Vector3d& p, Eigen::Vector3d& v) const {
+  const int a = axes_[0], b = axes_[1], n = axes_[2];
+  const double theta = theta0_ + sweep_ * t;
+  const double r = r0_ + (r1_ - r0_) * t;
+  const double c = std::cos(theta), s = std::sin(theta);  // one sincos call
+  v[a] = -r * sweep_ * s;
+  v[b] = r * sweep_ * c;
+  v[n] = p_end_[n] - p_start_[n];
+  if (t >= 1.0) {
+    p = p_end_;
+    return;
+  }
+  p[a] = center_[a] + r * c;
+  p[b] = center_[b] + r * s;
+  p[n] = p_start_[n] + (p_end_[n] - p_start_[n]) * t;
+}
+
 }  // namespace abbe::path

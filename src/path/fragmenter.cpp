@@ -102,11 +102,11 @@ void Fragmenter::add_arc(const gcode::Motion& motion, PathPoint& point, const Po
   const double t0 = time_;
   for (std::size_t i = 1; i <= n; ++i) {
     const double t = static_cast<double>(i) / static_cast<double>(n);
-    const Eigen::Vector3d v = span.velocity(t);
+    Eigen::Vector3d v;
+    span.sample(t, point.p, v);  // t = 1 gives motion.end exactly
     const double tolerance = kDirectionTolerance * v.norm();
     for (int k = 0; k < 3; ++k)
       if (std::abs(v[k]) > tolerance) dir_[static_cast<std::size_t>(k)] = sign(v[k]);
-    point.p = i == n ? motion.end : span.point(t);
     point.time = t0 + static_cast<double>(i) * dt;
     emit(point, sink);
   }

@@ -204,6 +204,19 @@ TEST(Fragmenter, FullCircleAndClockwiseTurns) {
   EXPECT_EQ(pts.back().p, a);
 }
 
+TEST(Fragmenter, ArcSampleMatchesPointAndVelocity) {
+  const ArcSpan span(arc(Vector3d(3, 4, 1), Vector3d(-4, 3, 2), Vector3d(0, 0, 1), -2, Plane::xy));
+  for (double t : {0.0, 0.125, 0.5, 0.9, 1.0}) {
+    Vector3d p, v;
+    span.sample(t, p, v);
+    EXPECT_TRUE(p.isApprox(span.point(t), 1e-14)) << t;
+    EXPECT_TRUE(v.isApprox(span.velocity(t), 1e-14)) << t;
+  }
+  Vector3d p, v;
+  span.sample(1.0, p, v);
+  EXPECT_EQ(p, Vector3d(-4, 3, 2));
+}
+
 TEST(Fragmenter, EndOffTheCircleIsReachedByLinearRadius) {
   // End radius 50.002 instead of 50 (within an interpreter's tolerance).
   const Vector3d c(0, 0, 0), a(50, 0, 0), b(-50.002, 0, 0);

@@ -37,6 +37,8 @@ class ArcSpan {
   // change is left out so that a direction sign does not flip where the
   // tangential velocity of an axis vanishes).
   Eigen::Vector3d velocity(double t) const;
+  // point(t) and velocity(t) together (one sine and cosine).
+  void sample(double t, Eigen::Vector3d& p, Eigen::Vector3d& v) const;
 
   double sweep() const { return sweep_; }  // signed, rad
   double start_radius() const { return r0_; }

@@ -1,0 +1,100 @@
+// Throughput of the front end on an in-memory generated program (gen_program's
+// generator, 100 k blocks): parse only, parse + interpret, + fragment (5 mm),
+// + CSV formatting. Items are program lines.
+#include <benchmark/benchmark.h>
+
+#include <sstream>
+#include <string>
+
+#include "abbe/gcode/parser.hpp"
+#include "abbe/gcode/program.hpp"
+#include "abbe/io/path_writer.hpp"
+#include "abbe/path/fragmenter.hpp"
+#include "tools/gen/program_generator.hpp"
+
+namespace {
+
+constexpr std::size_t kBlocks = 100000;
+
+const std::string& program() {
+  static const std::string text = [] {
+    std::string s;
+    fmt::memory_buffer buffer;
+    abbe::gen::ProgramGenerator generator(42);
+    generator.write(kBlocks, buffer,
+                    [&](const fmt::memory_buffer& b) { s.append(b.data(), b.size()); });
+    return s;
+  }();
+  return text;
+}
+
+void report(benchmark::State& state, std::size_t lines) {
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(lines));
+  state.SetBytesProcessed(static_cast<int64_t>(state.iterations()) *
+                          static_cast<int64_t>(program().size()));
+}
+
+void BM_Parse(benchmark::State& state) {
+  std::size_t lines = 0;
+  for (auto _ : state) {
+    std::istringstream in(program());
+    abbe::gcode::BlockReader reader(in, "<bench>");
+    abbe::gcode::Block block;
+    lines = 0;
+    while (reader.next(block)) ++lines;
+    benchmark::DoNotOptimize(block);
+  }
+  report(state, lines);
+}
+BENCHMARK(BM_Parse)->Unit(benchmark::kMillisecond);
+
+void BM_Interpret(benchmark::State& state) {
+  std::size_t lines = 0;
+  for (auto _ : state) {
+    std::istringstream in(program());
+    double sum = 0.0;
+    const auto stats = abbe::gcode::run_program(
+        in, "<bench>", {}, [&](const abbe::gcode::Motion& m) { sum += m.end.x(); });
+    benchmark::DoNotOptimize(sum);
+    lines = stats.lines;
+  }
+  report(state, lines);
+}
+BENCHMARK(BM_Interpret)->Unit(benchmark::kMillisecond);
+
+void BM_InterpretFragment(benchmark::State& state) {
+  std::size_t lines = 0, points = 0;
+  for (auto _ : state) {
+    std::istringstream in(program());
+    abbe::path::Fragmenter fragmenter({});
+    points = 0;
+    const abbe::path::PointSink count = [&](const abbe::path::PathPoint&) { ++points; };
+    const auto stats = abbe::gcode::run_program(
+        in, "<bench>", {}, [&](const abbe::gcode::Motion& m) { fragmenter.add(m, count); });
+    lines = stats.lines;
+  }
+  report(state, lines);
+  state.counters["points"] = static_cast<double>(points);
+}
+BENCHMARK(BM_InterpretFragment)->Unit(benchmark::kMillisecond);
+
+void BM_InterpretFragmentCsv(benchmark::State& state) {
+  std::size_t lines = 0, bytes = 0;
+  for (auto _ : state) {
+    std::istringstream in(program());
+    abbe::path::Fragmenter fragmenter({});
+    bytes = 0;
+    abbe::io::PathWriter writer(abbe::io::PathFormat::csv,
+                                [&](const char*, std::size_t n) { bytes += n; });
+    const abbe::path::PointSink write = [&](const abbe::path::PathPoint& p) { writer.write(p); };
+    const auto stats = abbe::gcode::run_program(
+        in, "<bench>", {}, [&](const abbe::gcode::Motion& m) { fragmenter.add(m, write); });
+    writer.finish();
+    lines = stats.lines;
+  }
+  report(state, lines);
+  state.counters["csv_bytes"] = static_cast<double>(bytes);
+}
+BENCHMARK(BM_InterpretFragmentCsv)->Unit(benchmark::kMillisecond);
+
+}  // namespace
