@@ -1,0 +1,88 @@
+# Command-level tests of `abbe simulate` (label cli), run with `cmake -P`:
+# machine → files, campaign, measure (grid, program, effects), errors.
+if(NOT CMAKE_SCRIPT_MODE_FILE)
+  add_test(NAME cli_simulate
+           COMMAND ${CMAKE_COMMAND} -DABBE=$<TARGET_FILE:abbe> -DSRC=${PROJECT_SOURCE_DIR}
+                   -DWORK=${CMAKE_CURRENT_BINARY_DIR}/cli_simulate -P ${CMAKE_CURRENT_LIST_FILE})
+  set_tests_properties(cli_simulate PROPERTIES LABELS cli TIMEOUT 300)
+  return()
+endif()
+
+function(run)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${ARGN}: exit code ${rc}\n${err}")
+  endif()
+  set(run_out "${out}" PARENT_SCOPE)
+endfunction()
+
+function(expect_failure expected_message)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 1)
+    message(FATAL_ERROR "${ARGN}: exit code ${rc}, expected 1\n${err}")
+  endif()
+  string(FIND "${err}" "${expected_message}" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "${ARGN}: message lacks '${expected_message}':\n${err}")
+  endif()
+endfunction()
+
+file(REMOVE_RECURSE ${WORK})
+run(${ABBE} -q simulate machine --seed 3 --like generic --spacing 50 -o ${WORK}/m)
+foreach(f truth.yaml machine.yaml errors.csv runs.csv)
+  if(NOT EXISTS ${WORK}/m/${f})
+    message(FATAL_ERROR "simulate machine did not write ${f}")
+  endif()
+endforeach()
+file(GLOB leftovers ${WORK}/m/*.tmp.*)
+if(leftovers)
+  message(FATAL_ERROR "temporary files left behind: ${leftovers}")
+endif()
+run(${ABBE} iso230 ${WORK}/m/runs.csv --json)
+if(NOT run_out MATCHES "\"component\": \"EZZ\"")
+  message(FATAL_ERROR "iso230 of the simulated runs lacks EZZ:\n${run_out}")
+endif()
+
+# Re-run the campaign noise-free at another spacing: the table has fwd = rev − reversal.
+run(${ABBE} -q simulate campaign --truth ${WORK}/m/truth.yaml --spacing 100 --noise-scale 0
+    -o ${WORK}/c)
+file(STRINGS ${WORK}/c/errors.csv rows REGEX "^X,EXX,-990,")
+list(LENGTH rows n)
+if(NOT n EQUAL 2)
+  message(FATAL_ERROR "campaign table: expected fwd and rev rows of X EXX at -990, got '${rows}'")
+endif()
+
+# Grid measurement with an injected reversal, noise-free, twice: identical files.
+run(${ABBE} -q simulate measure --truth ${WORK}/m/truth.yaml --grid 200 --noise 0
+    --inject reversal:Y:4um -o ${WORK}/grid1.csv)
+run(${ABBE} -q simulate measure --truth ${WORK}/m/truth.yaml --grid 200 --noise 0
+    --inject reversal:Y:4um -o ${WORK}/grid2.csv)
+file(READ ${WORK}/grid1.csv g1)
+file(READ ${WORK}/grid2.csv g2)
+if(NOT g1 STREQUAL g2)
+  message(FATAL_ERROR "the same measurement gave different files")
+endif()
+file(STRINGS ${WORK}/grid1.csv rows)
+list(LENGTH rows n)
+list(GET rows 0 header)
+# 6 x-levels (−990 … 0 by 200, plus 0) × 4 y × 4 z + header
+if(NOT header STREQUAL "x,y,z,dx,dy,dz,t,vx,vy,vz,nx,ny,nz,dn,tool_length,set" OR NOT n EQUAL 97)
+  message(FATAL_ERROR "grid: header '${header}', ${n} rows")
+endif()
+
+# Along an NC program (tool 1 = 200 mm from the machine's tool table).
+run(${ABBE} -q simulate measure --truth ${WORK}/m/truth.yaml
+    --program ${SRC}/nc-samples/thesis-toolpath-1.ngc --noise 0.5um --seed 4 -o -)
+if(NOT run_out MATCHES "\n-650\\.0000,-350\\.0000,-280\\.0000,[^\n]*,200,program\n")
+  message(FATAL_ERROR "program measurement lacks the far corner:\n${run_out}")
+endif()
+
+# Bad input: exit code 1 and a message naming the problem.
+expect_failure("magnitude needs a unit" ${ABBE} simulate measure --truth ${WORK}/m/truth.yaml
+               --grid 100 --inject reversal:Y:4)
+expect_failure("give --grid SPACING or --program FILE" ${ABBE} simulate measure
+               --truth ${WORK}/m/truth.yaml)
+expect_failure("unknown machine profile" ${ABBE} simulate machine --like lathe -o ${WORK}/x)
+file(WRITE ${WORK}/bad.yaml "abbe_truth: 1\nname: x\nchain: \"w X b X Z t\"\n")
+expect_failure("bad.yaml:3:8 [chain]" ${ABBE} simulate measure --truth ${WORK}/bad.yaml --grid 100)
+file(REMOVE_RECURSE ${WORK})
