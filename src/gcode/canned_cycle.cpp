@@ -55,12 +55,12 @@ Eigen::Vector3d expand_canned_cycle(const CannedCycle& c,
         break;
       case gcode_id(73):
       case gcode_id(83): {
-        // Peck: feed one Q deeper each time; G83 rapids out to the clearance
-        // height and back down to just above the previous depth, G73 only
-        // backs off by the peck clearance.
+        // Peck: feed one Q deeper each time; G83 rapids out to the R plane
+        // (not to the G98 level) and back down to just above the previous
+        // depth, G73 only backs off by the peck clearance.
         for (double depth = c.r - c.peck; depth > c.bottom; depth -= c.peck) {
           move(Kind::feed, aa, bb, depth);
-          if (c.code == gcode_id(83)) move(Kind::traverse, aa, bb, clear);
+          if (c.code == gcode_id(83)) move(Kind::traverse, aa, bb, c.r);
           move(Kind::traverse, aa, bb, depth + c.peck_clearance);
         }
         move(Kind::feed, aa, bb, c.bottom);

@@ -101,7 +101,7 @@ TEST(InterpreterCanned, G89DwellsAndFeedsOutToClearance) {
       {{R, {2, 1, 10}}, {R, {2, 1, 2}}, {F, {2, 1, -1}}, {D, {2, 1, -1}, 0.5}, {F, {2, 1, 2}}});
 }
 
-TEST(InterpreterCanned, G83PecksOutToClearanceAndBackDown) {
+TEST(InterpreterCanned, G83PecksOutToRAndBackDown) {
   // R 1, Q 0.8, bottom -2: pecks at 0.2, -0.6, -1.4, then -2; back down to
   // 0.254 mm above the previous depth.
   const auto m = run_lines({"G0 Z3 F100", "G99 G83 X0 Y0 Z-2 R1 Q0.8"});
@@ -119,18 +119,19 @@ TEST(InterpreterCanned, G83PecksOutToClearanceAndBackDown) {
                 {R, {0, 0, -1.146}},
                 {F, {0, 0, -2}},
                 {R, {0, 0, 1}}});
+  // G98: the pecks still retract to R; only the last retract goes to the initial level.
   const auto g98 = run_lines({"G0 Z3 F100", "G98 G83 X0 Y0 Z-2 R1 Q0.8"});
   expect_moves(g98, 2,
                {{R, {0, 0, 3}},
                 {R, {0, 0, 1}},
                 {F, {0, 0, 0.2}},
-                {R, {0, 0, 3}},
+                {R, {0, 0, 1}},
                 {R, {0, 0, 0.454}},
                 {F, {0, 0, -0.6}},
-                {R, {0, 0, 3}},
+                {R, {0, 0, 1}},
                 {R, {0, 0, -0.346}},
                 {F, {0, 0, -1.4}},
-                {R, {0, 0, 3}},
+                {R, {0, 0, 1}},
                 {R, {0, 0, -1.146}},
                 {F, {0, 0, -2}},
                 {R, {0, 0, 3}}});

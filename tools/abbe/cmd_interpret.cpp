@@ -142,13 +142,22 @@ int run_interpret(const InterpretOptions& o) {
     std::fwrite(out.data(), 1, out.size(), stdout);
     out.clear();
   };
-  const auto stats = gcode::run_program(*in, o.program, config, [&](const gcode::Motion& m) {
-    ++by_kind[static_cast<std::size_t>(m.kind)];
-    if (o.canon) {
-      append_canon(out, m);
-      if (out.size() > (1u << 16)) flush();
-    }
-  });
+  gcode::ProgramStats stats;
+  try {
+    stats = gcode::run_program(*in, o.program, config, [&](const gcode::Motion& m) {
+      ++by_kind[static_cast<std::size_t>(m.kind)];
+      if (o.canon) {
+        append_canon(out, m);
+        if (out.size() > (1u << 16)) flush();
+      }
+    });
+  } catch (const InputError&) {
+    // The motions made before the bad block are still shown (the interop
+    // test checks them against rs274's), then the error is reported.
+    if (o.canon) flush();
+    std::fflush(stdout);
+    throw;
+  }
   if (o.canon) {
     flush();
   } else {

@@ -1,0 +1,161 @@
+#!/usr/bin/env bash
+# Interoperability test: abbe's interpreter against LinuxCNC's standalone
+# rs274 (Debian package linuxcnc-uspace) on every .ngc file of that package's
+# ncfiles directory and every file in nc-samples/.
+#
+# usage: run_interop.sh ABBE CANON_COMPARE WORK_DIR SOURCE_DIR
+#
+# Each file is classified (see docs/interop.md): matched, refused (abbe
+# stops with a clear file:line:col error; OK), rs274-refused (rs274 stops
+# with an error, abbe does not; listed), or mismatch / abbe-failed (test
+# failure). The counts and the per-file table go to stdout and into
+# docs/interop.md (or $ABBE_INTEROP_REPORT), between the result markers.
+#
+# The package is fetched once with `apt-get download` and unpacked into
+# WORK_DIR. Without network the test fails loudly; ABBE_SKIP_INTEROP=1 skips
+# it (exit 77, reported by ctest as skipped).
+set -uo pipefail
+
+if [ $# -ne 4 ]; then
+  echo "usage: $0 ABBE CANON_COMPARE WORK_DIR SOURCE_DIR" >&2
+  exit 2
+fi
+abbe=$1
+compare=$2
+work=$3
+src=$4
+
+if [ "${ABBE_SKIP_INTEROP:-0}" = "1" ]; then
+  echo "interop: skipped (ABBE_SKIP_INTEROP=1)"
+  exit 77
+fi
+
+fail() {
+  echo "interop: FAILED: $*" >&2
+  echo "interop: (set ABBE_SKIP_INTEROP=1 to skip this test on a machine without it)" >&2
+  exit 1
+}
+
+mkdir -p "$work" || fail "cannot create $work"
+lcnc="$work/linuxcnc"
+rs274="$lcnc/usr/bin/rs274"
+if [ ! -x "$rs274" ]; then
+  echo "interop: fetching linuxcnc-uspace (apt-get download, ~21 MB) into $work"
+  (cd "$work" && rm -f linuxcnc-uspace_*.deb && apt-get download linuxcnc-uspace) ||
+    fail "apt-get download linuxcnc-uspace did not work (no network or no Debian archive?)"
+  rm -rf "$lcnc.tmp"
+  dpkg -x "$work"/linuxcnc-uspace_*.deb "$lcnc.tmp" || fail "dpkg -x of linuxcnc-uspace failed"
+  dpkg-deb -f "$work"/linuxcnc-uspace_*.deb Version >"$lcnc.tmp/VERSION" 2>/dev/null
+  mv "$lcnc.tmp" "$lcnc" || fail "cannot move the unpacked package into place"
+  rm -f "$work"/linuxcnc-uspace_*.deb
+fi
+ncfiles="$lcnc/usr/share/linuxcnc/ncfiles"
+[ -d "$ncfiles" ] || fail "no ncfiles directory in the unpacked package ($ncfiles)"
+export LD_LIBRARY_PATH="$lcnc/usr/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+
+# Tool table: tools 1..99, all of length 0 (rs274's table is in inches).
+# Zero lengths because the standalone rs274 re-reads its position after a
+# tool change (M6) from its dummy canonical layer, which ignores tool length
+# offsets: with non-zero lengths its program Z after "M6 ... G43 Hn" differs
+# from what a LinuxCNC machine (and abbe) does. See docs/interop.md.
+# ABBE_INTEROP_TOOL_INCH=x gives every tool length x inch instead.
+length_in=${ABBE_INTEROP_TOOL_INCH:-0}
+length_mm=$(awk -v x="$length_in" 'BEGIN{printf "%.6f", x*25.4}')
+table="$work/tools.tbl"
+: >"$table"
+tool_args=()
+for n in $(seq 1 99); do
+  printf 'T%d P%d Z%s D0.1 ;tool %d\n' "$n" "$n" "$length_in" "$n" >>"$table"
+  tool_args+=(--tool "$n=$length_mm")
+done
+
+run_rs274() {  # file out -> exit code
+  local var="$work/rs274.var"
+  : >"$var"
+  (cd "$(dirname "$1")" && timeout 60 "$rs274" -t "$table" -v "$var" -g "$1" >"$2" 2>&1)
+}
+
+# rs274 must start at all (its runtime libraries, e.g. libboost-python).
+smoke="$work/smoke.ngc"
+printf 'G0 X1 Y2 Z3\nM2\n' >"$smoke"
+run_rs274 "$smoke" "$work/smoke.out"
+grep -q "STRAIGHT_TRAVERSE(1.0000, 2.0000, 3.0000" "$work/smoke.out" ||
+  fail "rs274 does not run: $(head -3 "$work/smoke.out") (tools/install-deps.sh installs its runtime)"
+
+files=()
+while IFS= read -r f; do files+=("$f"); done < <(find "$ncfiles" -name '*.ngc' -type f | sort)
+if [ -d "$src/nc-samples" ]; then
+  while IFS= read -r f; do files+=("$f"); done < <(find "$src/nc-samples" -type f | sort)
+fi
+
+out="$work/out"
+rm -rf "$out" && mkdir -p "$out"
+rows="$work/rows.tsv"
+: >"$rows"
+declare -A count=([matched]=0 [refused]=0 [rs274-refused]=0 [mismatch]=0 [abbe-failed]=0)
+status=0
+i=0
+for f in "${files[@]}"; do
+  i=$((i + 1))
+  case "$f" in
+    "$ncfiles"/*) name="ncfiles/${f#"$ncfiles"/}" ;;
+    *) name="nc-samples/${f#"$src/nc-samples"/}" ;;
+  esac
+  run_rs274 "$f" "$out/$i.rs274"
+  rs_exit=$?
+  timeout 60 "$abbe" interpret --canon "$f" "${tool_args[@]}" >"$out/$i.abbe" 2>"$out/$i.err"
+  ab_exit=$?
+  result=$("$compare" "$out/$i.rs274" "$rs_exit" "$out/$i.abbe" "$out/$i.err" "$ab_exit")
+  cmp_exit=$?
+  class=${result%%$'\t'*}
+  rest=${result#*$'\t'}
+  motions=${rest%%$'\t'*}
+  detail=${rest#*$'\t'}
+  # Error messages name the file by its full path; shorten to the table name.
+  detail=${detail//"$f"/$(basename "$f")}
+  count[$class]=$((${count[$class]:-0} + 1))
+  printf '%s\t%s\t%s\t%s\n' "$name" "$class" "$motions" "$detail" >>"$rows"
+  if [ $cmp_exit -ne 0 ]; then
+    status=1
+    echo "interop: $class: $name: $detail"
+  fi
+done
+
+total=${#files[@]}
+summary="files=$total matched=${count[matched]} refused=${count[refused]} rs274-refused=${count[rs274-refused]} mismatched=${count[mismatch]} abbe-failed=${count[abbe-failed]}"
+echo "interop: $summary"
+column -t -s $'\t' "$rows" 2>/dev/null | cut -c1-200 || cat "$rows"
+
+# Report: replace the results section of docs/interop.md.
+report=${ABBE_INTEROP_REPORT:-$src/docs/interop.md}
+version=$(cat "$lcnc/VERSION" 2>/dev/null)
+{
+  echo "<!-- interop-results-begin (written by tests/interop/run_interop.sh) -->"
+  echo
+  echo "Last run: $(date -u +%Y-%m-%d), linuxcnc-uspace ${version:-unknown}."
+  echo
+  echo "| files | matched | refused by abbe | refused by rs274 only | mismatched | abbe failed |"
+  echo "|---|---|---|---|---|---|"
+  echo "| $total | ${count[matched]} | ${count[refused]} | ${count[rs274-refused]} | ${count[mismatch]} | ${count[abbe-failed]} |"
+  echo
+  echo "| file | result | motions | detail |"
+  echo "|---|---|---|---|"
+  while IFS=$'\t' read -r name class motions detail; do
+    detail=${detail//|/\\|}
+    echo "| $name | $class | $motions | $detail |"
+  done <"$rows"
+  echo
+  echo "<!-- interop-results-end -->"
+} >"$work/results.md"
+if [ -f "$report" ] && grep -q 'interop-results-begin' "$report" && grep -q 'interop-results-end' "$report"; then
+  tmp="$report.tmp.$$"
+  awk -v results="$work/results.md" '
+    /interop-results-begin/ { while ((getline line < results) > 0) print line; skip = 1; next }
+    /interop-results-end/ { skip = 0; next }
+    !skip { print }
+  ' "$report" >"$tmp" && mv "$tmp" "$report"
+  echo "interop: results written to $report"
+else
+  echo "interop: $report has no result markers; results are in $work/results.md"
+fi
+exit $status
