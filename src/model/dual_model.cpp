@@ -9,17 +9,14 @@ namespace abbe::model {
 
 Deviation ErrorModel::evaluate_dual(const EvalPoint& point, const Eigen::Vector3d& s,
                                     const ModelData& data) const {
-  std::array<AxisMotion<Dual2>, 3> motions;
-  for (std::size_t c = 0; c < 3; ++c) {
-    std::size_t j = static_cast<std::size_t>(machine::index(order_[c]));
+  const Vector3<Dual2> d = compose_chain<Dual2>(point.p, [&](int c, AxisMotion<Dual2>& m) {
+    std::size_t j = static_cast<std::size_t>(machine::index(order_[static_cast<std::size_t>(c)]));
     const AxisErrors& err = data.errors[j];
-    AxisMotion<Dual2>& m = motions[c];
     for (int k = 0; k < 3; ++k) m.delta[k] = ErrorScalar<Dual2>::linear(1e-3 * err.delta_um[k]);
-    m.r_minus_i = ErrorScalar<Dual2>::rotation_minus_identity(1e-6 * err.theta_urad);
+    ErrorScalar<Dual2>::rotation_minus_identity(1e-6 * err.theta_urad, m.r_minus_i);
     const Eigen::Vector3d moved = (geometry_[j].moves * s.array()).matrix();
     m.pivots = geometry_[j].m0.colwise() + moved;
-  }
-  const Vector3<Dual2> d = compose_chain(point.p, motions);
+  });
   Deviation out;
   for (int k = 0; k < 3; ++k) {
     out.e_um[k] = 1e3 * (d[k].e1 + d[k].e2);

@@ -9,17 +9,15 @@ namespace abbe::model {
 
 Deviation ErrorModel::evaluate_htm(const EvalPoint& point, const Eigen::Vector3d& s,
                                    const ModelData& data) const {
-  std::array<AxisMotion<double>, 3> motions;
-  for (std::size_t c = 0; c < 3; ++c) {
-    std::size_t j = static_cast<std::size_t>(machine::index(order_[c]));
+  const Eigen::Vector3d d = compose_chain<double>(point.p, [&](int c, AxisMotion<double>& m) {
+    std::size_t j = static_cast<std::size_t>(machine::index(order_[static_cast<std::size_t>(c)]));
     const AxisErrors& err = data.errors[j];
-    AxisMotion<double>& m = motions[c];
     m.delta = 1e-3 * err.delta_um;  // mm
-    m.r_minus_i = ErrorScalar<double>::rotation_minus_identity(1e-6 * err.theta_urad);
+    ErrorScalar<double>::rotation_minus_identity(1e-6 * err.theta_urad, m.r_minus_i);
     m.pivots.colwise() = (geometry_[j].moves * s.array()).matrix();
-  }
+  });
   Deviation out;
-  out.e_um = 1e3 * compose_chain(point.p, motions) + squareness_um(point.p);
+  out.e_um = 1e3 * d + squareness_um(point.p);
   return out;
 }
 

@@ -48,28 +48,33 @@ template <>
 struct ErrorScalar<double> {
   static double linear(double x) { return x; }
   // Small-angle rotation of the conventional HTM: R − I = [θ].
-  static Eigen::Matrix3d rotation_minus_identity(const Eigen::Vector3d& theta_rad) {
-    return skew(theta_rad);
+  static void rotation_minus_identity(const Eigen::Vector3d& theta_rad, Eigen::Matrix3d& r) {
+    r = skew(theta_rad);
   }
 };
 
 template <>
 struct ErrorScalar<Dual2> {
   static Dual2 linear(double x) { return {0.0, x, 0.0}; }
-  // exp([θ]ε) − I = [θ]ε + ½[θ]²ε² (ε³ = 0).
-  static Matrix3<Dual2> rotation_minus_identity(const Eigen::Vector3d& theta_rad) {
-    Eigen::Matrix3d k = skew(theta_rad);
-    Eigen::Matrix3d k2 = 0.5 * k * k;
-    Matrix3<Dual2> r;
-    for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b) r(a, b) = Dual2(0.0, k(a, b), k2(a, b));
-    return r;
+  // exp([θ]ε) − I = [θ]ε + ½[θ]²ε² (ε³ = 0), with [θ]² = θθᵀ − |θ|²I.
+  static void rotation_minus_identity(const Eigen::Vector3d& t, Matrix3<Dual2>& r) {
+    const double n2 = t.squaredNorm();
+    r(0, 0) = Dual2(0.0, 0.0, 0.5 * (t.x() * t.x() - n2));
+    r(1, 1) = Dual2(0.0, 0.0, 0.5 * (t.y() * t.y() - n2));
+    r(2, 2) = Dual2(0.0, 0.0, 0.5 * (t.z() * t.z() - n2));
+    const double xy = 0.5 * t.x() * t.y(), xz = 0.5 * t.x() * t.z(), yz = 0.5 * t.y() * t.z();
+    r(0, 1) = Dual2(0.0, -t.z(), xy);
+    r(1, 0) = Dual2(0.0, t.z(), xy);
+    r(0, 2) = Dual2(0.0, t.y(), xz);
+    r(2, 0) = Dual2(0.0, -t.y(), xz);
+    r(1, 2) = Dual2(0.0, -t.x(), yz);
+    r(2, 1) = Dual2(0.0, t.x(), yz);
   }
 };
 
 // Displacement d' of the tip after one more axis: E_j(P + d) − P.
 template <typename T>
-void apply_axis_motion(const Eigen::Vector3d& p_tip, const AxisMotion<T>& m, Vector3<T>& d) {
+inline void apply_axis_motion(const Eigen::Vector3d& p_tip, const AxisMotion<T>& m, Vector3<T>& d) {
   Vector3<T> out;
   for (int k = 0; k < 3; ++k) {
     T sum = d[k] + m.delta[k];
@@ -79,12 +84,17 @@ void apply_axis_motion(const Eigen::Vector3d& p_tip, const AxisMotion<T>& m, Vec
   d = out;
 }
 
-// P' − P for the motions in chain order (motions[0] next to the workpiece).
-template <typename T>
-Vector3<T> compose_chain(const Eigen::Vector3d& p_tip,
-                         const std::array<AxisMotion<T>, 3>& motions) {
+// P' − P for the axes in chain order: motion_of(c, m) fills the error motion
+// of the c-th axis from the workpiece (c = 2 next to the tool acts first).
+// One workspace motion is reused (no per-axis temporaries).
+template <typename T, typename MotionOf>
+Vector3<T> compose_chain(const Eigen::Vector3d& p_tip, MotionOf&& motion_of) {
   Vector3<T> d = Vector3<T>::Constant(T(0.0));
-  for (int i = 2; i >= 0; --i) apply_axis_motion(p_tip, motions[static_cast<std::size_t>(i)], d);
+  AxisMotion<T> m;
+  for (int c = 2; c >= 0; --c) {
+    motion_of(c, m);
+    apply_axis_motion(p_tip, m, d);
+  }
   return d;
 }
 
