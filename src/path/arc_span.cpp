@@ -1,5 +1,6 @@
 #include "abbe/path/arc_span.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -58,6 +59,11 @@ double ArcSpan::length() const {
   const int n = axes_[2];
   const double planar = 0.5 * (r0_ + r1_) * std::abs(sweep_);
   return std::hypot(planar, p_end_[n] - p_start_[n]);
+}
+
+double ArcSpan::length_bound() const {
+  const int n = axes_[2];
+  return std::hypot(std::max(r0_, r1_) * std::abs(sweep_), p_end_[n] - p_start_[n]);
 }
 
 Eigen::Vector3d ArcSpan::point(double t) const {

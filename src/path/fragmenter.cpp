@@ -97,7 +97,7 @@ void Fragmenter::add_arc(const gcode::Motion& motion, PathPoint& point, const Po
   const ArcSpan span(motion);
   const double length = span.length();
   if (length == 0.0) return;
-  const std::size_t n = segments(length);
+  const std::size_t n = segments(span.length_bound());
   const double dt = length / static_cast<double>(n) * seconds_per_mm(motion, options_.rapid_rate);
   const double t0 = time_;
   for (std::size_t i = 1; i <= n; ++i) {

@@ -231,6 +231,17 @@ TEST(Fragmenter, EndOffTheCircleIsReachedByLinearRadius) {
   }
 }
 
+TEST(Fragmenter, StepBoundHoldsWhileTheRadiusChanges) {
+  // Radius 10 → 10.02 over a half circle; a step that divides the mean-radius
+  // length exactly would let the last segments (larger radius) exceed it.
+  const Vector3d c(0, 0, 0), a(10, 0, 0), b(-10.02, 0, 0);
+  FragmentOptions options;
+  options.step = ArcSpan(arc(a, b, c, 1)).length() / 100.0;
+  auto pts = run({arc(a, b, c, 1)}, options);
+  EXPECT_LE(max_gap(pts), options.step);
+  EXPECT_EQ(pts.back().p, b);
+}
+
 TEST(Fragmenter, DirectionsAreSignsOfTheLastMotionOfEachAxis) {
   const Vector3d p0(0, 0, 0), p1(10, 0, 0), p2(10, -10, 0);
   auto pts = run({line(p0, p1), line(p1, p2)});

@@ -30,6 +30,10 @@ class ArcSpan {
 
   // Helix length sqrt((r̄·φ)² + h²), r̄ the mean radius, h the normal travel.
   double length() const;
+  // The same with the larger of the two radii: an upper bound of the true
+  // length, used to choose the number of points so that no step exceeds the
+  // limit even while the radius changes.
+  double length_bound() const;
   // Point at fraction t of the arc length; t = 1 gives the motion's end point
   // bit-exactly, t = 0 its start point.
   Eigen::Vector3d point(double t) const;
