@@ -189,6 +189,12 @@ bool BlockReader::next(Block& block) {
     return false;
   }
   ++line_number_;
+  if (line_number_ == 1 && line_.compare(0, 3, "\xEF\xBB\xBF") == 0) {
+    // A UTF-8 byte order mark (some Windows editors write one) is not part of
+    // the program: drop it, offsets then refer to the line without it.
+    line_.erase(0, 3);
+    byte_order_mark_ = true;
+  }
   line_ending_ = in_.eof() ? "" : "\n";
   if (!line_.empty() && line_.back() == '\r') {
     line_.pop_back();

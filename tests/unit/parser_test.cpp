@@ -397,6 +397,28 @@ TEST(BlockReader, ReadsLfCrlfAndALastLineWithoutTerminator) {
   EXPECT_EQ(reader.file(), "prog.nc");
 }
 
+TEST(BlockReader, Utf8ByteOrderMarkIsSkippedOnlyAtTheStart) {
+  std::istringstream in("\xEF\xBB\xBFG0 X1\n\xEF\xBB\xBFG0 X2\n");
+  BlockReader reader(in, "bom.nc");
+  Block b;
+  ASSERT_TRUE(reader.next(b));
+  EXPECT_TRUE(reader.byte_order_mark());
+  EXPECT_EQ(reader.raw_line(), "G0 X1");
+  ASSERT_EQ(b.words.size(), 2U);
+  EXPECT_EQ(b.words[1].number_begin, 4U);
+  try {
+    reader.next(b);
+    FAIL() << "a byte order mark inside the file was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(e.message().find("unexpected byte 0xef"), std::string::npos) << e.message();
+    EXPECT_EQ(e.where().line, 2U);
+  }
+  std::istringstream plain("G0 X1\n");
+  BlockReader plain_reader(plain, "plain.nc");
+  ASSERT_TRUE(plain_reader.next(b));
+  EXPECT_FALSE(plain_reader.byte_order_mark());
+}
+
 TEST(BlockReader, ReusedBlockIsCompletelyOverwritten) {
   std::istringstream in("/N5 G1 X1 (a) (b) *12\nO7\nG0\n");
   BlockReader reader(in, "p.nc");

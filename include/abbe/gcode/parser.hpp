@@ -31,6 +31,9 @@ class BlockReader {
   // The terminator the current line had in the input: "\n", "\r\n" or "" (last
   // line without one), so that a rewritten program keeps its line endings.
   const char* line_ending() const { return line_ending_; }
+  // True if the input began with a UTF-8 byte order mark; it is removed from
+  // raw_line() of line 1 (a rewritten program should write it back).
+  bool byte_order_mark() const { return byte_order_mark_; }
   const std::string& file() const { return file_; }
   std::size_t line_number() const { return line_number_; }
 
@@ -40,6 +43,7 @@ class BlockReader {
   std::string line_;
   std::size_t line_number_ = 0;
   const char* line_ending_ = "";
+  bool byte_order_mark_ = false;
 };
 
 }  // namespace abbe::gcode
