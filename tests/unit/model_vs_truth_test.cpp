@@ -137,9 +137,10 @@ TEST(ModelVsTruth, TwentyFiveMillimetreTablesShowInterpolationError) {
   EXPECT_GT(e.max_um[1], 0.1);
   EXPECT_LT(e.max_um[1], 2.0);
   EXPECT_LT(e.mean_um[1], e.mean_um[0]);
-  std::printf("thesis-toolpath-2.ngc, 25 mm tables: max |model − truth| µm: htm %.3f, ae-arm "
-              "%.4f, dual %.4f; mean: ae-arm %.4f\n",
-              e.max_um[0], e.max_um[1], e.max_um[2], e.mean_um[1]);
+  std::printf(
+      "thesis-toolpath-2.ngc, 25 mm tables: max |model − truth| µm: htm %.3f, ae-arm "
+      "%.4f, dual %.4f; mean: ae-arm %.4f\n",
+      e.max_um[0], e.max_um[1], e.max_um[2], e.mean_um[1]);
 }
 
 // Angular errors ×50 (≈ 1 mrad): ae-arm is off by second-order terms, the

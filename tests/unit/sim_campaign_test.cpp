@@ -108,11 +108,11 @@ TEST(SimCampaign, NoiseHasTheConfiguredSize) {
   }();
   const CampaignResult a = run_campaign(noisy), b = run_campaign(clean);
   ASSERT_EQ(a.runs.size(), b.runs.size());
-  // X, EXX: residual standard deviation vs the configured sigma.
+  // Y, EBY: residual standard deviation vs the configured sigma.
   double sum = 0.0, sum2 = 0.0;
   int n = 0;
   for (std::size_t i = 0; i < a.runs.size(); ++i) {
-    if (a.runs[i].axis != 1 || a.runs[i].component != 4) continue;  // EBY (roll, σ = 2/6·…)
+    if (a.runs[i].axis != 1 || a.runs[i].component != 4) continue;
     const double r = a.runs[i].deviation - b.runs[i].deviation;
     sum += r;
     sum2 += r * r;
