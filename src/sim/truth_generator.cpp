@@ -135,9 +135,9 @@ double reading_p2p(const TruthMachine& truth, const CampaignSetup& campaign, int
   return peak_to_peak(values);
 }
 
-void set_geometry(GeneratedMachine& g) {
+void set_geometry(GeneratedMachine& g, const std::string& chain) {
   TruthMachine& t = g.truth;
-  t.chain = ChainLayout::parse("w X' b Y Z t");
+  t.chain = ChainLayout::parse(chain);
   const double travel[3] = {990.0, 500.0, 460.0};
   for (int j = 0; j < 3; ++j) {
     t.axes[static_cast<std::size_t>(j)].travel_min = -travel[j];
@@ -145,11 +145,22 @@ void set_geometry(GeneratedMachine& g) {
   }
   t.tool_length = 130.0;
   t.tool_table = {{1, 200.0}};
-  // Pivots (points of each carriage): the table centre under its surface, the
-  // centre of the Y carriage and of the Z ram above the spindle nose.
-  t.axes[0].pivot0 = Eigen::Vector3d(-495.0, -250.0, -600.0);
-  t.axes[1].pivot0 = Eigen::Vector3d(0.0, 0.0, 250.0);
-  t.axes[2].pivot0 = Eigen::Vector3d(0.0, 0.0, 450.0);
+  // Pivots (points of each carriage, positions with all axes at 0): for
+  // `w X' b Y Z t` the table centre under its surface, the centre of the Y
+  // carriage and of the Z ram above the spindle nose. Other chains: workpiece-
+  // side carriages under the table, tool-side ones stacked above the spindle.
+  int tool_side_rank = 0, workpiece_side_rank = 0;  // counted from the bed outwards
+  for (int k = 2; k >= 0; --k) {
+    const int j = t.chain.order()[static_cast<std::size_t>(k)];
+    AxisTruth& a = t.axes[static_cast<std::size_t>(j)];
+    if (t.chain.workpiece_side(j)) {
+      a.pivot0 = Eigen::Vector3d(-495.0, -250.0, -600.0 - 100.0 * workpiece_side_rank);
+      ++workpiece_side_rank;
+    } else {
+      a.pivot0 = Eigen::Vector3d(0.0, 0.0, 450.0 - 200.0 * tool_side_rank);
+      ++tool_side_rank;
+    }
+  }
   // Measurement record after the thesis' section 4.1.2 (docs/virtual-machine.md).
   auto& a = g.campaign.axes;
   a[0].measured_at = Eigen::Vector3d(-495.0, -256.0, -280.0);
@@ -174,7 +185,7 @@ GeneratedMachine generate_machine(const GeneratorOptions& options) {
   if (options.runs < 2) throw std::invalid_argument("a campaign needs at least 2 runs");
   Random rng(options.seed);
   GeneratedMachine g;
-  set_geometry(g);
+  set_geometry(g, options.chain);
   g.truth.name = mazak ? "sample machine (SYNTHETIC, shaped after a Mazak AJV 25-405)"
                        : "virtual machine (SYNTHETIC, generic profile)";
   g.campaign.seed = rng.next_seed();

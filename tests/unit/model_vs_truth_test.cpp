@@ -23,10 +23,12 @@ struct Fixture {
   machine::Machine machine;
 };
 
-Fixture make_fixture(double angular_scale, const std::string& name, double spacing_mm = 0.5) {
+Fixture make_fixture(double angular_scale, const std::string& name, double spacing_mm = 0.5,
+                     const std::string& chain = "w X' b Y Z t") {
   sim::GeneratorOptions o;
   o.seed = 7;
-  o.profile = "mazak";
+  o.profile = chain == "w X' b Y Z t" ? "mazak" : "generic";
+  o.chain = chain;
   o.spacing_mm = spacing_mm;
   o.runs = 2;
   o.noise_scale = 0.0;
@@ -124,6 +126,21 @@ TEST(ModelVsTruth, RealisticMagnitudesThesisToolpaths) {
         "%s: %zu points; max |model − truth| µm: htm %.3f, ae-arm %.4f, dual %.4f; "
         "mean: htm %.3f, ae-arm %.5f, dual %.5f\n",
         file, e.n, e.max_um[0], e.max_um[1], e.max_um[2], e.mean_um[0], e.mean_um[1], e.mean_um[2]);
+  }
+}
+
+// Other kinematic chains (generic profile): the models and the truth agree
+// on U(j), the arms and the composition order for every layout.
+TEST(ModelVsTruth, OtherChains) {
+  int k = 0;
+  for (const char* chain : {"w Y' X' b Z t", "w b X Y Z t", "w Z' b Y X t", "w X' Y' Z' b t"}) {
+    const Fixture f = make_fixture(1.0, "chain" + std::to_string(k++), 0.5, chain);
+    const Errors e = compare(f, toolpath("thesis-toolpath-2.ngc", f.g.truth));
+    EXPECT_LT(e.max_um[1], 0.05) << chain;
+    EXPECT_LT(e.max_um[2], 0.05) << chain;
+    EXPECT_LT(e.max_htm_identity_um, 1e-3) << chain;
+    std::printf("%s: max |model − truth| µm: htm %.3f, ae-arm %.4f, dual %.4f\n", chain,
+                e.max_um[0], e.max_um[1], e.max_um[2]);
   }
 }
 

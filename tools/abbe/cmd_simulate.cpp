@@ -108,7 +108,7 @@ int run_machine(const MachineOptions& o) {
   try {
     g = sim::generate_machine(o.gen);
   } catch (const std::invalid_argument& e) {
-    bad_option("--like", e.what());
+    bad_option(std::string(e.what()).find("chain") == 0 ? "--chain" : "--like", e.what());
   }
   g.truth.effects = parse_effects(o.inject);
   write_campaign(g, o.output);
@@ -211,6 +211,8 @@ const CommandRegistrar registrar(
           "machine.yaml, errors.csv, runs.csv");
       machine->add_option("--seed", mo->gen.seed, "Random seed")->capture_default_str();
       machine->add_option("--like", mo->gen.profile, "Profile: mazak | generic")
+          ->capture_default_str();
+      machine->add_option("--chain", mo->gen.chain, "Kinematic chain (ISO 10791-1)")
           ->capture_default_str();
       machine->add_option("--spacing", mo->gen.spacing_mm, "Target interval, mm")
           ->capture_default_str();

@@ -19,13 +19,14 @@ struct GeneratedMachine {
 struct GeneratorOptions {
   std::uint64_t seed = 1;
   std::string profile = "mazak";  // "mazak" | "generic"
+  std::string chain = "w X' b Y Z t";
   double spacing_mm = 25.0;
   int runs = 5;
   double noise_scale = 1.0;    // multiplies every reading noise (0: noise-free campaign)
   double angular_scale = 1.0;  // multiplies every angular component (e.g. 50 for ≈ 1 mrad)
 };
 
-// Throws std::invalid_argument for an unknown profile.
+// Throws std::invalid_argument for an unknown profile or a bad chain.
 GeneratedMachine generate_machine(const GeneratorOptions& options);
 
 }  // namespace abbe::sim
