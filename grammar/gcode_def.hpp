@@ -1,6 +1,7 @@
 #pragma once
 // Rule definitions of the G-code line grammar. grammar/gcode.ebnf documents
-// exactly this language; keep both in step.
+// exactly this language; keep both in step. Included only by
+// src/gcode/gcode_grammar.cpp (the one instantiation).
 #include <boost/spirit/home/x3.hpp>
 
 #include "grammar/ast.hpp"
@@ -15,9 +16,9 @@ using x3::char_;
 using x3::lit;
 using x3::raw;
 
-// Lexical pieces (no attribute or an ignored one). Only ASCII classes are
-// spelled out explicitly so that bytes >= 0x80 never reach a locale or an
-// encoding assertion.
+// Lexical pieces (no attribute or an ignored one). Character classes are
+// spelled out as explicit ASCII sets so that bytes >= 0x80 never reach a
+// locale or an encoding assertion.
 const auto blanks = *(lit(' ') | lit('\t'));
 const auto digit = char_('0', '9');
 const auto digits = +digit;
@@ -40,8 +41,7 @@ const x3::rule<class comment_class, ast::Item> comment = "comment";
 const x3::rule<class item_class, ast::Item> item = "word or comment";
 const line_type nc_line = "line";
 
-// Every item swallows the blanks after it, so that the repetitions below
-// store each item straight into the line's vector (no temporary containers).
+// Every item swallows the blanks that follow it; raw[] keeps them out of its spans.
 const auto word_def = raw[word_letter] >> blanks >> raw[-char_("+-") >> blanks >> unsigned_real] >>
                       number_end >> blanks;
 const auto line_number_def = raw[char_("Nn")] >> blanks >> raw[digits] >> number_end >> blanks;
