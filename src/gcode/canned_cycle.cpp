@@ -46,7 +46,7 @@ Eigen::Vector3d expand_canned_cycle(const CannedCycle& c,
       case gcode_id(85):
         move(Kind::feed, aa, bb, c.bottom);
         move(Kind::feed, aa, bb, c.r);
-        if (clear > c.r) move(Kind::traverse, aa, bb, clear);
+        move(Kind::traverse, aa, bb, clear);  // also when clear == R (rs274ngc does)
         break;
       case gcode_id(89):
         move(Kind::feed, aa, bb, c.bottom);

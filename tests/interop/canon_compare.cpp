@@ -189,7 +189,10 @@ std::vector<Canon> read_rs274(const std::string& path, std::string& error_text) 
     }
   }
   // rs274 reports its error as a text line (the message), then the block.
-  if (!non_canon.empty()) error_text = non_canon.front();
+  if (non_canon.size() >= 2)
+    error_text = non_canon[non_canon.size() - 2];
+  else if (!non_canon.empty())
+    error_text = non_canon.front();
   return out;
 }
 

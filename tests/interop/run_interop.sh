@@ -53,40 +53,77 @@ ncfiles="$lcnc/usr/share/linuxcnc/ncfiles"
 [ -d "$ncfiles" ] || fail "no ncfiles directory in the unpacked package ($ncfiles)"
 export LD_LIBRARY_PATH="$lcnc/usr/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 
-# Tool table: tools 1..99, all of length 0 (rs274's table is in inches).
-# Zero lengths because the standalone rs274 re-reads its position after a
-# tool change (M6) from its dummy canonical layer, which ignores tool length
-# offsets: with non-zero lengths its program Z after "M6 ... G43 Hn" differs
-# from what a LinuxCNC machine (and abbe) does. See docs/interop.md.
-# ABBE_INTEROP_TOOL_INCH=x gives every tool length x inch instead.
-length_in=${ABBE_INTEROP_TOOL_INCH:-0}
-length_mm=$(awk -v x="$length_in" 'BEGIN{printf "%.6f", x*25.4}')
-table="$work/tools.tbl"
-: >"$table"
-tool_args=()
-for n in $(seq 1 99); do
-  printf 'T%d P%d Z%s D0.1 ;tool %d\n' "$n" "$n" "$length_in" "$n" >>"$table"
-  tool_args+=(--tool "$n=$length_mm")
+# Two configurations, the same for rs274 and abbe:
+# - LinuxCNC's ncfiles and nc-samples/: every tool 1..99 of length 0, all
+#   work offsets 0. Zero lengths because the standalone rs274 re-reads its
+#   position after a tool change (M6) from its dummy canonical layer, which
+#   ignores tool length offsets: with non-zero lengths its program Z after
+#   "M6 ... G43 Hn" differs from what a LinuxCNC machine (and abbe) does
+#   (docs/interop.md).
+# - tests/interop/ncfiles/ (abbe's own interop programs, no M6): tool n has
+#   length n/10 inch and G54..G59 have non-zero offsets.
+# rs274's tool table and parameter file are in inches; abbe gets mm.
+tool_table() {  # file length_per_tool_number_inch
+  : >"$1"
+  for n in $(seq 1 99); do
+    printf 'T%d P%d Z%s D0.1 ;tool %d\n' "$n" "$n" "$(awk -v n="$n" -v k="$2" 'BEGIN{printf "%.4f", n*k}')" "$n" >>"$1"
+  done
+}
+tool_args() {  # length_per_tool_number_inch
+  for n in $(seq 1 99); do
+    printf -- '--tool\n%d=%s\n' "$n" "$(awk -v n="$n" -v k="$1" 'BEGIN{printf "%.6f", n*k*25.4}')"
+  done
+}
+plain_table="$work/tools-zero.tbl"
+tool_table "$plain_table" 0
+mapfile -t plain_args < <(tool_args 0)
+own_table="$work/tools-own.tbl"
+tool_table "$own_table" 0.1
+mapfile -t own_args < <(tool_args 0.1)
+# G54..G59 (inch): parameters 5221.. in steps of 20.
+own_offsets=("0.5 0.25 -1.0" "10 -5 2" "-3 4 0.5" "1 1 1" "-2 -2 -2" "0.125 0.375 -0.25")
+own_var="$work/own.var.template"
+: >"$own_var"
+for k in 0 1 2 3 4 5; do
+  read -r ox oy oz <<<"${own_offsets[$k]}"
+  base=$((5221 + 20 * k))
+  printf '%d\t%s\n%d\t%s\n%d\t%s\n' "$base" "$ox" $((base + 1)) "$oy" $((base + 2)) "$oz" >>"$own_var"
+  own_args+=(--work-offset "G5$((4 + k))=$(awk -v x="$ox" -v y="$oy" -v z="$oz" 'BEGIN{printf "%.6f,%.6f,%.6f", x*25.4, y*25.4, z*25.4}')")
 done
 
-run_rs274() {  # file out -> exit code
+run_rs274() {  # file out table var_template -> exit code
   local var="$work/rs274.var"
-  : >"$var"
-  (cd "$(dirname "$1")" && timeout 60 "$rs274" -t "$table" -v "$var" -g "$1" >"$2" 2>&1)
+  if [ -n "${4:-}" ]; then cp "$4" "$var"; else : >"$var"; fi
+  (cd "$(dirname "$1")" && timeout 60 "$rs274" -t "$3" -v "$var" -g "$1" >"$2" 2>&1)
 }
 
 # rs274 must start at all (its runtime libraries, e.g. libboost-python).
 smoke="$work/smoke.ngc"
 printf 'G0 X1 Y2 Z3\nM2\n' >"$smoke"
-run_rs274 "$smoke" "$work/smoke.out"
+run_rs274 "$smoke" "$work/smoke.out" "$plain_table"
 grep -q "STRAIGHT_TRAVERSE(1.0000, 2.0000, 3.0000" "$work/smoke.out" ||
   fail "rs274 does not run: $(head -3 "$work/smoke.out") (tools/install-deps.sh installs its runtime)"
+
+# The comparator must be able to fail: one motion off by 2e-4 mm must be a
+# mismatch, a missing motion too, the exact one a match.
+printf 'N1 STRAIGHT_TRAVERSE(1.000000, 2.000000, 3.000000) F=0.000000 TL=0.000000\n' >"$work/smoke.abbe"
+printf 'N1 STRAIGHT_TRAVERSE(1.000200, 2.000000, 3.000000) F=0.000000 TL=0.000000\n' >"$work/smoke-off.abbe"
+: >"$work/smoke.err"
+: >"$work/smoke-none.abbe"
+"$compare" "$work/smoke.out" 0 "$work/smoke.abbe" "$work/smoke.err" 0 >/dev/null ||
+  fail "canon_compare rejects an exact match"
+if "$compare" "$work/smoke.out" 0 "$work/smoke-off.abbe" "$work/smoke.err" 0 >/dev/null ||
+  "$compare" "$work/smoke.out" 0 "$work/smoke-none.abbe" "$work/smoke.err" 0 >/dev/null; then
+  fail "canon_compare accepts a wrong or missing motion"
+fi
 
 files=()
 while IFS= read -r f; do files+=("$f"); done < <(find "$ncfiles" -name '*.ngc' -type f | sort)
 if [ -d "$src/nc-samples" ]; then
   while IFS= read -r f; do files+=("$f"); done < <(find "$src/nc-samples" -type f | sort)
 fi
+own_dir="$src/tests/interop/ncfiles"
+while IFS= read -r f; do files+=("$f"); done < <(find "$own_dir" -type f -name '*.ngc' | sort)
 
 out="$work/out"
 rm -rf "$out" && mkdir -p "$out"
@@ -97,13 +134,22 @@ status=0
 i=0
 for f in "${files[@]}"; do
   i=$((i + 1))
+  table=$plain_table
+  var=""
+  args=("${plain_args[@]}")
   case "$f" in
     "$ncfiles"/*) name="ncfiles/${f#"$ncfiles"/}" ;;
+    "$own_dir"/*)
+      name="tests/interop/ncfiles/${f#"$own_dir"/}"
+      table=$own_table
+      var=$own_var
+      args=("${own_args[@]}")
+      ;;
     *) name="nc-samples/${f#"$src/nc-samples"/}" ;;
   esac
-  run_rs274 "$f" "$out/$i.rs274"
+  run_rs274 "$f" "$out/$i.rs274" "$table" "$var"
   rs_exit=$?
-  timeout 60 "$abbe" interpret --canon "$f" "${tool_args[@]}" >"$out/$i.abbe" 2>"$out/$i.err"
+  timeout 60 "$abbe" interpret --canon "$f" "${args[@]}" >"$out/$i.abbe" 2>"$out/$i.err"
   ab_exit=$?
   result=$("$compare" "$out/$i.rs274" "$rs_exit" "$out/$i.abbe" "$out/$i.err" "$ab_exit")
   cmp_exit=$?

@@ -82,12 +82,13 @@ TEST(InterpreterCanned, G82Dwells) {
       {{R, {3, 1, 10}}, {R, {3, 1, 2}}, {F, {3, 1, -1}}, {D, {3, 1, -1}, 0.25}, {R, {3, 1, 2}}});
 }
 
-TEST(InterpreterCanned, G85FeedsOutToRThenRapids) {
+TEST(InterpreterCanned, G85FeedsOutToRThenRapidsToClearance) {
   const auto m = run_lines({"G0 Z10 F100", "G98 G85 X1 Y1 Z-1 R2"});
   expect_moves(m, 2,
                {{R, {1, 1, 10}}, {R, {1, 1, 2}}, {F, {1, 1, -1}}, {F, {1, 1, 2}}, {R, {1, 1, 10}}});
   const auto g99 = run_lines({"G0 Z10 F100", "G99 G85 X1 Y1 Z-1 R2"});
-  expect_moves(g99, 2, {{R, {1, 1, 10}}, {R, {1, 1, 2}}, {F, {1, 1, -1}}, {F, {1, 1, 2}}});
+  expect_moves(g99, 2,
+               {{R, {1, 1, 10}}, {R, {1, 1, 2}}, {F, {1, 1, -1}}, {F, {1, 1, 2}}, {R, {1, 1, 2}}});
 }
 
 TEST(InterpreterCanned, G89DwellsAndFeedsOutToClearance) {

@@ -31,7 +31,8 @@ struct InterpretOptions {
   bool canon = false;
   std::string machine;
   std::optional<double> tool_length;
-  std::vector<std::string> tools;  // "H=L"
+  std::vector<std::string> tools;         // "H=L"
+  std::vector<std::string> work_offsets;  // "G55=x,y,z"
 };
 
 [[noreturn]] void bad_option(const std::string& field, const std::string& message) {
@@ -58,6 +59,30 @@ std::pair<int, double> parse_tool_option(const std::string& text) {
   return {h, length};
 }
 
+// "G55=x,y,z": work offset (mm) of G54..G59.
+std::pair<std::size_t, Eigen::Vector3d> parse_work_offset_option(const std::string& text) {
+  const auto eq = text.find('=');
+  const std::string code = text.substr(0, eq);
+  static const char* kCodes[6] = {"G54", "G55", "G56", "G57", "G58", "G59"};
+  std::size_t index = 6;
+  for (std::size_t i = 0; i < 6; ++i)
+    if (code == kCodes[i]) index = i;
+  if (eq == std::string::npos || index == 6)
+    bad_option("--work-offset", "expected G54..G59=x,y,z (mm), got '" + text + "'");
+  Eigen::Vector3d v;
+  const char* p = text.c_str() + eq + 1;
+  for (int a = 0; a < 3; ++a) {
+    char* end = nullptr;
+    errno = 0;
+    v[a] = std::strtod(p, &end);
+    if (end == p || errno != 0 || !std::isfinite(v[a]) || (a < 2 && *end != ',') ||
+        (a == 2 && *end != '\0'))
+      bad_option("--work-offset", "expected G54..G59=x,y,z (mm), got '" + text + "'");
+    p = end + 1;
+  }
+  return {index, v};
+}
+
 gcode::InterpreterConfig make_config(const InterpretOptions& o) {
   gcode::InterpreterConfig config;
   if (!o.machine.empty()) {
@@ -74,6 +99,10 @@ gcode::InterpreterConfig make_config(const InterpretOptions& o) {
   for (const auto& t : o.tools) {
     const auto [h, length] = parse_tool_option(t);
     config.tool_lengths[h] = length;
+  }
+  for (const auto& w : o.work_offsets) {
+    const auto [index, offset] = parse_work_offset_option(w);
+    config.work_offsets[index] = offset;
   }
   return config;
 }
@@ -184,6 +213,8 @@ const CommandRegistrar registrar(
       sub.add_option("--tool-length", o->tool_length,
                      "Tool length when no G43 is active, mm (overrides the machine file)");
       sub.add_option("--tool", o->tools, "Tool length for G43 Hn as n=L (mm), repeatable");
+      sub.add_option("--work-offset", o->work_offsets,
+                     "Work offset as G54..G59=x,y,z (mm, overrides the machine file), repeatable");
       return [o] { return run_interpret(*o); };
     });
 
