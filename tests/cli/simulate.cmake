@@ -80,7 +80,7 @@ endif()
 # Bad input: exit code 1 and a message naming the problem.
 expect_failure("magnitude needs a unit" ${ABBE} simulate measure --truth ${WORK}/m/truth.yaml
                --grid 100 --inject reversal:Y:4)
-expect_failure("give --grid SPACING or --program FILE" ${ABBE} simulate measure
+expect_failure("give --grid SPACING, --box … or --program FILE" ${ABBE} simulate measure
                --truth ${WORK}/m/truth.yaml)
 expect_failure("unknown machine profile" ${ABBE} simulate machine --like lathe -o ${WORK}/x)
 file(WRITE ${WORK}/bad.yaml "abbe_truth: 1\nname: x\nchain: \"w X b X Z t\"\n")

@@ -243,7 +243,8 @@ const CommandRegistrar registrar(
       CLI::App* measure = sub.add_subcommand(
           "measure", "Measure the truth (with its effects and --inject ones): measured-data CSV");
       measure->add_option("--truth", me->truth, "Truth file (truth.yaml)")->required();
-      auto* grid = measure->add_option("--grid", me->grid, "Volumetric grid spacing, mm");
+      auto* grid = measure->add_option("--grid", me->grid,
+                                       "Volumetric grid spacing, mm (default 50 with --box)");
       auto* program =
           measure->add_option("--program", me->program, "NC program: measure its fragmented path");
       grid->excludes(program);
@@ -271,8 +272,11 @@ const CommandRegistrar registrar(
         if (machine->parsed()) return run_machine(*mo);
         if (campaign->parsed()) return run_campaign_cmd(*co);
         if (measure->parsed()) {
-          if (grid->count() == 0 && program->count() == 0)
-            bad_option("--grid", "give --grid SPACING or --program FILE");
+          if (grid->count() == 0 && program->count() == 0) {
+            if (me->box.empty())
+              bad_option("--grid", "give --grid SPACING, --box … or --program FILE");
+            me->grid = 50.0;  // --box alone: the default 50 mm grid
+          }
           return run_measure(*me);
         }
         return static_cast<int>(kUsage);
