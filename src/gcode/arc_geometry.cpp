@@ -23,6 +23,7 @@ ArcTolerances arc_tolerances(bool inch) {
   }
   tol.spiral_rel = 0.001;
   tol.spiral_cap = 100.0 * tol.spiral_abs;
+  tol.unit = inch ? "in" : "mm";
   return tol;
 }
 
@@ -34,7 +35,8 @@ ArcCentre arc_centre_ijk(const Eigen::Vector2d& start, const Eigen::Vector2d& en
   const double r1 = (start - out.centre).norm();
   const double r2 = (end - out.centre).norm();
   if (r1 < tol.radius_min || r2 < tol.radius_min) {
-    out.error = fmt::format("zero-radius arc (radius to start {:.4f}, to end {:.4f})", r1, r2);
+    out.error = fmt::format("zero-radius arc (radius to start {:.4f} {}, to end {:.4f} {})", r1,
+                            tol.unit, r2, tol.unit);
     return out;
   }
   // A mismatch is tolerated while it is small in absolute OR in relative
@@ -43,9 +45,9 @@ ArcCentre arc_centre_ijk(const Eigen::Vector2d& start, const Eigen::Vector2d& en
   const double rel_err = abs_err / std::max(r1, r2);
   if ((abs_err > tol.spiral_abs && rel_err > tol.spiral_rel) || abs_err > tol.spiral_cap) {
     out.error = fmt::format(
-        "arc radius mismatch: radius to end differs from radius to start (r1={:.4f}, "
-        "r2={:.4f}, abs_err={:.4g}, rel_err={:.4f}%)",
-        r1, r2, abs_err, rel_err * 100.0);
+        "arc radius mismatch: radius to end differs from radius to start (r1={:.4f} {}, "
+        "r2={:.4f} {}, abs_err={:.4g} {}, rel_err={:.4f}%)",
+        r1, tol.unit, r2, tol.unit, abs_err, tol.unit, rel_err * 100.0);
   }
   return out;
 }
@@ -59,13 +61,17 @@ ArcCentre arc_centre_r(const Eigen::Vector2d& start, const Eigen::Vector2d& end,
     return out;
   }
   const double abs_radius = std::abs(radius);
+  if (abs_radius < tol.radius_min) {
+    out.error = fmt::format("zero-radius arc (R {:.4f} {})", radius, tol.unit);
+    return out;
+  }
   const Eigen::Vector2d mid = 0.5 * (start + end);
   double half_length = 0.5 * chord.norm();
   if (half_length - abs_radius > tol.radius_min) {
     out.error = fmt::format(
-        "impossible R arc: radius {:.4f} is too small to reach the end point (half chord "
-        "{:.4f})",
-        abs_radius, half_length);
+        "impossible R arc: radius {:.4f} {} is too small to reach the end point (half chord "
+        "{:.4f} {})",
+        abs_radius, tol.unit, half_length, tol.unit);
     return out;
   }
   if (half_length / abs_radius > 1.0 - 1e-12) half_length = abs_radius;  // semicircle

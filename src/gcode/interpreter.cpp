@@ -373,9 +373,7 @@ void Interpreter::execute(const Block& block, const std::string& raw_line, const
       } else {
         centre = arc_centre_r(start2, end2, c.word('R')->value, motion == gcode_id(2), tol);
       }
-      if (!centre.error.empty())
-        ctx.fail(c.has('R') ? c.word('R') : motion_word,
-                 fmt::format("{} ({}{})", centre.error, st.inch ? "inch" : "mm", " program"));
+      if (!centre.error.empty()) ctx.fail(c.has('R') ? c.word('R') : motion_word, centre.error);
       Eigen::Vector3d centre3 = st.pos;
       centre3[ax.first] = centre.centre.x();
       centre3[ax.second] = centre.centre.y();

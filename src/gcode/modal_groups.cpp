@@ -77,7 +77,7 @@ GInfo g_info(int id) {
     case gcode_id(5, 1):
     case gcode_id(5, 2):
     case gcode_id(5, 3):
-      return {std::nullopt, "splines and NURBS"};
+      return {std::nullopt, "spline / NURBS motion"};
     case gcode_id(7):
     case gcode_id(8):
       return {std::nullopt, "lathe diameter/radius mode"};
@@ -85,11 +85,11 @@ GInfo g_info(int id) {
       return {std::nullopt, "setting offsets or tool data from the program"};
     case gcode_id(15):
     case gcode_id(16):
-      return {std::nullopt, "polar coordinates"};
+      return {std::nullopt, "polar coordinate mode"};
     case gcode_id(17, 1):
     case gcode_id(18, 1):
     case gcode_id(19, 1):
-      return {std::nullopt, "planes of the U, V, W axes"};
+      return {std::nullopt, "U, V, W plane selection"};
     case gcode_id(28):
     case gcode_id(28, 1):
     case gcode_id(30):
@@ -98,7 +98,7 @@ GInfo g_info(int id) {
     case gcode_id(33):
     case gcode_id(33, 1):
     case gcode_id(76):
-      return {std::nullopt, "threading and spindle-synchronised motion"};
+      return {std::nullopt, "spindle-synchronised motion (threading)"};
     case gcode_id(38, 2):
     case gcode_id(38, 3):
     case gcode_id(38, 4):
@@ -117,7 +117,7 @@ GInfo g_info(int id) {
     case gcode_id(59, 1):
     case gcode_id(59, 2):
     case gcode_id(59, 3):
-      return {std::nullopt, "coordinate systems beyond G59"};
+      return {std::nullopt, "coordinate system beyond G59"};
     case gcode_id(68):
     case gcode_id(69):
       return {std::nullopt, "coordinate system rotation"};
@@ -128,7 +128,7 @@ GInfo g_info(int id) {
     case gcode_id(72):
     case gcode_id(72, 1):
     case gcode_id(72, 2):
-      return {std::nullopt, "lathe cycles"};
+      return {std::nullopt, "lathe cycle"};
     case gcode_id(74):
     case gcode_id(84):
       return {std::nullopt, "tapping cycle"};

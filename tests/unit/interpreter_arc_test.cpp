@@ -156,6 +156,7 @@ TEST(InterpreterArc, ImpossibleAndDegenerateRArcs) {
   EXPECT_NE(error_of({"G2 X5 F100"}).find("without I, J, K or R"), std::string::npos);
   EXPECT_NE(error_of({"G2 X5 R5 I2 F100"}).find("both R and I/J/K"), std::string::npos);
   EXPECT_NE(error_of({"G2 X5 R5"}).find("zero feed rate"), std::string::npos);
+  EXPECT_NE(error_of({"G2 X0.0001 R0 F100"}).find("zero-radius arc"), std::string::npos);
 }
 
 TEST(InterpreterArc, ErrorNamesFileLineAndColumn) {

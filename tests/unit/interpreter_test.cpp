@@ -215,14 +215,14 @@ TEST(Interpreter, UnsupportedConstructsAreRefusedByName) {
       {"G10 L2 P1 X0", "(G10) is not supported"},
       {"G28", "(G28) is not supported"},
       {"G30", "(G30) is not supported"},
-      {"G33 Z-1 K1", "threading and spindle-synchronised motion (G33)"},
+      {"G33 Z-1 K1", "spindle-synchronised motion (threading) (G33)"},
       {"G76 P1 Z-1", "(G76) is not supported"},
       {"G38.2 Z-1 F10", "probing (G38.2) is not supported"},
-      {"G5 X1 Y1 I1 J0 P1 Q0", "splines and NURBS (G5)"},
+      {"G5 X1 Y1 I1 J0 P1 Q0", "spline / NURBS motion (G5) is not supported"},
       {"G5.1 X1 Y1 I1 J0", "(G5.1) is not supported"},
       {"G7", "lathe diameter/radius mode (G7)"},
       {"G52 X1", "local coordinate system offset (G52)"},
-      {"G16", "polar coordinates (G16)"},
+      {"G16", "polar coordinate mode (G16) is not supported"},
       {"G93", "inverse-time feed mode (G93)"},
       {"G95", "feed per revolution mode (G95)"},
       {"G84 X0 Z-1 R1", "tapping cycle (G84)"},
@@ -232,7 +232,7 @@ TEST(Interpreter, UnsupportedConstructsAreRefusedByName) {
       {"G12.3", "unknown G code G12.3"},
       {"G0.5 X1", "unknown G code G0.5"},
       {"M123", "M code M123 is not supported"},
-      {"G59.1", "coordinate systems beyond G59 (G59.1)"},
+      {"G59.1", "coordinate system beyond G59 (G59.1) is not supported"},
   };
   for (const auto& [line, message] : cases) {
     const std::string e = error_of({line});

@@ -14,6 +14,7 @@ struct ArcTolerances {
   double spiral_abs;          // |r_start - r_end| allowed without the relative test
   double spiral_rel = 0.001;  // relative to max(r_start, r_end)
   double spiral_cap;          // |r_start - r_end| never allowed beyond this (100 x spiral_abs)
+  const char* unit = "mm";    // for messages
 };
 
 // mm programs: spiral 0.028284 mm, radius 0.00127 mm; inch programs:
