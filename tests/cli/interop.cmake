@@ -9,3 +9,14 @@ add_test(NAME interop_rs274
                  $<TARGET_FILE:abbe> $<TARGET_FILE:abbe_canon_compare>
                  ${CMAKE_BINARY_DIR}/interop ${PROJECT_SOURCE_DIR})
 set_tests_properties(interop_rs274 PROPERTIES LABELS interop SKIP_RETURN_CODE 77 TIMEOUT 1800)
+
+# `abbe interpret` summary mode (the interpret-only mode of the benchmarks).
+add_test(NAME interpret_summary
+         COMMAND abbe interpret ${CMAKE_CURRENT_SOURCE_DIR}/interop/ncfiles/cycles.ngc)
+set_tests_properties(interpret_summary PROPERTIES LABELS cli
+  PASS_REGULAR_EXPRESSION "^lines=37 motions=173 rapid=[0-9]+ linear=[0-9]+ arc=0 dwell=[0-9]+")
+add_test(NAME interpret_refuses_bad_input
+         COMMAND sh -c "\"$1\" interpret \"$2\"; echo exit=$?" sh $<TARGET_FILE:abbe>
+                 ${CMAKE_CURRENT_SOURCE_DIR}/data/bad/cutter-comp-g41.nc)
+set_tests_properties(interpret_refuses_bad_input PROPERTIES LABELS cli
+  PASS_REGULAR_EXPRESSION "cutter-comp-g41.nc:3:1: error: cutter radius compensation \\(G41\\) is not supported.*exit=1")
