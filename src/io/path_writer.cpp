@@ -144,31 +144,17 @@ void sign(Out& out, std::int8_t s) {
     out.ch(s > 0 ? '1' : '0');
 }
 
+// A row is head (x, y, z), middle (tool length, line, kind, feed: the same
+// for all points of a motion, so the fast path formats it once per motion)
+// and tail (time, direction signs).
 template <class Out>
-void format_row(Out& out, PathFormat format, const path::PathPoint& pt, bool first) {
+void format_head(Out& out, PathFormat format, const path::PathPoint& pt, bool first) {
   if (format == PathFormat::csv) {
     out.num(pt.p.x());
     out.ch(',');
     out.num(pt.p.y());
     out.ch(',');
     out.num(pt.p.z());
-    out.ch(',');
-    out.num(pt.tool_length);
-    out.ch(',');
-    out.uint(pt.line);
-    out.ch(',');
-    out.kind(kind_name(pt.kind));
-    out.ch(',');
-    out.num(pt.feed);
-    out.ch(',');
-    out.num(pt.time);
-    out.ch(',');
-    sign(out, pt.dir[0]);
-    out.ch(',');
-    sign(out, pt.dir[1]);
-    out.ch(',');
-    sign(out, pt.dir[2]);
-    out.ch('\n');
   } else {
     if (first)
       out.str("{\"x\":");
@@ -179,6 +165,22 @@ void format_row(Out& out, PathFormat format, const path::PathPoint& pt, bool fir
     out.num(pt.p.y());
     out.str(",\"z\":");
     out.num(pt.p.z());
+  }
+}
+
+template <class Out>
+void format_middle(Out& out, PathFormat format, const path::PathPoint& pt) {
+  if (format == PathFormat::csv) {
+    out.ch(',');
+    out.num(pt.tool_length);
+    out.ch(',');
+    out.uint(pt.line);
+    out.ch(',');
+    out.kind(kind_name(pt.kind));
+    out.ch(',');
+    out.num(pt.feed);
+    out.ch(',');
+  } else {
     out.str(",\"tool_length\":");
     out.num(pt.tool_length);
     out.str(",\"line\":");
@@ -188,7 +190,21 @@ void format_row(Out& out, PathFormat format, const path::PathPoint& pt, bool fir
     out.str("\",\"feed\":");
     out.num(pt.feed);
     out.str(",\"time\":");
-    out.num(pt.time);
+  }
+}
+
+template <class Out>
+void format_tail(Out& out, PathFormat format, const path::PathPoint& pt) {
+  out.num(pt.time);
+  if (format == PathFormat::csv) {
+    out.ch(',');
+    sign(out, pt.dir[0]);
+    out.ch(',');
+    sign(out, pt.dir[1]);
+    out.ch(',');
+    sign(out, pt.dir[2]);
+    out.ch('\n');
+  } else {
     out.str(",\"vx\":");
     sign(out, pt.dir[0]);
     out.str(",\"vy\":");
@@ -240,15 +256,31 @@ void PathWriter::write(const path::PathPoint& pt) {
   const bool fast = fast_number(pt.p.x()) && fast_number(pt.p.y()) && fast_number(pt.p.z()) &&
                     fast_number(pt.tool_length) && fast_number(pt.feed) && fast_number(pt.time);
   if (fast) {
+    if (!middle_valid_ || pt.line != middle_line_ || pt.kind != middle_kind_ ||
+        pt.tool_length != middle_tool_length_ || pt.feed != middle_feed_) {
+      CharOut m{middle_.data()};
+      format_middle(m, format_, pt);
+      middle_size_ = static_cast<std::size_t>(m.p - middle_.data());
+      middle_line_ = pt.line;
+      middle_kind_ = pt.kind;
+      middle_tool_length_ = pt.tool_length;
+      middle_feed_ = pt.feed;
+      middle_valid_ = true;
+    }
     // Format in place at the end of the buffer (no intermediate copy).
     const std::size_t old_size = buffer_.size();
     buffer_.resize(old_size + kMaxFastRow);
     CharOut out{buffer_.data() + old_size};
-    format_row(out, format_, pt, points_ == 0);
+    format_head(out, format_, pt, points_ == 0);
+    std::memcpy(out.p, middle_.data(), middle_size_);
+    out.p += middle_size_;
+    format_tail(out, format_, pt);
     buffer_.resize(static_cast<std::size_t>(out.p - buffer_.data()));
   } else {
     BufferOut out{buffer_};
-    format_row(out, format_, pt, points_ == 0);
+    format_head(out, format_, pt, points_ == 0);
+    format_middle(out, format_, pt);
+    format_tail(out, format_, pt);
   }
   ++points_;
   if (buffer_.size() >= chunk_bytes_) flush();

@@ -100,16 +100,14 @@ void Fragmenter::add_arc(const gcode::Motion& motion, PathPoint& point, const Po
   const std::size_t n = segments(span.length_bound());
   const double dt = length / static_cast<double>(n) * seconds_per_mm(motion, options_.rapid_rate);
   const double t0 = time_;
-  for (std::size_t i = 1; i <= n; ++i) {
-    const double t = static_cast<double>(i) / static_cast<double>(n);
-    Eigen::Vector3d v;
-    span.sample(t, point.p, v);  // t = 1 gives motion.end exactly
+  span.for_each_sample(n, [&](std::size_t i, const Eigen::Vector3d& p, const Eigen::Vector3d& v) {
     const double tolerance = kDirectionTolerance * v.norm();
     for (int k = 0; k < 3; ++k)
       if (std::abs(v[k]) > tolerance) dir_[static_cast<std::size_t>(k)] = sign(v[k]);
+    point.p = p;  // the end point exactly at i == n
     point.time = t0 + static_cast<double>(i) * dt;
     emit(point, sink);
-  }
+  });
   time_ = point.time;
 }
 

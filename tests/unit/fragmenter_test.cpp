@@ -217,6 +217,24 @@ TEST(Fragmenter, ArcSampleMatchesPointAndVelocity) {
   EXPECT_EQ(p, Vector3d(-4, 3, 2));
 }
 
+TEST(Fragmenter, IncrementalArcSamplesMatchDirectSamples) {
+  // A long helix with a changing radius: 1000 samples by rotation recurrence.
+  const ArcSpan span(arc(Vector3d(-400, -250, -300), Vector3d(-400, -250.01, -340),
+                         Vector3d(-450, -250, -300), -5, Plane::xy));
+  std::size_t calls = 0;
+  double worst = 0.0;
+  span.for_each_sample(1000, [&](std::size_t i, const Vector3d& p, const Vector3d& v) {
+    ++calls;
+    Vector3d p_ref, v_ref;
+    span.sample(static_cast<double>(i) / 1000.0, p_ref, v_ref);
+    worst = std::max(worst, (p - p_ref).norm());
+    EXPECT_TRUE(v.isApprox(v_ref, 1e-12)) << i;
+    if (i == 1000) EXPECT_EQ(p, Vector3d(-400, -250.01, -340));
+  });
+  EXPECT_EQ(calls, 1000u);
+  EXPECT_LT(worst, 1e-10);
+}
+
 TEST(Fragmenter, EndOffTheCircleIsReachedByLinearRadius) {
   // End radius 50.002 instead of 50 (within an interpreter's tolerance).
   const Vector3d c(0, 0, 0), a(50, 0, 0), b(-50.002, 0, 0);

@@ -86,6 +86,45 @@ TEST(PathWriter, CsvHasHeaderAndOneRowPerPoint) {
             "-360,-149.5,-280,0,5,arc,250,1.25,-1,1,-1\n");
 }
 
+TEST(PathWriter, ColumnsThatChangeWithinALineAreRewritten) {
+  // Points of one source line whose feed, kind or tool length change (the
+  // writer reuses the formatted middle columns only while all are equal).
+  std::vector<path::PathPoint> pts(4);
+  for (auto& p : pts) {
+    p.line = 7;
+    p.kind = gcode::MotionKind::linear;
+    p.feed = 500.0;
+    p.tool_length = 100.0;
+  }
+  pts[1].p.x() = 1.0;
+  pts[2].feed = 600.0;
+  pts[3].feed = 600.0;
+  pts[3].kind = gcode::MotionKind::arc;
+  pts[3].tool_length = 100.5;
+  EXPECT_EQ(write_all(PathFormat::csv, pts),
+            "x,y,z,tool_length,line,kind,feed,time,vx,vy,vz\n"
+            "0,0,0,100,7,linear,500,0,0,0,0\n"
+            "1,0,0,100,7,linear,500,0,0,0,0\n"
+            "0,0,0,100,7,linear,600,0,0,0,0\n"
+            "0,0,0,100.5,7,arc,600,0,0,0,0\n");
+  const auto doc = nlohmann::json::parse(write_all(PathFormat::json, pts));
+  EXPECT_EQ(doc[1]["feed"], 500);
+  EXPECT_EQ(doc[2]["feed"], 600);
+  EXPECT_EQ(doc[3]["kind"], "arc");
+  EXPECT_EQ(doc[3]["tool_length"], 100.5);
+}
+
+TEST(PathWriter, HugeValuesTakeTheSlowPathInTheSameFormat) {
+  std::vector<path::PathPoint> pts(2);
+  pts[0].line = 1;
+  pts[1].line = 1;
+  pts[1].time = 2e13;  // beyond the fast integer path
+  EXPECT_EQ(write_all(PathFormat::csv, pts),
+            "x,y,z,tool_length,line,kind,feed,time,vx,vy,vz\n"
+            "0,0,0,0,1,rapid,0,0,0,0,0\n"
+            "0,0,0,0,1,rapid,0,20000000000000.000000,0,0,0\n");
+}
+
 TEST(PathWriter, JsonIsAnArrayOfObjectsWithTheCsvKeys) {
   const auto pts = sample_points();
   const auto doc = nlohmann::json::parse(write_all(PathFormat::json, pts));

@@ -9,6 +9,7 @@
 // kind ∈ {rapid, linear, arc}; vx, vy, vz ∈ {-1, 0, 1}.
 #include <fmt/format.h>
 
+#include <array>
 #include <cstddef>
 #include <functional>
 #include <string>
@@ -52,6 +53,14 @@ class PathWriter {
   fmt::memory_buffer buffer_;
   std::size_t points_ = 0;
   bool finished_ = false;
+  // The formatted columns that stay the same along a motion (see the .cpp).
+  std::array<char, 256> middle_{};
+  std::size_t middle_size_ = 0;
+  bool middle_valid_ = false;
+  std::size_t middle_line_ = 0;
+  gcode::MotionKind middle_kind_ = gcode::MotionKind::rapid;
+  double middle_tool_length_ = 0.0;
+  double middle_feed_ = 0.0;
 };
 
 }  // namespace abbe::io

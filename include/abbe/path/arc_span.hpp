@@ -15,6 +15,8 @@
 // tiny radius change).
 #include <Eigen/Core>
 #include <array>
+#include <cmath>
+#include <cstddef>
 
 #include "abbe/gcode/motion.hpp"
 
@@ -43,6 +45,13 @@ class ArcSpan {
   Eigen::Vector3d velocity(double t) const;
   // point(t) and velocity(t) together (one sine and cosine).
   void sample(double t, Eigen::Vector3d& p, Eigen::Vector3d& v) const;
+  // Calls f(i, p, v) with p, v = sample(i / n) for i = 1 … n, in order (the
+  // last p is the end point bit-exactly). The angle advances by rotating the
+  // previous (cos, sin) pair, re-seeded from std::cos/std::sin every
+  // kReseed points and at the end, so the points agree with sample() to
+  // ~1e-14 relative.
+  template <class F>
+  void for_each_sample(std::size_t n, F&& f) const;
 
   double sweep() const { return sweep_; }  // signed, rad
   double start_radius() const { return r0_; }
@@ -58,5 +67,41 @@ class ArcSpan {
   double theta0_ = 0.0;
   double sweep_ = 0.0;
 };
+
+template <class F>
+void ArcSpan::for_each_sample(std::size_t n, F&& f) const {
+  constexpr std::size_t kReseed = 32;
+  const int a = axes_[0], b = axes_[1], k = axes_[2];
+  const double dn = static_cast<double>(n);
+  const double dtheta = sweep_ / dn;
+  const double cd = std::cos(dtheta), sd = std::sin(dtheta);
+  const double h = p_end_[k] - p_start_[k];
+  double c = 0.0, s = 0.0;
+  Eigen::Vector3d p, v;
+  v[k] = h;
+  for (std::size_t i = 1; i <= n; ++i) {
+    const double t = static_cast<double>(i) / dn;
+    if ((i - 1) % kReseed == 0 || i == n) {
+      const double theta = theta0_ + sweep_ * t;
+      c = std::cos(theta);
+      s = std::sin(theta);
+    } else {
+      const double c_next = c * cd - s * sd;
+      s = s * cd + c * sd;
+      c = c_next;
+    }
+    const double r = r0_ + (r1_ - r0_) * t;
+    v[a] = -r * sweep_ * s;
+    v[b] = r * sweep_ * c;
+    if (i == n) {
+      p = p_end_;
+    } else {
+      p[a] = center_[a] + r * c;
+      p[b] = center_[b] + r * s;
+      p[k] = p_start_[k] + h * t;
+    }
+    f(i, static_cast<const Eigen::Vector3d&>(p), static_cast<const Eigen::Vector3d&>(v));
+  }
+}
 
 }  // namespace abbe::path
