@@ -101,9 +101,10 @@ void Fragmenter::add_arc(const gcode::Motion& motion, PathPoint& point, const Po
   const double dt = length / static_cast<double>(n) * seconds_per_mm(motion, options_.rapid_rate);
   const double t0 = time_;
   span.for_each_sample(n, [&](std::size_t i, const Eigen::Vector3d& p, const Eigen::Vector3d& v) {
-    const double tolerance = kDirectionTolerance * v.norm();
+    // |v_k| > tolerance·|v|, squared (no square root per point).
+    const double tolerance2 = kDirectionTolerance * kDirectionTolerance * v.squaredNorm();
     for (int k = 0; k < 3; ++k)
-      if (std::abs(v[k]) > tolerance) dir_[static_cast<std::size_t>(k)] = sign(v[k]);
+      if (v[k] * v[k] > tolerance2) dir_[static_cast<std::size_t>(k)] = sign(v[k]);
     point.p = p;  // the end point exactly at i == n
     point.time = t0 + static_cast<double>(i) * dt;
     emit(point, sink);

@@ -73,14 +73,15 @@ void ArcSpan::for_each_sample(std::size_t n, F&& f) const {
   constexpr std::size_t kReseed = 32;
   const int a = axes_[0], b = axes_[1], k = axes_[2];
   const double dn = static_cast<double>(n);
-  const double dtheta = sweep_ / dn;
+  const double inv_n = 1.0 / dn;
+  const double dtheta = sweep_ * inv_n;
   const double cd = std::cos(dtheta), sd = std::sin(dtheta);
   const double h = p_end_[k] - p_start_[k];
   double c = 0.0, s = 0.0;
   Eigen::Vector3d p, v;
   v[k] = h;
   for (std::size_t i = 1; i <= n; ++i) {
-    const double t = static_cast<double>(i) / dn;
+    const double t = static_cast<double>(i) * inv_n;  // i = n gives the exact end below
     if ((i - 1) % kReseed == 0 || i == n) {
       const double theta = theta0_ + sweep_ * t;
       c = std::cos(theta);
