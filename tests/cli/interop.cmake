@@ -3,11 +3,14 @@
 # See docs/interop.md. ABBE_SKIP_INTEROP=1 skips it (reported as skipped).
 add_executable(abbe_canon_compare ${CMAKE_CURRENT_SOURCE_DIR}/interop/canon_compare.cpp)
 target_link_libraries(abbe_canon_compare PRIVATE abbe_warnings)
+add_executable(abbe_random_programs ${CMAKE_CURRENT_SOURCE_DIR}/interop/random_programs.cpp)
+target_link_libraries(abbe_random_programs PRIVATE abbe_warnings)
 
 add_test(NAME interop_rs274
          COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/interop/run_interop.sh
                  $<TARGET_FILE:abbe> $<TARGET_FILE:abbe_canon_compare>
-                 ${CMAKE_BINARY_DIR}/interop ${PROJECT_SOURCE_DIR})
+                 ${CMAKE_BINARY_DIR}/interop ${PROJECT_SOURCE_DIR}
+                 $<TARGET_FILE:abbe_random_programs>)
 set_tests_properties(interop_rs274 PROPERTIES LABELS interop SKIP_RETURN_CODE 77 TIMEOUT 1800)
 
 # `abbe interpret` summary mode (the interpret-only mode of the benchmarks).

@@ -3,7 +3,11 @@
 # rs274 (Debian package linuxcnc-uspace) on every .ngc file of that package's
 # ncfiles directory and every file in nc-samples/.
 #
-# usage: run_interop.sh ABBE CANON_COMPARE WORK_DIR SOURCE_DIR
+# usage: run_interop.sh ABBE CANON_COMPARE WORK_DIR SOURCE_DIR [RANDOM_PROGRAMS]
+#
+# With RANDOM_PROGRAMS (tests/interop/random_programs.cpp), also
+# $ABBE_INTEROP_RANDOM (default 100) generated programs (fixed seeds) are
+# compared, in the configuration of abbe's own programs.
 #
 # Each file is classified (see docs/interop.md): matched, refused (abbe
 # stops with a clear file:line:col error; OK), rs274-refused (rs274 stops
@@ -16,14 +20,15 @@
 # it (exit 77, reported by ctest as skipped).
 set -uo pipefail
 
-if [ $# -ne 4 ]; then
-  echo "usage: $0 ABBE CANON_COMPARE WORK_DIR SOURCE_DIR" >&2
+if [ $# -ne 4 ] && [ $# -ne 5 ]; then
+  echo "usage: $0 ABBE CANON_COMPARE WORK_DIR SOURCE_DIR [RANDOM_PROGRAMS]" >&2
   exit 2
 fi
 abbe=$1
 compare=$2
 work=$3
 src=$4
+random_programs=${5:-}
 
 if [ "${ABBE_SKIP_INTEROP:-0}" = "1" ]; then
   echo "interop: skipped (ABBE_SKIP_INTEROP=1)"
@@ -124,6 +129,12 @@ if [ -d "$src/nc-samples" ]; then
 fi
 own_dir="$src/tests/interop/ncfiles"
 while IFS= read -r f; do files+=("$f"); done < <(find "$own_dir" -type f -name '*.ngc' | sort)
+random_dir="$work/random"
+if [ -n "$random_programs" ]; then
+  rm -rf "$random_dir" && mkdir -p "$random_dir"
+  "$random_programs" "${ABBE_INTEROP_RANDOM:-100}" "$random_dir" || fail "random_programs failed"
+  while IFS= read -r f; do files+=("$f"); done < <(find "$random_dir" -type f -name '*.ngc' | sort)
+fi
 
 out="$work/out"
 rm -rf "$out" && mkdir -p "$out"
@@ -139,8 +150,11 @@ for f in "${files[@]}"; do
   args=("${plain_args[@]}")
   case "$f" in
     "$ncfiles"/*) name="ncfiles/${f#"$ncfiles"/}" ;;
-    "$own_dir"/*)
-      name="tests/interop/ncfiles/${f#"$own_dir"/}"
+    "$own_dir"/* | "$random_dir"/*)
+      case "$f" in
+        "$own_dir"/*) name="tests/interop/ncfiles/${f#"$own_dir"/}" ;;
+        *) name="random/${f#"$random_dir"/}" ;;
+      esac
       table=$own_table
       var=$own_var
       args=("${own_args[@]}")

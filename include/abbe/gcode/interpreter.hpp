@@ -2,6 +2,17 @@
 // Interpreter: modal state (units, distance mode, plane, arc centre mode,
 // work offsets, G92, tool length, canned cycles, feed/spindle/tool) → Motions.
 // Refuses what it does not support with an InputError naming the construct.
+//
+// Semantics are LinuxCNC 2.9's rs274ngc (checked against its standalone
+// rs274, docs/interop.md): start-up modes G17 G21 G90 G91.1 G94 G54 G49 G80
+// G99; the order of execution within a block (F, S, T, M6, G4, plane, units,
+// G43/G49, G54.., distance modes, G98/G99, G92.., motion, M0/M2/M30); a
+// motion code without axis words makes a zero-length move; canned cycles
+// G73 G81 G82 G83 G85 G89 in all three planes, with the G98 level kept for a
+// series of cycles. Supported: G0-G3 (IJK, R, P turns, helices), G4, G17-G19,
+// G20/G21, G40, G43/G49, G53, G54-G59, G61/G61.1/G64 (ignored), G80, G90/G91,
+// G90.1/G91.1, G92/G92.1/G92.2/G92.3, G94, G97, G98/G99; M0 M1 M2 M3 M4 M5
+// M6 M7 M8 M9 M30 M48 M49 M60. Everything else is refused.
 #include <array>
 #include <functional>
 #include <map>

@@ -21,7 +21,11 @@ struct Motion {
   MotionKind kind = MotionKind::rapid;
   std::size_t line = 0;        // source line (1-based)
   std::uint32_t sub = 0;       // index of this motion among those of its block (canned cycles)
-  Eigen::Vector3d start = Eigen::Vector3d::Zero();  // tool tip, machine coordinates, mm
+  // Tool tip, machine coordinates, mm. `start` is the tip with this motion's
+  // tool length: after a tool length change (G43/G49) without a move it
+  // differs from the previous motion's end by the length change (the
+  // spindle s did not move). Dwells have start == end.
+  Eigen::Vector3d start = Eigen::Vector3d::Zero();
   Eigen::Vector3d end = Eigen::Vector3d::Zero();
   double tool_length = 0.0;    // active L, mm (s = P + L·e_z)
   double feed = 0.0;           // mm/min (0 for rapids: the rapid rate applies)
@@ -32,6 +36,11 @@ struct Motion {
   Eigen::Vector3d center = Eigen::Vector3d::Zero();  // centre; its normal-axis coordinate equals start's
   // rotation > 0: counter-clockwise seen from the + end of the normal axis
   // (G3 in G17), < 0: clockwise; |rotation| - 1 = extra full turns (P word).
+  // The plane's (first, second) axes are XY: (X, Y), XZ (G18): (Z, X),
+  // YZ (G19): (Y, Z), so G3 in G18 turns from +Z towards +X. When start and
+  // end coincide in the plane, |rotation| = 1 is one full circle. `end` is
+  // the programmed end point (within LinuxCNC's radius tolerance of the
+  // circle); the normal-axis coordinate moves linearly (helix).
   int rotation = 0;
 
   // What is carried along from the block (not used for geometry).
