@@ -27,8 +27,9 @@ if ! "$cxx" -fsanitize=fuzzer "$probe/probe.cpp" -o "$probe/probe" 2>/dev/null; 
   exit 77
 fi
 
+# -O1 -g: what libFuzzer recommends, and it compiles faster than -O2.
 cmake -S "$src" -B "$build" -G Ninja -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DABBE_FUZZ=ON -DABBE_BUILD_TESTS=OFF -DABBE_BUILD_BENCHMARKS=OFF >/dev/null
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" -DABBE_FUZZ=ON -DABBE_BUILD_TESTS=OFF -DABBE_BUILD_BENCHMARKS=OFF >/dev/null
 cmake --build "$build" --target fuzz_program --parallel "${ABBE_FUZZ_JOBS:-2}"
 
 # New inputs go to a scratch directory; the committed seeds are only read.
