@@ -192,7 +192,7 @@ version=$(cat "$lcnc/VERSION" 2>/dev/null)
 {
   echo "<!-- interop-results-begin (written by tests/interop/run_interop.sh) -->"
   echo
-  echo "Last run: $(date -u +%Y-%m-%d), linuxcnc-uspace ${version:-unknown}."
+  echo "Compared with rs274 from linuxcnc-uspace ${version:-unknown}."
   echo
   echo "| files | matched | refused by abbe | refused by rs274 only | mismatched | abbe failed |"
   echo "|---|---|---|---|---|---|"

@@ -174,6 +174,28 @@ TEST(Interpreter, ProgramEndStopsExecution) {
   EXPECT_TRUE(other.program_ended());
 }
 
+TEST(Interpreter, BlockDeleteLinesAreExecuted) {
+  // rs274ngc's block delete switch is off by default: '/' lines run.
+  Interpreter interp({}, "test.nc");
+  std::vector<Motion> out;
+  Block block = make_block("G0 X5");
+  block.block_delete = true;
+  interp.execute(block, "/G0 X5", [&](const Motion& m) { out.push_back(m); });
+  ASSERT_EQ(out.size(), 1u);
+  expect_near(out[0].end, {5, 0, 0});
+}
+
+TEST(Interpreter, EmptyBlocksDoNothing) {
+  Interpreter interp({}, "test.nc");
+  int n = 0;
+  Block block;
+  block.line = 1;
+  block.comments.push_back({0, 5, "hello"});
+  interp.execute(block, "(hello)", [&](const Motion&) { ++n; });
+  EXPECT_EQ(n, 0);
+  expect_near(interp.position(), {0, 0, 0});
+}
+
 TEST(Interpreter, PathControlAndFeedModeAreAccepted) {
   const auto m = run_lines({"G61 G0 X1", "G64 P0.01 G0 X2", "G61.1 G94 G17 G40 G97 G0 X3"});
   ASSERT_EQ(m.size(), 3u);
