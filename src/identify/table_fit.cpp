@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/Eigenvalues>
+#include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -110,38 +112,67 @@ TableFit fit_component_tables(const ChainExpansion& chain, const std::vector<Obs
   auto name_of = [](int c) {
     return machine::component_name({machine::kAxes[static_cast<std::size_t>(c / 6)], c % 6});
   };
-  // Separability per component, from the null space of the unweighted design.
-  std::array<ComponentSeparability, 18> sep{};
-  for (const NullDirection& nd : out.fit.null_space) {
-    std::array<double, 18> share{};
-    for (Eigen::Index j = 0; j < n; ++j)
-      share[static_cast<std::size_t>(component_of(j))] += nd.direction[j] * nd.direction[j];
-    for (int c = 0; c < 18; ++c) {
-      if (share[static_cast<std::size_t>(c)] < 1e-4) continue;
-      auto& sc = sep[static_cast<std::size_t>(c)];
-      sc.null_share = std::max(sc.null_share, share[static_cast<std::size_t>(c)]);
-      for (int o = 0; o < 18; ++o)
-        if (o != c && share[static_cast<std::size_t>(o)] >= 1e-4 &&
-            std::find(sc.confounded_with.begin(), sc.confounded_with.end(), name_of(o)) ==
-                sc.confounded_with.end())
-          sc.confounded_with.push_back(name_of(o));
-    }
-    std::vector<std::string> names;
-    std::vector<double> weights;
-    for (int c = 0; c < 18; ++c)
-      if (share[static_cast<std::size_t>(c)] >= 1e-4) {
-        names.push_back(name_of(c));
-        weights.push_back(share[static_cast<std::size_t>(c)]);
-      }
-    std::string d;
-    for (std::size_t i = 0; i < names.size(); ++i)
-      d += fmt::format("{}{} ({:.0f} %)", i ? ", " : "", names[i], 100.0 * weights[i]);
-    out.unidentifiable.push_back(d);
+  // Separability per component, basis-free: with N the orthonormal null
+  // space (scaled unknowns), the block N_c·N_cᵀ of component c has
+  // eigenvalues in [0, 1]; each one above 10⁻³ is a shape of c (a knot
+  // combination) that some unidentifiable direction contains: the data
+  // cannot tell it from other components (or, at 1, cannot see it at all).
+  Eigen::MatrixXd null(n, static_cast<Eigen::Index>(out.fit.null_space.size()));
+  for (std::size_t i = 0; i < out.fit.null_space.size(); ++i)
+    null.col(static_cast<Eigen::Index>(i)) = out.fit.null_space[i].direction;  // unit-norm columns
+  if (null.cols() > 0) {
+    // Orthonormalise (the solver's own rescaling may bend the basis slightly).
+    Eigen::HouseholderQR<Eigen::MatrixXd> qr(null);
+    null = qr.householderQ() * Eigen::MatrixXd::Identity(n, null.cols());
   }
   for (int c = 0; c < 18; ++c) {
-    sep[static_cast<std::size_t>(c)].id = {machine::kAxes[static_cast<std::size_t>(c / 6)], c % 6};
-    out.separability.push_back(sep[static_cast<std::size_t>(c)]);
+    ComponentSeparability sc;
+    sc.id = {machine::kAxes[static_cast<std::size_t>(c / 6)], c % 6};
+    const int o0 = offset[static_cast<std::size_t>(c)];
+    const int nc = offset[static_cast<std::size_t>(c + 1)] - o0;
+    sc.knots = nc;
+    if (null.cols() > 0 && nc > 0) {
+      const Eigen::MatrixXd nb = null.middleRows(o0, nc);
+      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(nb * nb.transpose());
+      std::array<double, 18> partner{};
+      for (Eigen::Index e = 0; e < nc; ++e) {
+        const double lambda = es.eigenvalues()[e];
+        sc.null_share = std::max(sc.null_share, lambda);
+        if (lambda > 1e-3) ++sc.null_dims;
+        if (lambda < 0.05) continue;
+        // The null vector closest to this shape of c: where else it lives.
+        Eigen::VectorXd u = Eigen::VectorXd::Zero(n);
+        u.segment(o0, nc) = es.eigenvectors().col(e);
+        const Eigen::VectorXd v = null * (null.transpose() * u);
+        const double vn = v.squaredNorm();
+        for (int o = 0; o < 18; ++o) {
+          if (o == c) continue;
+          const int p0 = offset[static_cast<std::size_t>(o)];
+          const int np = offset[static_cast<std::size_t>(o + 1)] - p0;
+          partner[static_cast<std::size_t>(o)] =
+              std::max(partner[static_cast<std::size_t>(o)], v.segment(p0, np).squaredNorm() / vn);
+        }
+      }
+      for (int o = 0; o < 18; ++o)
+        if (partner[static_cast<std::size_t>(o)] > 0.1) sc.confounded_with.push_back(name_of(o));
+    }
+    out.separability.push_back(sc);
   }
+  for (const NullDirection& nd : out.fit.null_space)
+    out.unidentifiable.push_back(describe_combination(
+        nd.direction.cwiseQuotient(scale).normalized(),
+        [&] {
+          std::vector<std::string> names;
+          for (Eigen::Index j = 0; j < n; ++j) {
+            const int c = component_of(j);
+            names.push_back(fmt::format(
+                "{}@{:g}", name_of(c),
+                knots[static_cast<std::size_t>(c / 6)]
+                     [static_cast<std::size_t>(j - offset[static_cast<std::size_t>(c)])]));
+          }
+          return names;
+        }(),
+        0.2));
 
   // Gauge: angular columns weighted 10⁻³ in the minimum-norm choice.
   Eigen::VectorXd gauge = Eigen::VectorXd::Ones(n);

@@ -160,7 +160,7 @@ int run_tables(const IdentifyCliOptions& o, const machine::Machine& machine,
                        {"residual_rms_um", t.residual_rms_um},
                        {"residual_max_um", t.residual_max_um}};
   js["components"] = nlohmann::json::array();
-  text += "  component  separable  max |value|  confounded with\n";
+  text += "  component  separable      max |value|  confounded with\n";
   for (std::size_t c = 0; c < t.series.size(); ++c) {
     const auto& s = t.series[c];
     const auto& sep = t.separability[c];
@@ -168,12 +168,18 @@ int run_tables(const IdentifyCliOptions& o, const machine::Machine& machine,
     for (double v : s.value) vmax = std::max(vmax, std::abs(v));
     std::string with;
     for (const auto& w : sep.confounded_with) with += (with.empty() ? "" : " ") + w;
-    const char* verdict = sep.null_share < 1e-4 ? "yes" : sep.null_share > 0.5 ? "no" : "partly";
-    text += fmt::format("  {:<9}  {:<9}  {:>11.4f}  {}\n", machine::component_name(s.id), verdict,
+    // yes: no shape of it is lost; no: (nearly) every shape is; partly: a few
+    // (typically its constant part or slope, traded with other components).
+    const std::string verdict = sep.null_share < 0.05 ? "yes"
+                                : sep.null_dims >= sep.knots - 1
+                                    ? "no"
+                                    : fmt::format("partly ({}/{})", sep.null_dims, sep.knots);
+    text += fmt::format("  {:<9}  {:<13}  {:>11.4f}  {}\n", machine::component_name(s.id), verdict,
                         vmax, with);
     js["components"].push_back({{"component", machine::component_name(s.id)},
                                 {"separable", verdict},
                                 {"null_share", sep.null_share},
+                                {"null_dims", sep.null_dims},
                                 {"confounded_with", sep.confounded_with},
                                 {"knots_mm", s.knots_mm},
                                 {"value", s.value}});

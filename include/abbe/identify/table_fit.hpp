@@ -42,10 +42,13 @@ struct FittedSeries {
 
 struct ComponentSeparability {
   machine::ComponentId id;
-  // Largest share (0…1) of the component's knots in one unidentifiable
-  // direction: 0 = separable, near 1 = entirely confounded.
+  // The eigenvalues of the component's block of the null-space projector:
+  // the largest (0 = separable, 1 = a shape of it the data cannot see) and
+  // how many exceed 10⁻³ (shapes involved in an ambiguity), of `knots`.
   double null_share = 0.0;
-  std::vector<std::string> confounded_with;  // the other components in those directions
+  int null_dims = 0;
+  int knots = 0;
+  std::vector<std::string> confounded_with;  // components sharing those unseen shapes
 };
 
 struct TableFit {
