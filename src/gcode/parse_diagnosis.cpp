@@ -166,16 +166,20 @@ InputError explain_parse_stop(std::string_view line, std::size_t stop, const ast
   const char c = line[stop];
   const auto u = static_cast<unsigned char>(c);
   const char previous = items.empty() ? '\0' : upper(*items.back().head.begin());
+  // The O-number of a program number line, if the line is one.
+  const ast::Item* program_number = nullptr;
+  for (const auto& item : items)
+    if (upper(*item.head.begin()) == 'O') program_number = &item;
 
   if (previous == '*') {
     message = "the checksum (*nn) must be the last thing on its line";
   } else if (previous == '%') {
     message = "only a comment may follow '%' (tape delimiter) on its line";
-  } else if (previous == 'O') {
+  } else if (program_number != nullptr) {
     std::size_t end = stop;
     while (end < line.size() && is_alpha(line[end])) ++end;
     if (is_o_word_keyword(line.substr(stop, end - stop)) || c == '<' || c == '[') {
-      column = static_cast<std::size_t>(items.back().head.begin() - line.data());
+      column = static_cast<std::size_t>(program_number->head.begin() - line.data());
       message = "O-word control flow is not supported";
     } else {
       message = "a program number line (O...) may carry only a comment";

@@ -272,6 +272,7 @@ TEST(ParserRefuses, OWordControlFlow) {
   expect_refused("o102 while [1]", 1, "O-word control flow is not supported");
   expect_refused("o103 do", 1, "O-word control flow is not supported");
   expect_refused("o104 return", 1, "O-word control flow is not supported");
+  expect_refused("o105 (label) endsub", 1, "O-word control flow is not supported");
   expect_refused("G0 O100", 4, "O-word control flow is not supported");
   expect_refused("O1 G0 X1", 4, "a program number line (O...) may carry only a comment");
   expect_refused("O", 1, "word 'O' has no number");
