@@ -1,0 +1,38 @@
+#pragma once
+// The candidate effects of a diagnosis (DESIGN.md §5): every catalogued kind
+// per axis and direction where the data can show it, as Terms. Kinds with a
+// nonlinear parameter (cyclic period, thermal time constant) are families
+// whose parameter is searched over a grid at each selection step; the
+// `unexplained` families are smooth (Legendre) functions of one variable or
+// of a pair of variables per direction.
+#include <vector>
+
+#include "abbe/diagnose/residuals.hpp"
+#include "abbe/diagnose/term.hpp"
+
+namespace abbe::diagnose {
+
+struct CandidateOptions {
+  double min_period_mm = 4.0;    // cyclic periods searched in [min, max]
+  double max_period_mm = 100.0;  // (pitch errors a 25–50 mm table under-samples)
+  std::vector<double> tau_s{300, 600, 900, 1200, 1800, 2700, 3600, 5400, 7200, 10800, 0};
+  int single_degree = 6;  // unexplained: Legendre degree in one variable
+  int pair_degree = 4;    // ... per variable of a pair
+};
+
+struct ScanFamily {
+  Term base;                 // cyclic (period) or thermal_drift (tau) with the grid below
+  std::vector<double> grid;  // periods (mm) or time constants (s)
+};
+
+struct CandidateSet {
+  std::vector<Term> fixed;          // named kinds without a searched parameter
+  std::vector<ScanFamily> scanned;  // named kinds with one
+  std::vector<Term> generic;        // unexplained (direction = −1: one per present direction)
+  int named_tests = 0;              // for the multiple-testing correction
+  int generic_tests = 0;
+};
+
+CandidateSet build_candidates(const Problem& problem, const CandidateOptions& options);
+
+}  // namespace abbe::diagnose

@@ -1,0 +1,56 @@
+#pragma once
+// diagnose(): the whole diagnosis of measured data against a machine's error
+// model — residuals of the three models, candidate effects, stepwise
+// selection, the extended model and its held-out gain (docs/diagnosis.md).
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "abbe/diagnose/candidates.hpp"
+#include "abbe/diagnose/overlay.hpp"
+#include "abbe/diagnose/residuals.hpp"
+#include "abbe/diagnose/selection.hpp"
+#include "abbe/io/measured_data.hpp"
+#include "abbe/machine/machine.hpp"
+#include "abbe/model/model_kind.hpp"
+
+namespace abbe::diagnose {
+
+struct DiagnoseOptions {
+  model::ModelKind model = model::ModelKind::ae_arm;
+  SelectionOptions selection;
+  CandidateOptions candidates;
+  const Overlay* extend = nullptr;  // an earlier overlay added to the model's prediction
+};
+
+struct Diagnosis {
+  std::string machine;
+  std::string measured_file;
+  std::string model;
+  std::size_t n_points = 0;
+  std::size_t n_observations = 0;
+  std::vector<ResidualStats> models;  // htm, ae-arm, dual (without any overlay)
+  ResidualStats baseline;             // the diagnosed model (with --extend if given)
+  std::vector<SelectedTerm> effects;  // ordered by importance
+  ResidualStats extended;             // after the selected effects, in-sample
+  double holdout_rms_um = 0.0;        // extended model, held-out folds
+  double baseline_holdout_rms_um = 0.0;
+  double gain_percent = 0.0;
+  double noise_um = 0.0;  // residual σ per observation after the fit
+  int folds = 0;
+  std::vector<std::string> log;
+};
+
+Diagnosis diagnose(const machine::Machine& machine, const io::MeasuredData& data,
+                   const DiagnoseOptions& options);
+// The same on an already built residual problem.
+Diagnosis diagnose_problem(const Problem& problem, const DiagnoseOptions& options);
+
+// DESIGN.md §4 report (stable keys, plus a few extra informative ones).
+std::string report_json(const Diagnosis& d);
+// The human summary: models, effects, gain.
+std::string report_text(const Diagnosis& d);
+// The selected effects as an overlay (extended model).
+Overlay make_overlay(const Diagnosis& d, const Overlay* extend);
+
+}  // namespace abbe::diagnose

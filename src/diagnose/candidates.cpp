@@ -1,0 +1,161 @@
+#include "abbe/diagnose/candidates.hpp"
+
+#include <cmath>
+
+namespace abbe::diagnose {
+
+CandidateSet build_candidates(const Problem& pb, const CandidateOptions& o) {
+  CandidateSet cs;
+  auto varies = [&](int v) {
+    const auto i = static_cast<std::size_t>(v);
+    return pb.var_hi[i] - pb.var_lo[i] > 1e-9;
+  };
+  std::array<bool, 3> moves{false, false, false};  // some point has a nonzero direction sign
+  bool model_delta = false;
+  std::array<bool, 3> eps{false, false, false};
+  for (const PointContext& pc : pb.points) {
+    for (std::size_t j = 0; j < 3; ++j) {
+      if (pc.dir[j] != 0) moves[j] = true;
+      if (pc.eps_urad[j].squaredNorm() > 0.0) eps[j] = true;
+    }
+    if (pc.model_delta_um.squaredNorm() > 1e-18) model_delta = true;
+  }
+  auto present = [&](int i) { return pb.direction_present[static_cast<std::size_t>(i)]; };
+  auto add = [&](Term t) {
+    cs.fixed.push_back(std::move(t));
+    ++cs.named_tests;
+  };
+
+  if (model_delta) {
+    Term t;
+    t.kind = TermKind::model_choice;
+    t.other_model = pb.other_model;
+    add(t);
+  }
+  for (int j = 0; j < 3; ++j) {
+    for (int i = 0; i < 3; ++i) {
+      if (!present(i)) continue;
+      if (varies(j)) {
+        Term t;
+        t.kind = i == j ? TermKind::scale : TermKind::squareness;
+        t.axis = j;
+        t.direction = i;
+        add(t);
+      }
+      if (moves[static_cast<std::size_t>(j)]) {
+        Term t;
+        t.kind = TermKind::reversal;
+        t.axis = j;
+        t.direction = i;
+        add(t);
+      }
+      for (int k = j + 1; k < 3; ++k)
+        if (varies(j) && varies(k)) {
+          Term t;
+          t.kind = TermKind::coupling;
+          t.axis = j;
+          t.with_axis = k;
+          t.direction = i;
+          t.centre = pb.travel_mid;
+          t.half = pb.travel_half;
+          add(t);
+        }
+      if (varies(j)) {
+        ScanFamily f;
+        f.base.kind = TermKind::cyclic;
+        f.base.axis = j;
+        f.base.direction = i;
+        // Frequencies evenly spaced at a quarter of 1/span: no peak falls between two.
+        const double span =
+            pb.var_hi[static_cast<std::size_t>(j)] - pb.var_lo[static_cast<std::size_t>(j)];
+        const double df = 0.25 / std::max(span, 1e-3);
+        for (double fr = 1.0 / o.max_period_mm; fr <= 1.0 / o.min_period_mm; fr += df)
+          f.grid.push_back(1.0 / fr);
+        cs.named_tests += static_cast<int>(f.grid.size());
+        cs.scanned.push_back(std::move(f));
+      }
+    }
+    if (eps[static_cast<std::size_t>(j)])
+      for (int k = 0; k < 3; ++k) {
+        Term t;
+        t.kind = TermKind::arm_offset;
+        t.axis = j;
+        t.direction = k;
+        add(t);
+      }
+  }
+  if (varies(3))
+    for (int i = 0; i < 3; ++i) {
+      if (!present(i)) continue;
+      for (int w = -1; w < 3; ++w) {
+        if (w >= 0 && !varies(w)) continue;
+        ScanFamily f;
+        f.base.kind = TermKind::thermal_drift;
+        f.base.axis = w >= 0 ? w : i;
+        f.base.direction = i;
+        f.base.with_axis = w;
+        f.grid = o.tau_s;
+        cs.named_tests += static_cast<int>(f.grid.size());
+        cs.scanned.push_back(std::move(f));
+      }
+    }
+  // Setup: offset per set and direction, rotation per set about each axis
+  // around the set's centroid.
+  for (const std::string& set : pb.sets) {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    double n = 0.0;
+    for (const PointContext& pc : pb.points)
+      if (pc.set == set) {
+        c += pc.p;
+        n += 1.0;
+      }
+    c /= std::max(n, 1.0);
+    for (int i = 0; i < 3; ++i) {
+      if (!present(i)) continue;
+      Term t;
+      t.kind = TermKind::setup_offset;
+      t.axis = i;
+      t.direction = i;
+      t.set = set;
+      add(t);
+    }
+    for (int a = 0; a < 3; ++a) {
+      // A rotation about a moves the directions ⟂ a along the other two coordinates.
+      const int b = (a + 1) % 3, d = (a + 2) % 3;
+      const bool visible = (present(b) && varies(d)) || (present(d) && varies(b));
+      if (!visible) continue;
+      Term t;
+      t.kind = TermKind::setup_rotation;
+      t.axis = a;
+      t.set = set;
+      t.centre = c;
+      add(t);
+    }
+  }
+  // Unexplained: smooth functions of one variable or of a pair.
+  for (int v = 0; v < 4; ++v) {
+    if (!varies(v)) continue;
+    Term t;
+    t.kind = TermKind::unexplained;
+    t.vars = {v};
+    t.degree = o.single_degree;
+    for (std::size_t k = 0; k < 4; ++k) {
+      t.lo[k] = pb.var_lo[k];
+      t.hi[k] = pb.var_hi[k] > pb.var_lo[k] ? pb.var_hi[k] : pb.var_lo[k] + 1.0;
+    }
+    cs.generic.push_back(t);
+    for (int w = v + 1; w < 4; ++w) {
+      if (!varies(w)) continue;
+      Term p = t;
+      p.vars = {v, w};
+      p.degree = o.pair_degree;
+      cs.generic.push_back(p);
+    }
+  }
+  int dirs = 0;
+  for (int i = 0; i < 3; ++i) dirs += present(i) ? 1 : 0;
+  cs.generic_tests = static_cast<int>(cs.generic.size()) * dirs;
+  return cs;
+}
+
+}  // namespace abbe::diagnose

@@ -1,0 +1,430 @@
+#include "abbe/diagnose/selection.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <random>
+
+#include "abbe/diagnose/statistics.hpp"
+
+namespace abbe::diagnose {
+namespace {
+
+using Mat = Eigen::MatrixXd;
+using Vec = Eigen::VectorXd;
+
+struct Cached {
+  Term term;
+  Mat C;    // observations × k
+  Mat CtC;  // k × k
+  Mat QtC;  // p × k, extended as Q grows
+};
+
+// ΔRSS of adding C to the selected span Q (r ⟂ Q). Returns −1 when C lies in
+// span(Q) (nothing new to fit).
+double delta_rss(const Mat& C, const Mat& CtC, const Mat& QtC, const Vec& r, Vec* beta = nullptr) {
+  const Vec b = C.transpose() * r;
+  Mat G = CtC;
+  if (QtC.rows() > 0) G.noalias() -= QtC.transpose() * QtC;
+  for (Eigen::Index c = 0; c < G.rows(); ++c)
+    if (!(G(c, c) > 1e-8 * CtC(c, c)) || CtC(c, c) <= 0.0) return -1.0;
+  Eigen::LDLT<Mat> ldlt(G);
+  const Vec x = ldlt.solve(b);
+  if (beta) *beta = x;
+  return b.dot(x);
+}
+
+// Point-level sums of the current residual: R(p,·) = Σ_o u_o r_o; W(p,i) = Σ_o u_o,i².
+void point_sums(const Problem& pb, const Vec& r, Mat& R, Mat& W) {
+  const auto np = static_cast<Eigen::Index>(pb.points.size());
+  R = Mat::Zero(np, 3);
+  W = Mat::Zero(np, 3);
+  for (std::size_t o = 0; o < pb.obs.size(); ++o) {
+    const Observation& ob = pb.obs[o];
+    const auto p = static_cast<Eigen::Index>(ob.point);
+    R.row(p) += r[static_cast<Eigen::Index>(o)] * ob.u.transpose();
+    W.row(p) += ob.u.cwiseAbs2().transpose();
+  }
+}
+
+// Point-level basis of an unexplained term (points × k, the direction ignored).
+Mat generic_basis(const Problem& pb, const Term& t) {
+  Term one = t;
+  one.direction = 0;
+  const int k = t.columns();
+  Mat B(static_cast<Eigen::Index>(pb.points.size()), k);
+  Eigen::Matrix<double, 3, Eigen::Dynamic> g(3, k);
+  for (std::size_t p = 0; p < pb.points.size(); ++p) {
+    one.basis(pb.points[p], g);
+    B.row(static_cast<Eigen::Index>(p)) = g.row(0);
+  }
+  return B;
+}
+
+void append_orthonormal(Mat& Q, const Mat& C) {
+  for (Eigen::Index c = 0; c < C.cols(); ++c) {
+    Vec q = C.col(c);
+    const double n0 = q.norm();
+    for (int pass = 0; pass < 2; ++pass)
+      if (Q.cols() > 0) q -= Q * (Q.transpose() * q);
+    const double n = q.norm();
+    if (!(n > 1e-10 * n0) || n0 == 0.0) continue;
+    Q.conservativeResize(Eigen::NoChange, Q.cols() + 1);
+    Q.col(Q.cols() - 1) = q / n;
+  }
+}
+
+}  // namespace
+
+std::vector<int> point_folds(std::size_t points, int folds, std::uint64_t seed) {
+  std::vector<std::size_t> order(points);
+  std::iota(order.begin(), order.end(), 0);
+  std::mt19937_64 rng(seed);
+  std::shuffle(order.begin(), order.end(), rng);
+  std::vector<int> fold(points, 0);
+  for (std::size_t i = 0; i < points; ++i)
+    fold[order[i]] = static_cast<int>(i % static_cast<std::size_t>(std::max(folds, 1)));
+  return fold;
+}
+
+Eigen::MatrixXd term_columns(const Problem& pb, const Term& term) {
+  const int k = term.columns();
+  Mat C(static_cast<Eigen::Index>(pb.obs.size()), k);
+  Eigen::Matrix<double, 3, Eigen::Dynamic> g(3, k);
+  std::uint32_t last = UINT32_MAX;
+  for (std::size_t o = 0; o < pb.obs.size(); ++o) {
+    const Observation& ob = pb.obs[o];
+    if (ob.point != last) {
+      term.basis(pb.points[ob.point], g);
+      last = ob.point;
+    }
+    const double u0 = ob.u[0], u1 = ob.u[1], u2 = ob.u[2];
+    const double* gd = g.data();
+    for (int c = 0; c < k; ++c, gd += 3)
+      C(static_cast<Eigen::Index>(o), c) = u0 * gd[0] + u1 * gd[1] + u2 * gd[2];
+  }
+  return C;
+}
+
+double cross_validated_sse(const Problem& pb, const Eigen::MatrixXd& X, const Eigen::VectorXd& y,
+                           const std::vector<int>& fold_of_point, int folds) {
+  const Eigen::Index P = X.cols();
+  if (P == 0) return y.squaredNorm();
+  std::vector<std::vector<Eigen::Index>> rows(static_cast<std::size_t>(folds));
+  for (std::size_t o = 0; o < pb.obs.size(); ++o)
+    rows[static_cast<std::size_t>(fold_of_point[pb.obs[o].point])].push_back(
+        static_cast<Eigen::Index>(o));
+  std::vector<Mat> G(rows.size());
+  std::vector<Vec> b(rows.size());
+  std::vector<double> yy(rows.size());
+  Mat Gt = Mat::Zero(P, P);
+  Vec bt = Vec::Zero(P);
+  for (std::size_t f = 0; f < rows.size(); ++f) {
+    const Mat Xf = X(rows[f], Eigen::all);
+    const Vec yf = y(rows[f]);
+    G[f] = Xf.transpose() * Xf;
+    b[f] = Xf.transpose() * yf;
+    yy[f] = yf.squaredNorm();
+    Gt += G[f];
+    bt += b[f];
+  }
+  const double ridge = 1e-10 * Gt.trace() / static_cast<double>(P);
+  double sse = 0.0;
+  for (std::size_t f = 0; f < rows.size(); ++f) {
+    if (rows[f].empty()) continue;
+    Mat A = Gt - G[f];
+    A.diagonal().array() += ridge;
+    const Vec beta = A.ldlt().solve(bt - b[f]);
+    sse += yy[f] - 2.0 * beta.dot(b[f]) + beta.dot(G[f] * beta);
+  }
+  return sse;
+}
+
+SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
+                               const SelectionOptions& o) {
+  SelectionResult res;
+  const auto n = static_cast<Eigen::Index>(pb.obs.size());
+  const auto np = pb.points.size();
+  const Vec& y = pb.y;
+  res.baseline_sse = y.squaredNorm();
+  const std::vector<int> folds = point_folds(np, o.folds, o.seed);
+
+  // Named candidates without a searched parameter: columns cached once.
+  std::vector<Cached> named;
+  for (const Term& t : cs.fixed) {
+    Cached c{t, term_columns(pb, t), Mat(), Mat(0, t.columns())};
+    c.CtC = c.C.transpose() * c.C;
+    if (c.CtC.diagonal().maxCoeff() <= 0.0) continue;  // invisible in these data
+    named.push_back(std::move(c));
+  }
+  // Smooth families: point-level Gram matrices per direction, once.
+  struct Generic {
+    Term term;
+    std::array<Mat, 3> G;
+  };
+  std::vector<Generic> generic;
+  {
+    Mat R, W;
+    point_sums(pb, y, R, W);
+    for (const Term& t : cs.generic) {
+      Generic g{t, {}};
+      const Mat B = generic_basis(pb, t);
+      for (int i = 0; i < 3; ++i)
+        if (pb.direction_present[static_cast<std::size_t>(i)])
+          g.G[static_cast<std::size_t>(i)] = B.transpose() * W.col(i).asDiagonal() * B;
+      generic.push_back(std::move(g));
+    }
+  }
+
+  Mat Q(n, 0);
+  Vec r = y;
+  std::vector<Term> chosen;
+  std::vector<std::vector<std::string>> ambiguous;
+  Mat X(n, 0);
+  double cv_prev = res.baseline_sse;
+  const double tests_named = std::max(cs.named_tests, 1);
+  const double tests_generic = std::max(cs.generic_tests, 1);
+  // Subsample for the period scan.
+  const std::size_t stride = std::max<std::size_t>(1, (np + o.scan_points - 1) / o.scan_points);
+
+  for (int step = 0; step < o.max_terms; ++step) {
+    const double rr = r.squaredNorm();
+    const double dof_base = static_cast<double>(n - Q.cols());
+    if (dof_base < 4.0) break;
+    Mat R, W;
+    point_sums(pb, r, R, W);
+
+    // Searched families: pick the parameter by a quick projection, then
+    // evaluate the best of each family exactly.
+    std::vector<Cached> scanned;
+    std::array<std::vector<double>, 3> power_cache;  // per axis: [freq][dir][re, im]
+    for (const ScanFamily& f : cs.scanned) {
+      Term t = f.base;
+      if (t.kind == TermKind::cyclic) {
+        const auto j = static_cast<std::size_t>(t.axis);
+        auto& acc = power_cache[j];
+        if (acc.empty()) {
+          // Σ_p R(p,i)·exp(i2πf s_j) over the frequency grid (shared by the three directions).
+          const std::size_t nf = f.grid.size();
+          acc.assign(6 * nf, 0.0);
+          const double f0 = 1.0 / f.grid.front();
+          const double df = nf > 1 ? 1.0 / f.grid[1] - f0 : 0.0;
+          constexpr double kTwoPi = 6.283185307179586;
+          for (std::size_t p = 0; p < np; p += stride) {
+            const double s = pb.points[p].s[t.axis];
+            // z = exp(i2πf s) stepped through the grid by the factor exp(i2π·df·s).
+            double zr = std::cos(kTwoPi * f0 * s), zi = std::sin(kTwoPi * f0 * s);
+            const double mr = std::cos(kTwoPi * df * s), mi = std::sin(kTwoPi * df * s);
+            const auto ip = static_cast<Eigen::Index>(p);
+            const double r0 = R(ip, 0), r1 = R(ip, 1), r2 = R(ip, 2);
+            double* a = acc.data();
+            for (std::size_t q = 0; q < nf; ++q, a += 6) {
+              a[0] += r0 * zr;
+              a[1] += r0 * zi;
+              a[2] += r1 * zr;
+              a[3] += r1 * zi;
+              a[4] += r2 * zr;
+              a[5] += r2 * zi;
+              const double nr = zr * mr - zi * mi;
+              zi = zr * mi + zi * mr;
+              zr = nr;
+            }
+          }
+        }
+        std::size_t best = 0;
+        double best_pow = -1.0;
+        for (std::size_t q = 0; q < f.grid.size(); ++q) {
+          const std::size_t at = 6 * q + 2 * static_cast<std::size_t>(t.direction);
+          const double pw = acc[at] * acc[at] + acc[at + 1] * acc[at + 1];
+          if (pw > best_pow) {
+            best_pow = pw;
+            best = q;
+          }
+        }
+        t.period_mm = f.grid[best];
+      } else {  // thermal_drift: the time constant with the largest normalised projection
+        double best_score = -1.0;
+        for (double tau : f.grid) {
+          double num = 0.0, den = 0.0;
+          for (std::size_t p = 0; p < np; p += stride) {
+            const PointContext& pc = pb.points[p];
+            const double tt = std::max(pc.t, 0.0);
+            double g = tau > 0.0 ? 1.0 - std::exp(-tt / tau) : tt / 3600.0;
+            if (t.with_axis >= 0) g *= 1e-3 * pc.s[t.with_axis];
+            const auto ip = static_cast<Eigen::Index>(p);
+            num += R(ip, t.direction) * g;
+            den += W(ip, t.direction) * g * g;
+          }
+          const double score = den > 0.0 ? num * num / den : 0.0;
+          if (score > best_score) {
+            best_score = score;
+            t.tau_s = tau;
+          }
+        }
+      }
+      Cached c{t, term_columns(pb, t), Mat(), Mat()};
+      c.CtC = c.C.transpose() * c.C;
+      c.QtC = Q.transpose() * c.C;
+      scanned.push_back(std::move(c));
+    }
+
+    // Best named candidate.
+    struct Score {
+      const Cached* c = nullptr;
+      double d = -1.0;
+      double thr = 0.0;
+    };
+    std::vector<Score> scores;
+    auto consider = [&](const Cached& c) {
+      const double d = delta_rss(c.C, c.CtC, c.QtC, r);
+      if (d <= 0.0) return;
+      const int k = c.term.columns();
+      const double s2 = std::max(rr - d, 1e-300) / std::max(dof_base - k, 1.0);
+      scores.push_back({&c, d, s2 * chi2_upper_quantile(k, o.alpha / tests_named)});
+    };
+    for (const Cached& c : named) consider(c);
+    for (const Cached& c : scanned) consider(c);
+    std::sort(scores.begin(), scores.end(),
+              [](const Score& a, const Score& b) { return a.d > b.d; });
+    const Score* best_named = nullptr;
+    for (const Score& s : scores)
+      if (s.d > s.thr) {
+        best_named = &s;
+        break;
+      }
+
+    // Best smooth function (approximate: not orthogonalised against Q, so it
+    // never overstates what it explains).
+    double g_best_excess = 0.0, g_best_d = 0.0;
+    Term g_best;
+    bool have_generic = false;
+    for (const Generic& g : generic) {
+      const Mat B = generic_basis(pb, g.term);
+      const Mat BtR = B.transpose() * R;
+      for (int i = 0; i < 3; ++i) {
+        if (!pb.direction_present[static_cast<std::size_t>(i)]) continue;
+        const Mat& G = g.G[static_cast<std::size_t>(i)];
+        const Vec b = BtR.col(i);
+        Eigen::LDLT<Mat> ldlt(G);
+        const double d = b.dot(ldlt.solve(b));
+        const int k = g.term.columns();
+        const double s2 = std::max(rr - d, 1e-300) / std::max(dof_base - k, 1.0);
+        const double thr = s2 * chi2_upper_quantile(k, o.alpha / tests_generic);
+        if (d > thr && d - thr > g_best_excess) {
+          g_best_excess = d - thr;
+          g_best_d = d;
+          g_best = g.term;
+          g_best.direction = i;
+          have_generic = true;
+        }
+      }
+    }
+
+    Term pick;
+    Mat C;
+    double d_pick = 0.0;
+    std::vector<std::string> amb;
+    if (best_named && (!have_generic || best_named->d >= o.name_ratio * g_best_d)) {
+      pick = best_named->c->term;
+      C = best_named->c->C;
+      d_pick = best_named->d;
+      // Ambiguity: near-equal candidates whose fitted contributions coincide.
+      Vec beta_b;
+      delta_rss(best_named->c->C, best_named->c->CtC, best_named->c->QtC, r, &beta_b);
+      Vec fb = best_named->c->C * beta_b;
+      if (Q.cols() > 0) fb -= Q * (best_named->c->QtC * beta_b);
+      for (const Score& s : scores) {
+        if (&s == best_named || s.d < 0.9 * best_named->d) continue;
+        Vec beta;
+        delta_rss(s.c->C, s.c->CtC, s.c->QtC, r, &beta);
+        Vec fc = s.c->C * beta;
+        if (Q.cols() > 0) fc -= Q * (s.c->QtC * beta);
+        const double corr = std::abs(fb.dot(fc)) / std::max(fb.norm() * fc.norm(), 1e-300);
+        if (corr > o.ambiguous_corr) amb.push_back(s.c->term.label());
+      }
+    } else if (have_generic) {
+      pick = g_best;
+      C = term_columns(pb, pick);
+      d_pick = g_best_d;
+    } else {
+      res.log.push_back(
+          fmt::format("step {}: no candidate above the significance floor", step + 1));
+      break;
+    }
+
+    // Held-out check.
+    Mat Xn(n, X.cols() + C.cols());
+    Xn << X, C;
+    const double cv = cross_validated_sse(pb, Xn, y, folds, o.folds);
+    if (!(cv < cv_prev * (1.0 - 1e-6))) {
+      res.log.push_back(fmt::format("step {}: {} rejected: held-out SSE {:.6g} ≥ {:.6g}", step + 1,
+                                    pick.label(), cv, cv_prev));
+      break;
+    }
+    res.log.push_back(fmt::format("step {}: {} ΔRSS {:.6g} (of {:.6g}), held-out SSE {:.6g}",
+                                  step + 1, pick.label(), d_pick, rr, cv));
+    cv_prev = cv;
+    X = std::move(Xn);
+    const Eigen::Index p0 = Q.cols();
+    append_orthonormal(Q, C);
+    const Mat Qnew = Q.rightCols(Q.cols() - p0);
+    r -= Qnew * (Qnew.transpose() * r);
+    for (Cached& c : named) {
+      Mat ext(Q.cols(), c.C.cols());
+      ext << c.QtC, Qnew.transpose() * c.C;
+      c.QtC = std::move(ext);
+    }
+    chosen.push_back(pick);
+    ambiguous.push_back(amb);
+    // A chosen fixed candidate cannot be chosen again.
+    named.erase(std::remove_if(named.begin(), named.end(),
+                               [&](const Cached& c) { return c.term.label() == pick.label(); }),
+                named.end());
+  }
+
+  // Final joint fit of every chosen term.
+  res.cv_sse = cv_prev;
+  res.residual = y;
+  if (chosen.empty()) {
+    res.sigma_um = std::sqrt(y.squaredNorm() / std::max<double>(static_cast<double>(n), 1.0));
+    return res;
+  }
+  const Eigen::Index P = X.cols();
+  Mat XtX = X.transpose() * X;
+  XtX.diagonal().array() += 1e-12 * XtX.trace() / static_cast<double>(P);
+  Eigen::LDLT<Mat> ldlt(XtX);
+  const Vec beta = ldlt.solve(X.transpose() * y);
+  res.residual = y - X * beta;
+  const double rss = res.residual.squaredNorm();
+  const double s2 = rss / std::max<double>(static_cast<double>(n - P), 1.0);
+  res.sigma_um = std::sqrt(s2);
+  const Mat inv = ldlt.solve(Mat::Identity(P, P));
+  Eigen::Index col = 0;
+  for (std::size_t i = 0; i < chosen.size(); ++i) {
+    SelectedTerm st;
+    st.term = chosen[i];
+    const auto k = static_cast<Eigen::Index>(st.term.columns());
+    const Vec bt = beta.segment(col, k);
+    const Mat Vt = inv.block(col, col, k, k);
+    for (Eigen::Index c = 0; c < k; ++c) {
+      st.term.coef.push_back(bt[c]);
+      st.term.stderr_.push_back(std::sqrt(std::max(s2 * Vt(c, c), 0.0)));
+    }
+    // SS this term alone removes given the others: βᵀ V⁻¹ β.
+    const double drop = bt.dot(Vt.ldlt().solve(bt));
+    st.explained_fraction = res.baseline_sse > 0.0 ? drop / res.baseline_sse : 0.0;
+    st.ambiguous_with = ambiguous[i];
+    res.terms.push_back(std::move(st));
+    col += k;
+  }
+  std::stable_sort(res.terms.begin(), res.terms.end(),
+                   [](const SelectedTerm& a, const SelectedTerm& b) {
+                     return a.explained_fraction > b.explained_fraction;
+                   });
+  return res;
+}
+
+}  // namespace abbe::diagnose

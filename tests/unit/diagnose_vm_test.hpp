@@ -1,0 +1,117 @@
+#pragma once
+// Shared by the diagnose_*_test.cpp files: a virtual machine whose laser
+// campaign is noise-free (so the error model matches the truth to first
+// order), measured at random tool-tip positions with random directions of
+// motion and increasing time, plus helpers to turn the measurement into
+// measured data and to fit an oracle.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "abbe/diagnose/diagnosis.hpp"
+#include "abbe/diagnose/selection.hpp"
+#include "abbe/io/measured_data.hpp"
+#include "abbe/machine/machine.hpp"
+#include "abbe/sim/laser_campaign.hpp"
+#include "abbe/sim/truth_generator.hpp"
+#include "abbe/sim/validation_measurement.hpp"
+
+namespace abbe::diagnose::testing {
+
+struct VirtualMachine {
+  sim::GeneratedMachine generated;
+  machine::Machine machine;
+};
+
+inline const VirtualMachine& virtual_machine() {
+  static const VirtualMachine vm = [] {
+    sim::GeneratorOptions go;
+    go.seed = 7;
+    go.profile = "mazak";
+    go.noise_scale = 0.0;
+    sim::GeneratedMachine g = sim::generate_machine(go);
+    // The generator gives every positioning component a 10 mm ballscrew cycle
+    // that the 25 mm tables cannot see: a real hidden effect (found by
+    // DiagnoseSample.FindsTheScrewCycle). Remove waves shorter than two table
+    // intervals here, so that "noise only" means noise only.
+    for (auto& axis : g.truth.axes)
+      for (auto& c : axis.components) {
+        std::vector<sim::Wave> keep;
+        for (const auto& w : c.waves)
+          if (w.wavelength >= 2.0 * go.spacing_mm) keep.push_back(w);
+        c.waves = keep;
+      }
+    const sim::CampaignResult r = sim::run_campaign(g);
+    const auto dir = std::filesystem::path(::testing::TempDir()) / "abbe_diagnose_vm";
+    std::filesystem::create_directories(dir);
+    { std::ofstream(dir / "errors.csv") << sim::table_to_csv(r); }
+    machine::Machine m =
+        machine::Machine::parse(sim::machine_to_yaml(g, r, "errors.csv"), "<vm>", dir.string());
+    return VirtualMachine{std::move(g), std::move(m)};
+  }();
+  return vm;
+}
+
+// Random tool-tip positions in [lo, hi], random last directions, 5 s apart.
+inline std::vector<sim::TipState> random_tips(const sim::TruthMachine& truth, int n,
+                                              std::uint64_t seed, Eigen::Vector3d lo,
+                                              Eigen::Vector3d hi, const std::string& set = "run") {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<sim::TipState> tips;
+  for (int i = 0; i < n; ++i) {
+    sim::TipState t;
+    for (int k = 0; k < 3; ++k) t.p[k] = lo[k] + (hi[k] - lo[k]) * u(rng);
+    t.tool_length = truth.tool_length;
+    for (auto& d : t.dir) d = u(rng) < 0.5 ? -1 : 1;
+    t.time = 5.0 * i;
+    t.set = set;
+    tips.push_back(t);
+  }
+  return tips;
+}
+
+inline void full_box(const sim::TruthMachine& truth, Eigen::Vector3d& lo, Eigen::Vector3d& hi) {
+  sim::default_box(truth, truth.tool_length, lo, hi);
+}
+
+inline io::MeasuredData to_measured(const std::vector<sim::MeasuredPoint>& pts) {
+  io::MeasuredData d;
+  d.file = "<vm>";
+  d.has_column = {true, true, true};
+  std::size_t line = 2;
+  for (const auto& m : pts) {
+    io::MeasuredRow r;
+    r.p = m.tip.p;
+    for (int k = 0; k < 3; ++k) r.d[static_cast<std::size_t>(k)] = m.deviation_um[k];
+    r.t = m.tip.time;
+    for (std::size_t k = 0; k < 3; ++k) r.v[k] = static_cast<std::int8_t>(m.tip.dir[k]);
+    r.tool_length = m.tip.tool_length;
+    r.set = m.tip.set;
+    r.line = line++;
+    d.rows.push_back(r);
+  }
+  return d;
+}
+
+// Held-out gain (1 − holdout RMS / baseline RMS) of a fit of the given terms.
+inline double oracle_gain(const Problem& pb, const std::vector<Term>& terms, int folds,
+                          std::uint64_t seed) {
+  Eigen::Index cols = 0;
+  for (const Term& t : terms) cols += t.columns();
+  Eigen::MatrixXd X(static_cast<Eigen::Index>(pb.obs.size()), cols);
+  Eigen::Index c = 0;
+  for (const Term& t : terms) {
+    X.middleCols(c, t.columns()) = term_columns(pb, t);
+    c += t.columns();
+  }
+  const double cv =
+      cross_validated_sse(pb, X, pb.y, point_folds(pb.points.size(), folds, seed), folds);
+  return 1.0 - std::sqrt(cv / pb.y.squaredNorm());
+}
+
+}  // namespace abbe::diagnose::testing

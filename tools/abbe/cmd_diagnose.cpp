@@ -1,0 +1,98 @@
+// abbe diagnose: where the machine's error model is wrong on measured data,
+// which catalogued effect explains it, the extended model (overlay) and its
+// held-out gain (docs/diagnosis.md).
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "abbe/diagnose/diagnosis.hpp"
+#include "abbe/io/atomic_file.hpp"
+#include "abbe/io/input_error.hpp"
+#include "abbe/io/measured_data.hpp"
+#include "abbe/machine/machine.hpp"
+#include "command.hpp"
+
+namespace abbe::cli {
+namespace {
+
+struct DiagnoseCliOptions {
+  std::string machine;
+  std::string measured;
+  std::string model = "ae-arm";
+  std::string out;
+  std::string overlay;
+  std::string extend;
+  int folds = 5;
+  std::uint64_t seed = 1;
+  double max_period = 100.0;
+};
+
+int run_diagnose(const DiagnoseCliOptions& o, const GlobalOptions& g) {
+  const machine::Machine machine = machine::Machine::load(o.machine);
+  const io::MeasuredData data = io::load_measured_data(o.measured);
+  diagnose::DiagnoseOptions opt;
+  auto kind = model::parse_model_kind(o.model);
+  if (!kind)
+    throw InputError({"<command line>", 0, 0, "--model", ""},
+                     fmt::format("unknown model \"{}\" (htm, ae-arm or dual)", o.model));
+  opt.model = *kind;
+  opt.selection.folds = o.folds;
+  opt.selection.seed = o.seed;
+  opt.candidates.max_period_mm = o.max_period;
+  std::optional<diagnose::Overlay> extend;
+  if (!o.extend.empty()) {
+    extend = diagnose::Overlay::load(o.extend);
+    opt.extend = &*extend;
+  }
+  const diagnose::Diagnosis d = diagnose::diagnose(machine, data, opt);
+  if (!o.out.empty()) {
+    io::AtomicOutputFile f(o.out);
+    const std::string body = diagnose::report_json(d);
+    f.write(body.data(), body.size());
+    f.commit();
+  }
+  if (!o.overlay.empty()) {
+    io::AtomicOutputFile f(o.overlay);
+    const std::string body = diagnose::make_overlay(d, opt.extend).to_yaml();
+    f.write(body.data(), body.size());
+    f.commit();
+  }
+  if (!g.quiet) {
+    std::string text = diagnose::report_text(d);
+    if (g.verbose > 0)
+      for (const auto& l : d.log) text += "  " + l + "\n";
+    const bool json_on_stdout = o.out == "-";
+    std::fputs(text.c_str(), json_on_stdout ? stderr : stdout);
+  }
+  return kOk;
+}
+
+const CommandRegistrar registrar(
+    "diagnose",
+    "Find where the error model is wrong on measured data, name the cause, extend the model", 70,
+    [](CLI::App& sub, const GlobalOptions& g) -> CommandAction {
+      auto o = std::make_shared<DiagnoseCliOptions>();
+      sub.add_option("--machine", o->machine, "Machine file (YAML, docs/formats.md)")->required();
+      sub.add_option("--measured", o->measured, "Measured data (CSV, docs/formats.md)")->required();
+      sub.add_option("--model", o->model, "Error model diagnosed: htm, ae-arm or dual")
+          ->check(CLI::IsMember({"htm", "ae-arm", "dual"}))
+          ->capture_default_str();
+      sub.add_option("--out", o->out, "Write the JSON report to FILE (- for stdout)");
+      sub.add_option("--overlay", o->overlay, "Write the extended model (overlay YAML) to FILE");
+      sub.add_option("--extend", o->extend, "Add an earlier overlay to the model first");
+      sub.add_option("--folds", o->folds, "Folds of the held-out check")
+          ->check(CLI::Range(2, 50))
+          ->capture_default_str();
+      sub.add_option("--seed", o->seed, "Seed of the fold assignment")->capture_default_str();
+      sub.add_option("--max-period", o->max_period, "Longest cyclic period searched, mm")
+          ->check(CLI::Range(8.0, 10000.0))
+          ->capture_default_str();
+      const GlobalOptions* gp = &g;
+      return [o, gp] { return run_diagnose(*o, *gp); };
+    });
+
+}  // namespace
+}  // namespace abbe::cli
