@@ -62,7 +62,7 @@ LeastSquaresResult solve_least_squares(const Eigen::MatrixXd& a, const Eigen::Ve
   for (Eigen::Index c = 0; c < vn.cols(); ++c) {
     Eigen::VectorXd d = vn.col(c).cwiseQuotient(scale);
     d /= d.norm();
-    out.null_space.push_back({d});
+    out.null_space.push_back({d, vn.col(c)});
   }
   // cov(x_s) = σ² V_r Σ_r⁻² V_rᵀ, then back to the original scale.
   out.stderr_x = Eigen::VectorXd::Constant(n, std::numeric_limits<double>::quiet_NaN());

@@ -109,8 +109,8 @@ int run_linear(const IdentifyCliOptions& o, const machine::Machine& machine,
   js["unidentifiable"] = nlohmann::json::array();
   const auto names = identify::param_names();
   for (const auto& nd : f.null_space) {
-    const std::string d = identify::describe_combination(nd.direction, names);
-    text += fmt::format("  unidentifiable combination: {}\n", d);
+    const std::string d = identify::describe_combination(nd.direction_scaled, names);
+    text += fmt::format("  unidentifiable combination (unit-sensitivity scale): {}\n", d);
     js["unidentifiable"].push_back(d);
   }
   // The paper's monomial systems.

@@ -19,6 +19,9 @@ struct NullDirection {
   // Unit vector in the unknowns (original scale, normalised) along which the
   // data do not change: these combinations are not identifiable.
   Eigen::VectorXd direction;
+  // The same in the column-scaled unknowns (unit sensitivity each): better
+  // balanced for reading which unknowns take part.
+  Eigen::VectorXd direction_scaled;
 };
 
 struct LeastSquaresResult {
