@@ -27,8 +27,8 @@ struct VirtualMachine {
   machine::Machine machine;
 };
 
-inline const VirtualMachine& virtual_machine() {
-  static const VirtualMachine vm = [] {
+inline VirtualMachine build_virtual_machine(bool strip_short_waves, const std::string& name) {
+  {
     sim::GeneratorOptions go;
     go.seed = 7;
     go.profile = "mazak";
@@ -40,19 +40,29 @@ inline const VirtualMachine& virtual_machine() {
     // intervals here, so that "noise only" means noise only.
     for (auto& axis : g.truth.axes)
       for (auto& c : axis.components) {
+        if (!strip_short_waves) break;
         std::vector<sim::Wave> keep;
         for (const auto& w : c.waves)
           if (w.wavelength >= 2.0 * go.spacing_mm) keep.push_back(w);
         c.waves = keep;
       }
     const sim::CampaignResult r = sim::run_campaign(g);
-    const auto dir = std::filesystem::path(::testing::TempDir()) / "abbe_diagnose_vm";
+    const auto dir = std::filesystem::path(::testing::TempDir()) / name;
     std::filesystem::create_directories(dir);
     { std::ofstream(dir / "errors.csv") << sim::table_to_csv(r); }
     machine::Machine m =
         machine::Machine::parse(sim::machine_to_yaml(g, r, "errors.csv"), "<vm>", dir.string());
     return VirtualMachine{std::move(g), std::move(m)};
-  }();
+  }
+}
+
+inline const VirtualMachine& virtual_machine() {
+  static const VirtualMachine vm = build_virtual_machine(true, "abbe_diagnose_vm");
+  return vm;
+}
+// The generator's machine as is (with its 10 mm ballscrew cycle).
+inline const VirtualMachine& virtual_machine_with_screw_cycle() {
+  static const VirtualMachine vm = build_virtual_machine(false, "abbe_diagnose_vm_screw");
   return vm;
 }
 
