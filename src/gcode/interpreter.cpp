@@ -119,6 +119,11 @@ Interpreter::Interpreter(Interpreter&&) noexcept = default;
 Interpreter& Interpreter::operator=(Interpreter&&) noexcept = default;
 
 bool Interpreter::program_ended() const { return state_->ended; }
+bool Interpreter::inch() const { return state_->inch; }
+bool Interpreter::incremental() const { return state_->incremental; }
+bool Interpreter::arc_centre_absolute() const { return state_->arc_centre_absolute; }
+Plane Interpreter::plane() const { return state_->plane; }
+Eigen::Vector3d Interpreter::program_position() const { return state_->pos; }
 Eigen::Vector3d Interpreter::position() const { return state_->tip(state_->pos); }
 
 void Interpreter::execute(const Block& block, const std::string& raw_line, const MotionSink& sink) {

@@ -53,6 +53,14 @@ class Interpreter {
   bool program_ended() const;  // M2 / M30 seen
   Eigen::Vector3d position() const;  // current tool tip, mm
 
+  // Modal state after the last executed block (for post-processors that
+  // write coordinates back in the program's own frame and units).
+  bool inch() const;                         // G20
+  bool incremental() const;                  // G91
+  bool arc_centre_absolute() const;          // G90.1
+  Plane plane() const;                       // G17/G18/G19
+  Eigen::Vector3d program_position() const;  // current point in the program frame, program units
+
  private:
   struct State;
   std::unique_ptr<State> state_;

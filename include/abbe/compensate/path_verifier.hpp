@@ -1,0 +1,49 @@
+#pragma once
+// verify_program: how far the predicted path of a compensated program lies
+// from the nominal path of the original. Both programs stream through the
+// front end side by side; only feed motions (G1, arcs, helices, the feeds
+// of canned cycles) are compared — rapids are not cutting moves and are
+// compensated at their written end coordinates only.
+//  - forward: every fragment point c of the compensated program is
+//    predicted (c + e(c)) and its distance to the nominal curve of the
+//    original (lines, true arcs) is taken, searching the original's feed
+//    motions from the current one a few ahead (the compensated program has
+//    the same motions, some split into pieces);
+//  - backward: every nominal fragment point n of the original is measured
+//    to the predicted compensated motion that passes nearest (the commanded
+//    curve moved by the error at its closest point).
+#include <cstddef>
+#include <istream>
+#include <string>
+
+#include "abbe/gcode/interpreter.hpp"
+#include "abbe/model/error_model.hpp"
+
+namespace abbe::compensate {
+
+struct VerifyOptions {
+  double step = 5.0;       // fragment step, mm
+  std::size_t window = 6;  // original motions searched ahead of the current one
+  // An axis moving less than this over a motion (a compensation correction
+  // of an axis nominally at rest) keeps its previous direction sign, mm.
+  double deadband = 0.05;
+};
+
+struct VerifyStats {
+  std::size_t points = 0;  // forward points
+  double max_um = 0.0;
+  double rms_um = 0.0;
+  std::size_t max_line = 0;  // line of the compensated program at the max
+  std::size_t backward_points = 0;
+  double backward_max_um = 0.0;
+  double backward_rms_um = 0.0;
+  std::size_t backward_max_line = 0;  // line of the original at the backward max
+  std::size_t out_of_range_lookups = 0;
+};
+
+VerifyStats verify_program(std::istream& compensated, const std::string& compensated_file,
+                           std::istream& original, const std::string& original_file,
+                           const gcode::InterpreterConfig& config, const model::ErrorModel& model,
+                           const VerifyOptions& options);
+
+}  // namespace abbe::compensate

@@ -1,0 +1,54 @@
+#pragma once
+// compensate_program: rewrites an NC program so that the predicted path of
+// the rewritten program is the nominal path of the original (docs/compensation.md).
+// Streams block by block: parse → interpret → fragment → solve each
+// fragment point (PointSolver) → replace exactly the numbers of the corrected
+// coordinates in the raw line; every other byte is kept. Straight feeds and
+// arcs whose correction is not linear along them within tol/2 are split into
+// pieces (lines: G1 pieces; single-turn arcs: arc pieces, which keep the
+// modal motion code); rapids get their written end coordinates corrected;
+// canned cycles their hole position and depth.
+#include <cstddef>
+#include <functional>
+#include <istream>
+#include <string>
+#include <vector>
+
+#include "abbe/compensate/point_solver.hpp"
+#include "abbe/gcode/interpreter.hpp"
+#include "abbe/model/error_model.hpp"
+
+namespace abbe::compensate {
+
+struct CompensateOptions {
+  double tol_um = 1.0;    // allowed predicted deviation from the nominal path
+  double step = 5.0;      // fragment step, mm
+  int decimals = -1;      // max decimals of a corrected number; −1: 4 (mm) / 5 (inch)
+  bool renumber = false;  // give inserted pieces N numbers (previous N + piece index)
+  SolverOptions solver;
+};
+
+struct CompensateSummary {
+  std::size_t lines = 0;
+  std::size_t blocks_changed = 0;
+  std::size_t pieces_inserted = 0;
+  std::size_t points = 0;               // solved points
+  double max_correction_um = 0.0;       // max |c − n|
+  std::size_t out_of_range_points = 0;  // points with a lookup outside the tables
+  std::size_t unconverged_points = 0;
+  std::vector<std::size_t> unconverged_lines;  // first 20
+  std::size_t arcs_over_tolerance = 0;         // multi-turn arcs that would need splitting
+  std::size_t uncompensated_blocks = 0;        // G91 canned cycles with L > 1
+  std::vector<std::string> warnings;           // first 20, "file:line: text"
+};
+
+using TextSink = std::function<void(const char* data, std::size_t size)>;
+
+// Throws abbe::InputError for what the front end refuses (same message) and
+// for a point outside the tables under the `error` policy.
+CompensateSummary compensate_program(std::istream& in, const std::string& file,
+                                     const gcode::InterpreterConfig& config,
+                                     const model::ErrorModel& model,
+                                     const CompensateOptions& options, const TextSink& out);
+
+}  // namespace abbe::compensate

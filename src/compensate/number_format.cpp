@@ -1,0 +1,56 @@
+#include "abbe/compensate/number_format.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace abbe::compensate {
+
+NumberStyle number_style(std::string_view text) {
+  NumberStyle s;
+  std::size_t i = 0;
+  while (i < text.size() && (text[i] == ' ' || text[i] == '\t')) ++i;
+  if (i < text.size() && (text[i] == '+' || text[i] == '-')) {
+    s.plus_sign = text[i] == '+';
+    ++i;
+  }
+  while (i < text.size() && (text[i] == ' ' || text[i] == '\t')) ++i;
+  s.leading_zero = !(i < text.size() && text[i] == '.');
+  const std::size_t dot = text.find('.');
+  if (dot != std::string_view::npos) {
+    int d = 0;
+    for (std::size_t k = dot + 1; k < text.size(); ++k)
+      if (text[k] >= '0' && text[k] <= '9') ++d;
+    s.decimals = d;
+  }
+  return s;
+}
+
+double round_to(double value, int decimals) {
+  const double f = std::pow(10.0, decimals);
+  return std::round(value * f) / f;
+}
+
+std::string format_number(double value, const NumberStyle& style, int max_decimals) {
+  const int places = std::max(style.decimals, max_decimals);
+  std::string t = fmt::format("{:.{}f}", round_to(value, places), places);
+  if (t.find('.') != std::string::npos) {
+    std::size_t keep = t.find('.') + static_cast<std::size_t>(style.decimals);
+    while (t.size() - 1 > keep && t.back() == '0') t.pop_back();
+    if (t.back() == '.' && style.decimals == 0) t.pop_back();
+  }
+  if (t == "-0" || t.find_first_not_of("-0.") == std::string::npos) {
+    if (t[0] == '-') t.erase(0, 1);  // no negative zero
+  }
+  if (!style.leading_zero) {
+    if (t.rfind("0.", 0) == 0)
+      t.erase(0, 1);
+    else if (t.rfind("-0.", 0) == 0)
+      t.erase(1, 1);
+  }
+  if (style.plus_sign && t[0] != '-') t.insert(0, "+");
+  return t;
+}
+
+}  // namespace abbe::compensate

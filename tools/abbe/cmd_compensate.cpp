@@ -1,0 +1,129 @@
+// abbe compensate: writes the NC program with corrected coordinates so that
+// the predicted path is the nominal one (docs/compensation.md). Streams block
+// by block into a temporary file renamed over the output at the end.
+#include <fmt/format.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "abbe/compensate/program_compensator.hpp"
+#include "abbe/io/atomic_file.hpp"
+#include "abbe/io/input_error.hpp"
+#include "abbe/machine/machine.hpp"
+#include "abbe/model/error_model.hpp"
+#include "command.hpp"
+
+namespace abbe::cli {
+namespace {
+
+struct CompensateCliOptions {
+  std::string input;
+  std::string machine;
+  std::string model = "ae-arm";
+  std::string output;
+  compensate::CompensateOptions c;
+  bool in_place = false;
+  bool allow_unconverged = false;
+};
+
+bool same_file(const std::string& a, const std::string& b) {
+  std::error_code ec;
+  if (std::filesystem::equivalent(a, b, ec)) return true;
+  return std::filesystem::weakly_canonical(a, ec) == std::filesystem::weakly_canonical(b, ec);
+}
+
+int run_compensate(CompensateCliOptions o) {
+  if (o.output.empty() && !o.in_place)
+    throw InputError({"<command line>", 0, 0, "-o", ""},
+                     "no output: give -o OUT.nc (or --in-place to replace the input)");
+  if (o.in_place) {
+    if (!o.output.empty() && !same_file(o.output, o.input))
+      throw InputError({"<command line>", 0, 0, "--in-place", ""},
+                       "--in-place and -o name different files");
+    o.output = o.input;
+  } else if (o.output != "-" && same_file(o.output, o.input)) {
+    throw InputError({"<command line>", 0, 0, "-o", ""},
+                     "the output is the input: give --in-place to replace it");
+  }
+  const machine::Machine machine = machine::Machine::load(o.machine);
+  const auto kind = model::parse_model_kind(o.model);
+  if (!kind)
+    throw InputError({"<command line>", 0, 0, "--model", ""},
+                     fmt::format("unknown model \"{}\" (htm, ae-arm or dual)", o.model));
+  const model::ErrorModel model(machine, *kind);
+  gcode::InterpreterConfig config;
+  config.default_tool_length = machine.tool_length();
+  config.tool_lengths = machine.tool_table();
+  config.work_offsets = machine.work_offsets();
+
+  std::ifstream in(o.input, std::ios::binary);
+  if (!in)
+    throw InputError({o.input, 0, 0, "", ""},
+                     std::string("cannot open the input: ") + std::strerror(errno));
+  io::AtomicOutputFile out(o.output);
+  const compensate::CompensateSummary s = compensate::compensate_program(
+      in, o.input, config, model, o.c, [&](const char* d, std::size_t n) { out.write(d, n); });
+
+  std::string text = fmt::format(
+      "{}: {} lines, {} blocks changed, {} pieces inserted, {} points, max correction {:.4f} µm, "
+      "{} out of range ({}), {} unconverged\n",
+      o.input, s.lines, s.blocks_changed, s.pieces_inserted, s.points, s.max_correction_um,
+      s.out_of_range_points, machine::to_string(machine.out_of_range()), s.unconverged_points);
+  if (s.arcs_over_tolerance)
+    text += fmt::format("  {} multi-turn arcs kept whole beyond tol\n", s.arcs_over_tolerance);
+  if (s.uncompensated_blocks)
+    text += fmt::format("  {} canned-cycle blocks left uncompensated\n", s.uncompensated_blocks);
+  for (const auto& w : s.warnings) text += "  warning: " + w + "\n";
+  if (s.unconverged_points) {
+    std::string lines;
+    for (auto l : s.unconverged_lines) lines += fmt::format("{}{}", lines.empty() ? "" : ", ", l);
+    text += fmt::format("  unconverged points on lines {}\n", lines);
+    if (!o.allow_unconverged) {
+      std::fputs(text.c_str(), stderr);
+      throw InputError(
+          {o.input, s.unconverged_lines.front(), 0, "", ""},
+          fmt::format("{} points did not converge to {} µm in {} iterations; no "
+                      "output written (--allow-unconverged writes it anyway)",
+                      s.unconverged_points, o.c.solver.tolerance_um, o.c.solver.max_iterations));
+    }
+  }
+  out.commit();
+  std::fputs(text.c_str(), o.output == "-" ? stderr : stdout);
+  return kOk;
+}
+
+const CommandRegistrar registrar(
+    "compensate", "Write the NC program with coordinates corrected for the predicted errors", 40,
+    [](CLI::App& sub, const GlobalOptions&) -> CommandAction {
+      auto o = std::make_shared<CompensateCliOptions>();
+      sub.add_option("input", o->input, "NC program")->required();
+      sub.add_option("--machine", o->machine, "Machine file (YAML, docs/formats.md)")->required();
+      sub.add_option("--model", o->model, "Error model: htm, ae-arm or dual")
+          ->check(CLI::IsMember({"htm", "ae-arm", "dual"}))
+          ->capture_default_str();
+      sub.add_option("-o,--output", o->output, "Output program (written atomically), - for stdout");
+      sub.add_option("--tol", o->c.tol_um,
+                     "Allowed predicted deviation from the nominal path, µm (splits moves)")
+          ->check(CLI::PositiveNumber)
+          ->capture_default_str();
+      sub.add_option("--step", o->c.step, "Fragment step, mm")
+          ->check(CLI::PositiveNumber)
+          ->capture_default_str();
+      sub.add_option("--decimals", o->c.decimals,
+                     "Decimal places of corrected numbers (default 4 in mm, 5 in inch programs; "
+                     "never fewer than the number had)")
+          ->check(CLI::Range(0, 9));
+      sub.add_flag("--renumber", o->c.renumber, "Give inserted pieces N numbers");
+      sub.add_flag("--in-place", o->in_place, "Replace the input (atomically)");
+      sub.add_flag("--allow-unconverged", o->allow_unconverged,
+                   "Write the output even if some points did not converge");
+      return [o] { return run_compensate(*o); };
+    });
+
+}  // namespace
+}  // namespace abbe::cli

@@ -1,0 +1,92 @@
+// abbe verify: predicts a compensated program and measures its distance from
+// the nominal path of the original (docs/compensation.md).
+#include <fmt/format.h>
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "abbe/compensate/path_verifier.hpp"
+#include "abbe/io/input_error.hpp"
+#include "abbe/machine/machine.hpp"
+#include "abbe/model/error_model.hpp"
+#include "command.hpp"
+
+namespace abbe::cli {
+namespace {
+
+struct VerifyCliOptions {
+  std::string input;
+  std::string against;
+  std::string machine;
+  std::string model = "ae-arm";
+  double tol_um = 1.0;
+  bool check = false;
+  compensate::VerifyOptions v;
+};
+
+std::ifstream open_input(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    throw InputError({path, 0, 0, "", ""},
+                     std::string("cannot open the input: ") + std::strerror(errno));
+  return in;
+}
+
+int run_verify(const VerifyCliOptions& o) {
+  const machine::Machine machine = machine::Machine::load(o.machine);
+  const auto kind = model::parse_model_kind(o.model);
+  if (!kind)
+    throw InputError({"<command line>", 0, 0, "--model", ""},
+                     fmt::format("unknown model \"{}\" (htm, ae-arm or dual)", o.model));
+  const model::ErrorModel model(machine, *kind);
+  gcode::InterpreterConfig config;
+  config.default_tool_length = machine.tool_length();
+  config.tool_lengths = machine.tool_table();
+  config.work_offsets = machine.work_offsets();
+  std::ifstream comp = open_input(o.input);
+  std::ifstream orig = open_input(o.against);
+  const compensate::VerifyStats s =
+      compensate::verify_program(comp, o.input, orig, o.against, config, model, o.v);
+  const double max = std::max(s.max_um, s.backward_max_um);
+  std::fputs(
+      fmt::format("{} against {} (model {}):\n"
+                  "  predicted compensated -> nominal: {} points, max {:.4f} µm (line {}), rms "
+                  "{:.4f} µm\n"
+                  "  nominal -> predicted compensated: {} points, max {:.4f} µm (line {}), rms "
+                  "{:.4f} µm\n"
+                  "  max {:.4f} µm, tol {} µm: {}\n",
+                  o.input, o.against, model::to_string(*kind), s.points, s.max_um, s.max_line,
+                  s.rms_um, s.backward_points, s.backward_max_um, s.backward_max_line,
+                  s.backward_rms_um, max, o.tol_um, max <= o.tol_um ? "pass" : "FAIL")
+          .c_str(),
+      stdout);
+  if (o.check && max > o.tol_um) return kBadInput;
+  return kOk;
+}
+
+const CommandRegistrar registrar(
+    "verify", "Measure the predicted path of a compensated program against the nominal path", 41,
+    [](CLI::App& sub, const GlobalOptions&) -> CommandAction {
+      auto o = std::make_shared<VerifyCliOptions>();
+      sub.add_option("input", o->input, "Compensated NC program")->required();
+      sub.add_option("--against", o->against, "The original NC program")->required();
+      sub.add_option("--machine", o->machine, "Machine file (YAML, docs/formats.md)")->required();
+      sub.add_option("--model", o->model, "Error model: htm, ae-arm or dual")
+          ->check(CLI::IsMember({"htm", "ae-arm", "dual"}))
+          ->capture_default_str();
+      sub.add_option("--tol", o->tol_um, "Tolerance, µm")
+          ->check(CLI::PositiveNumber)
+          ->capture_default_str();
+      sub.add_option("--step", o->v.step, "Fragment step, mm")
+          ->check(CLI::PositiveNumber)
+          ->capture_default_str();
+      sub.add_flag("--check", o->check, "Exit 1 if the max distance exceeds --tol");
+      return [o] { return run_verify(*o); };
+    });
+
+}  // namespace
+}  // namespace abbe::cli
