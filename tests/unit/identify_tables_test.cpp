@@ -60,15 +60,18 @@ machine::Machine truth_machine(unsigned seed) {
   return machine::Machine(spec);
 }
 
-std::vector<Observation> grid(const model::ErrorModel& m, double step, double shift) {
+std::vector<Observation> grid(const model::ErrorModel& m, double step, double shift,
+                              double tool_length = kL) {
   std::vector<Observation> obs;
   model::ModelData data;
-  for (double z = kLo.z() + shift; z <= kHi.z() + 1e-9; z += step)
+  // The same axis positions s for any tool length: P_z = s_z − L.
+  const double dz = kL - tool_length;
+  for (double z = kLo.z() + dz + shift; z <= kHi.z() + dz + 1e-9; z += step)
     for (double y = kLo.y() + shift; y <= kHi.y() + 1e-9; y += step)
       for (double x = kLo.x() + shift; x <= kHi.x() + 1e-9; x += step) {
         Observation o;
         o.point.p = {x, y, z};
-        o.point.tool_length = kL;
+        o.point.tool_length = tool_length;
         o.d_um = m.evaluate(o.point, data).e_um;
         obs.push_back(o);
       }
@@ -125,9 +128,23 @@ TEST(IdentifyTables, SeparabilityReport) {
   // slopes); the positioning EXX loses only its constant (offsets add up).
   EXPECT_EQ(sep(f, "EAX").null_dims, 1);
   EXPECT_EQ(sep(f, "EXX").null_dims, 1);
-  for (const auto& s : f.separability)
-    fmt::print("{} share {:.3f} dims {}/{} with {}\n", machine::component_name(s.id), s.null_share,
-               s.null_dims, s.knots, fmt::join(s.confounded_with, " "));
+}
+
+// A second tool length changes the z arm of the tool-side axes: the pitch
+// and roll of Z (EBZ, EAZ) separate from Z's straightness; the yaw ECZ,
+// whose arms lie in x and y, does not.
+TEST(IdentifyTables, SecondToolLengthSeparatesPitchAndRollOfZ) {
+  const machine::Machine truth = truth_machine(13);
+  const model::ErrorModel ae(truth, model::ModelKind::ae_arm);
+  const ChainExpansion chain(truth);
+  auto data = grid(ae, 50.0, 0.0, kL);
+  const auto longer = grid(ae, 50.0, 0.0, kL + 150.0);
+  data.insert(data.end(), longer.begin(), longer.end());
+  const TableFit f = fit_component_tables(chain, data, {});
+  EXPECT_LT(f.residual_max_um, 1e-6);
+  EXPECT_LE(sep(f, "EAZ").null_dims, 1);
+  EXPECT_LE(sep(f, "EBZ").null_dims, 1);
+  EXPECT_EQ(sep(f, "ECZ").null_dims, sep(f, "ECZ").knots);
 }
 
 }  // namespace
