@@ -203,6 +203,7 @@ const CommandRegistrar registrar(
     "motions (--canon)",
     15, [](CLI::App& sub, const GlobalOptions&) -> CommandAction {
       auto o = std::make_shared<InterpretOptions>();
+      sub.footer("Example: abbe interpret nc-samples/thesis-toolpath-1.ngc --canon --tool 1=200");
       sub.add_option("program", o->program, "NC program (RS274/LinuxCNC G-code), - for stdin")
           ->required();
       sub.add_flag("--canon", o->canon,

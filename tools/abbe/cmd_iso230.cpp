@@ -44,6 +44,7 @@ const CommandRegistrar registrar(
     "systematic error E, mean deviation M)",
     60, [](CLI::App& sub, const GlobalOptions&) -> CommandAction {
       auto o = std::make_shared<Iso230Options>();
+      sub.footer("Example: abbe iso230 machines/sample/runs.csv --json -o iso230.json");
       sub.add_option("runs", o->runs,
                      "Runs CSV: axis,component,target_mm,run,direction,deviation ('-' = stdin)")
           ->required();

@@ -18,6 +18,7 @@
 #include "abbe/io/atomic_file.hpp"
 #include "abbe/io/input_error.hpp"
 #include "abbe/io/path_writer.hpp"
+#include "abbe/io/progress.hpp"
 #include "abbe/machine/machine.hpp"
 #include "abbe/path/fragmenter.hpp"
 #include "command.hpp"
@@ -78,7 +79,7 @@ gcode::InterpreterConfig make_config(const PathOptions& o) {
   return config;
 }
 
-int run_path(const PathOptions& o) {
+int run_path(const PathOptions& o, const GlobalOptions& g) {
   const gcode::InterpreterConfig config = make_config(o);
   const io::PathFormat format = io::parse_path_format(o.format);
 
@@ -99,13 +100,27 @@ int run_path(const PathOptions& o) {
   fragment_options.step = o.step;
   fragment_options.rapid_rate = o.rapid_rate;
   path::Fragmenter fragmenter(fragment_options);
+  // Progress on a terminal: bytes of the program read (points from stdin).
+  io::Progress progress("path", from_stdin ? 0 : io::Progress::file_size(o.program), !g.quiet,
+                        from_stdin ? "points" : "bytes");
+  std::size_t seen = 0;
+  auto tick = [&] {
+    if (!progress.active() || (++seen & 4095) != 0) return;
+    if (from_stdin) return progress.update(seen);
+    const auto pos = file.tellg();
+    if (pos >= 0) progress.update(static_cast<std::uint64_t>(pos));
+  };
 
   if (o.count_only) {
     // Fragments everything but writes only a summary (benchmarks, checks).
     std::size_t points = 0;
-    const path::PointSink count = [&](const path::PathPoint&) { ++points; };
+    const path::PointSink count = [&](const path::PathPoint&) {
+      ++points;
+      tick();
+    };
     const auto stats = gcode::run_program(
         *in, o.program, config, [&](const gcode::Motion& m) { fragmenter.add(m, count); });
+    progress.finish();
     fmt::print("lines={} motions={} points={} time_s={:.3f}\n", stats.lines, stats.motions, points,
                fragmenter.time());
     return kOk;
@@ -113,9 +128,13 @@ int run_path(const PathOptions& o) {
 
   io::AtomicOutputFile out(o.output);
   io::PathWriter writer(format, [&](const char* data, std::size_t size) { out.write(data, size); });
-  const path::PointSink write = [&](const path::PathPoint& p) { writer.write(p); };
+  const path::PointSink write = [&](const path::PathPoint& p) {
+    writer.write(p);
+    tick();
+  };
   const auto stats = gcode::run_program(*in, o.program, config,
                                         [&](const gcode::Motion& m) { fragmenter.add(m, write); });
+  progress.finish();
   writer.finish();
   out.commit();
   spdlog::debug("{}: {} lines, {} motions, {} points, {:.1f} s estimated", o.program, stats.lines,
@@ -126,8 +145,12 @@ int run_path(const PathOptions& o) {
 const CommandRegistrar registrar(
     "path",
     "Fragment an NC program into points (at most --step apart) and write them as CSV or JSON", 20,
-    [](CLI::App& sub, const GlobalOptions&) -> CommandAction {
+    [](CLI::App& sub, const GlobalOptions& g) -> CommandAction {
       auto o = std::make_shared<PathOptions>();
+      const GlobalOptions* gp = &g;
+      sub.footer(
+          "Example: abbe path nc-samples/thesis-toolpath-1.ngc "
+          "--machine machines/sample/machine.yaml -o path.csv");
       sub.add_option("program", o->program, "NC program (RS274/LinuxCNC G-code), - for stdin")
           ->required();
       sub.add_option("-o,--output", o->output, "Output file (written atomically), - for stdout")
@@ -149,7 +172,7 @@ const CommandRegistrar registrar(
                      "Machine file (YAML): tool length, tool table and work offsets");
       sub.add_flag("--count,--null", o->count_only,
                    "Fragment but write only a one-line summary to stdout (no points)");
-      return [o] { return run_path(*o); };
+      return [o, gp] { return run_path(*o, *gp); };
     });
 
 }  // namespace

@@ -23,6 +23,7 @@
 #include "abbe/io/atomic_file.hpp"
 #include "abbe/io/input_error.hpp"
 #include "abbe/io/path_writer.hpp"
+#include "abbe/io/progress.hpp"
 #include "abbe/machine/machine.hpp"
 #include "abbe/model/error_model.hpp"
 #include "abbe/path/fragmenter.hpp"
@@ -274,7 +275,7 @@ bool ends_with(const std::string& s, const std::string& suffix) {
          s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-int run_predict(const PredictOptions& o) {
+int run_predict(const PredictOptions& o, const GlobalOptions& g) {
   const machine::Machine machine = machine::Machine::load(o.machine);
   std::vector<model::ModelKind> kinds;
   if (o.model == "all") {
@@ -311,6 +312,16 @@ int run_predict(const PredictOptions& o) {
   }
 
   std::size_t n_points = 0;
+  // Progress on a terminal: bytes of the input file read, or points from stdin.
+  const bool from_file = o.input != "-";
+  io::Progress progress("predict", from_file ? io::Progress::file_size(o.input) : 0, !g.quiet,
+                        from_file ? "bytes" : "points");
+  auto tick = [&] {
+    if (!progress.active() || (n_points & 4095) != 0) return;
+    if (!from_file) return progress.update(n_points);
+    const auto pos = file.tellg();
+    if (pos >= 0) progress.update(static_cast<std::uint64_t>(pos));
+  };
   auto evaluate = [&](const model::EvalPoint& p, std::size_t line) {
     for (std::size_t i = 0; i < models.size(); ++i) {
       try {
@@ -323,6 +334,7 @@ int run_predict(const PredictOptions& o) {
       stats[i].add(devs[i].e_um);
     }
     ++n_points;
+    tick();
     if (writer) writer->write(p, line, devs);
   };
 
@@ -353,6 +365,7 @@ int run_predict(const PredictOptions& o) {
                        [&](const gcode::Motion& m) { fragmenter.add(m, sink); });
   }
 
+  progress.finish();
   // Summary.
   nlohmann::json summary;
   summary["machine"] = machine.name();
@@ -400,8 +413,12 @@ int run_predict(const PredictOptions& o) {
 const CommandRegistrar registrar(
     "predict",
     "Predict the deviation of the tool tip along an NC program or at the points of a CSV file", 30,
-    [](CLI::App& sub, const GlobalOptions&) -> CommandAction {
+    [](CLI::App& sub, const GlobalOptions& g) -> CommandAction {
       auto o = std::make_shared<PredictOptions>();
+      const GlobalOptions* gp = &g;
+      sub.footer(
+          "Example: abbe predict nc-samples/thesis-toolpath-1.ngc "
+          "--machine machines/sample/machine.yaml --model all -o predicted.csv");
       sub.add_option("input", o->input,
                      "NC program, or a CSV of points (x,y,z[,vx,vy,vz,tool_length]); - for stdin")
           ->required();
@@ -423,7 +440,7 @@ const CommandRegistrar registrar(
       sub.add_flag("--points", o->points, "The input is a CSV of points (also for non-.csv names)");
       sub.add_flag("--summary-only", o->summary_only, "Write no points, only the summary");
       sub.add_option("--summary-json", o->summary_json, "Also write the summary as JSON to FILE");
-      return [o] { return run_predict(*o); };
+      return [o, gp] { return run_predict(*o, *gp); };
     });
 
 }  // namespace

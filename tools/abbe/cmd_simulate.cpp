@@ -204,6 +204,9 @@ const CommandRegistrar registrar(
     "with injected effects",
     70, [](CLI::App& sub, const GlobalOptions&) -> CommandAction {
       sub.require_subcommand(1);
+      sub.footer(
+          "Example: abbe simulate measure --truth machines/sample/truth.yaml --grid 100 "
+          "-o measured.csv");
       auto mo = std::make_shared<MachineOptions>();
       CLI::App* machine = sub.add_subcommand(
           "machine",

@@ -1,0 +1,43 @@
+#pragma once
+// HtmlPage: one self-contained HTML file — inline CSS, inline SVG plots and
+// a few lines of inline JavaScript (a table of contents) — that needs no
+// network and reads the same offline in any browser. Sections are added in
+// order by the report renderers; everything given as text is escaped.
+#include <string>
+#include <vector>
+
+namespace abbe::report {
+
+struct Table {
+  std::string caption;
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;  // cells as text
+  std::string id;                              // optional id attribute
+};
+
+class HtmlPage {
+ public:
+  explicit HtmlPage(std::string title);
+
+  // A section heading (h2), listed in the table of contents; `id` must be
+  // unique in the page.
+  void add_section(const std::string& id, const std::string& heading);
+  void add_subheading(const std::string& text);  // h3
+  void add_paragraph(const std::string& text);   // escaped text
+  void add_note(const std::string& text);        // a smaller, grey paragraph
+  void add_table(const Table& table);
+  // Figures (SVG elements from LinePlot/ColourMap) side by side, wrapping
+  // to the next row when the window is narrow.
+  void add_figures(const std::vector<std::string>& svgs);
+  // Facts shown under the title (key: value).
+  void add_fact(const std::string& key, const std::string& value);
+
+  std::string render() const;
+
+ private:
+  std::string title_;
+  std::vector<std::pair<std::string, std::string>> facts_;
+  std::string body_;
+};
+
+}  // namespace abbe::report

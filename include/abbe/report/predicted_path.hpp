@@ -1,0 +1,59 @@
+#pragma once
+// PredictedPath: what the predict report draws — the fragmented toolpath of
+// an NC program (nominal tool tips, source lines, path length) and the
+// deviation of each error model at every kept point, with the statistics of
+// all points. Long programs are thinned while streaming (every 2ᵏ-th point is
+// kept so that at most `max_points` remain); the statistics always cover
+// every point.
+#include <Eigen/Core>
+#include <cstdint>
+#include <functional>
+#include <istream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "abbe/machine/machine.hpp"
+#include "abbe/model/model_kind.hpp"
+
+namespace abbe::report {
+
+struct PredictPathOptions {
+  std::vector<model::ModelKind> models{model::ModelKind::ae_arm};
+  double step = 5.0;            // mm, fragmentation
+  double rapid_rate = 10000.0;  // mm/min
+  std::size_t max_points = 20000;
+  // Called now and then with the bytes of the input consumed so far.
+  std::function<void(std::uint64_t)> progress;
+};
+
+struct ModelPathStats {
+  model::ModelKind model = model::ModelKind::ae_arm;
+  Eigen::Vector3d max_abs_um = Eigen::Vector3d::Zero();
+  double rms_um = 0.0;       // of |d|
+  double max_um = 0.0;       // of |d|
+  std::size_t max_line = 0;  // source line of the largest |d|
+  std::size_t out_of_range_lookups = 0;
+};
+
+struct PredictedPath {
+  std::string program;  // file name ("-" for stdin)
+  std::string machine;  // machine name
+  std::vector<model::ModelKind> models;
+  std::size_t total_points = 0;  // all points of the program
+  std::size_t stride = 1;        // every stride-th point is kept
+  // Kept points:
+  std::vector<Eigen::Vector3d> nominal;                    // tool tip P, mm
+  std::vector<std::size_t> line;                           // source line
+  std::vector<double> path_length;                         // mm from the start
+  std::vector<std::vector<Eigen::Vector3d>> deviation_um;  // [model][point]
+  std::vector<ModelPathStats> stats;                       // per model, all points
+  std::map<std::size_t, std::string> source;  // text of the source lines of kept points
+};
+
+// Streams the program through parser, interpreter, fragmenter and the error
+// models. Throws abbe::InputError on bad input (file, line, column).
+PredictedPath predict_program(const machine::Machine& machine, std::istream& in,
+                              const std::string& file, const PredictPathOptions& options);
+
+}  // namespace abbe::report

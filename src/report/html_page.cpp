@@ -1,0 +1,108 @@
+#include "abbe/report/html_page.hpp"
+
+#include <fmt/format.h>
+
+#include "abbe/report/svg.hpp"
+
+namespace abbe::report {
+namespace {
+
+constexpr const char* kStyle = R"(
+body { font-family: "DejaVu Sans", Arial, sans-serif; margin: 24px; color: #222; background: #fafafa; }
+h1 { font-size: 24px; margin-bottom: 4px; }
+h2 { font-size: 19px; margin-top: 32px; border-bottom: 1px solid #ccc; padding-bottom: 4px; }
+h3 { font-size: 16px; margin-top: 20px; }
+.facts { color: #444; margin: 4px 0 16px 0; }
+.facts span { margin-right: 18px; }
+.note { color: #666; font-size: 13px; }
+.figures { display: flex; flex-wrap: wrap; gap: 12px; }
+.figures svg { border: 1px solid #ddd; background: #fff; }
+table { border-collapse: collapse; margin: 8px 0 16px 0; background: #fff; }
+caption { text-align: left; font-weight: bold; padding: 4px 0; }
+th, td { border: 1px solid #ccc; padding: 4px 10px; text-align: right; }
+th { background: #eee; }
+td:first-child, th:first-child { text-align: left; }
+#toc { font-size: 14px; }
+#toc a { margin-right: 14px; }
+)";
+
+// Builds the table of contents from the h2 headings (the page reads fine
+// without it).
+constexpr const char* kScript = R"(
+(function () {
+  var toc = document.getElementById('toc');
+  if (!toc) return;
+  var hs = document.querySelectorAll('h2[id]');
+  for (var i = 0; i < hs.length; i++) {
+    var a = document.createElement('a');
+    a.href = '#' + hs[i].id;
+    a.textContent = hs[i].textContent;
+    toc.appendChild(a);
+  }
+  var n = document.querySelectorAll('svg.plot').length;
+  var f = document.getElementById('plot-count');
+  if (f) f.textContent = n + ' plots';
+})();
+)";
+
+}  // namespace
+
+HtmlPage::HtmlPage(std::string title) : title_(std::move(title)) {}
+
+void HtmlPage::add_section(const std::string& id, const std::string& heading) {
+  body_ += fmt::format("<h2 id=\"{}\">{}</h2>\n", escape_xml(id), escape_xml(heading));
+}
+
+void HtmlPage::add_subheading(const std::string& text) {
+  body_ += fmt::format("<h3>{}</h3>\n", escape_xml(text));
+}
+
+void HtmlPage::add_paragraph(const std::string& text) {
+  body_ += fmt::format("<p>{}</p>\n", escape_xml(text));
+}
+
+void HtmlPage::add_note(const std::string& text) {
+  body_ += fmt::format("<p class=\"note\">{}</p>\n", escape_xml(text));
+}
+
+void HtmlPage::add_table(const Table& t) {
+  body_ += t.id.empty() ? "<table>" : fmt::format("<table id=\"{}\">", escape_xml(t.id));
+  if (!t.caption.empty()) body_ += fmt::format("<caption>{}</caption>", escape_xml(t.caption));
+  body_ += "\n<tr>";
+  for (const auto& h : t.header) body_ += fmt::format("<th>{}</th>", escape_xml(h));
+  body_ += "</tr>\n";
+  for (const auto& row : t.rows) {
+    body_ += "<tr>";
+    for (const auto& c : row) body_ += fmt::format("<td>{}</td>", escape_xml(c));
+    body_ += "</tr>\n";
+  }
+  body_ += "</table>\n";
+}
+
+void HtmlPage::add_figures(const std::vector<std::string>& svgs) {
+  body_ += "<div class=\"figures\">\n";
+  for (const auto& s : svgs) body_ += s;
+  body_ += "</div>\n";
+}
+
+void HtmlPage::add_fact(const std::string& key, const std::string& value) {
+  facts_.emplace_back(key, value);
+}
+
+std::string HtmlPage::render() const {
+  std::string o = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
+  o += fmt::format("<title>{}</title>\n<style>{}</style>\n</head>\n<body>\n", escape_xml(title_),
+                   kStyle);
+  o += fmt::format("<h1>{}</h1>\n<div class=\"facts\">", escape_xml(title_));
+  for (const auto& [k, v] : facts_)
+    o += fmt::format("<span><b>{}:</b> {}</span>", escape_xml(k), escape_xml(v));
+  o += "</div>\n<nav id=\"toc\"></nav>\n";
+  o += body_;
+  o += fmt::format(
+      "<p class=\"note\">abbe {} &#183; <span id=\"plot-count\"></span> &#183; hover over a "
+      "curve or a cell for its values</p>\n<script>{}</script>\n</body>\n</html>\n",
+      ABBE_VERSION, kScript);
+  return o;
+}
+
+}  // namespace abbe::report

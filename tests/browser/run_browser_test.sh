@@ -1,0 +1,103 @@
+#!/usr/bin/env bash
+# Browser test of the HTML reports (ctest label "browser", docs/report.md):
+# generates a predict and a map report, renders each in headless Chromium,
+# keeps the screenshots (WORK/*.png) as test artifacts, and fails on console
+# errors or when the expected plots are missing from the rendered DOM.
+# Installs Debian's chromium when missing (needs root or password-less sudo,
+# else the test is skipped with exit code 77). ABBE_SKIP_BROWSER=1 skips it.
+#
+# usage: run_browser_test.sh ABBE SOURCE_DIR WORK_DIR
+set -u
+abbe=$1
+src=$2
+work=$3
+
+if [ "${ABBE_SKIP_BROWSER:-0}" = 1 ]; then
+  echo "ABBE_SKIP_BROWSER=1: skipped"
+  exit 77
+fi
+
+browser=$(command -v chromium || command -v chromium-browser || true)
+if [ -z "$browser" ]; then
+  echo "chromium is not installed: installing Debian's chromium"
+  if [ "$(id -u)" = 0 ]; then
+    apt-get install -y chromium >/dev/null || { echo "apt-get install chromium failed: skipped"; exit 77; }
+  elif sudo -n true 2>/dev/null; then
+    sudo apt-get install -y chromium >/dev/null || { echo "apt-get install chromium failed: skipped"; exit 77; }
+  else
+    echo "not root and no password-less sudo: cannot install chromium: skipped"
+    exit 77
+  fi
+  browser=$(command -v chromium || command -v chromium-browser || true)
+  [ -n "$browser" ] || { echo "chromium still not found: skipped"; exit 77; }
+fi
+echo "browser: $("$browser" --version 2>/dev/null)"
+
+rm -rf "$work"
+mkdir -p "$work"
+failures=0
+fail() {
+  echo "FAIL: $*"
+  failures=$((failures + 1))
+}
+
+machine="$src/tests/data/machines/sample.yaml"
+"$abbe" -q report predict "$src/nc-samples/thesis-toolpath-1.ngc" --machine "$machine" \
+  --model all -o "$work/predict.html" || fail "abbe report predict exited with $?"
+"$abbe" -q report map --machine "$machine" --grid 100 -o "$work/map.html" ||
+  fail "abbe report map exited with $?"
+
+run_browser() {  # run_browser PROFILE_DIR ARGS...
+  local profile=$1
+  shift
+  timeout 180 "$browser" --headless --no-sandbox --disable-gpu --disable-quic --no-first-run \
+    --disable-background-networking --disable-component-update --disable-sync \
+    --hide-scrollbars --user-data-dir="$profile" "$@"
+}
+
+check_page() {  # check_page NAME ID...
+  local name=$1
+  shift
+  local page="$work/$name.html"
+  [ -s "$page" ] || { fail "$name: no report written"; return; }
+  local profile
+  profile=$(mktemp -d)
+  run_browser "$profile" --enable-logging=stderr --v=0 --window-size=1400,3000 \
+    --screenshot="$work/$name.png" "file://$page" >"$work/$name.screenshot.log" 2>&1
+  local rc=$?
+  [ $rc = 0 ] || fail "$name: chromium --screenshot exited with $rc (see $work/$name.screenshot.log)"
+  if [ ! -s "$work/$name.png" ] || [ "$(stat -c %s "$work/$name.png")" -lt 20000 ]; then
+    fail "$name: the screenshot is missing or nearly empty"
+  fi
+  if grep -E "Uncaught|ERROR:CONSOLE|CONSOLE\([0-9]+\).*[Ee]rror|Not allowed to load" \
+      "$work/$name.screenshot.log"; then
+    fail "$name: console errors while loading the page"
+  fi
+  rm -rf "$profile"
+  profile=$(mktemp -d)
+  run_browser "$profile" --dump-dom "file://$page" >"$work/$name.dom.html" 2>"$work/$name.dom.log"
+  rm -rf "$profile"
+  local id
+  for id in "$@"; do
+    grep -q "id=\"$id\"" "$work/$name.dom.html" || fail "$name: plot or table '$id' not in the DOM"
+  done
+  # The page's script ran: it fills the table of contents and the plot count.
+  grep -q '<a href="#summary">\|<a href="#map-summary">' "$work/$name.dom.html" ||
+    fail "$name: the table of contents was not built (script did not run)"
+  grep -Eq 'id="plot-count">[1-9][0-9]* plots<' "$work/$name.dom.html" ||
+    fail "$name: the plot count was not filled in (script did not run)"
+  if grep -Eiq '="[^"]*\bnan\b' "$work/$name.dom.html"; then
+    fail "$name: NaN in an attribute"
+  fi
+  echo "$name: $(grep -o '<svg ' "$work/$name.dom.html" | wc -l) plots, screenshot $work/$name.png"
+}
+
+check_page predict summary-table toolpath-iso toolpath-xy toolpath-xz toolpath-yz \
+  deviation-models deviation-htm deviation-ae-arm deviation-dual
+check_page map map-table map-htm-xy0 map-ae-arm-xy0 map-htm-xz3 map-ae-arm-yz5
+
+if [ "$failures" -gt 0 ]; then
+  echo "$failures failure(s)"
+  exit 1
+fi
+echo "browser test passed"

@@ -1,0 +1,118 @@
+# Command-level tests of `abbe report` and of the CLI's help texts. Included
+# from tests/CMakeLists.txt; the checks of the written pages run in script
+# mode (cmake -P).
+if(NOT CMAKE_SCRIPT_MODE_FILE)
+  add_test(NAME cli_report
+           COMMAND ${CMAKE_COMMAND} -DABBE=$<TARGET_FILE:abbe> -DSRC=${PROJECT_SOURCE_DIR}
+                   -DWORK=${CMAKE_CURRENT_BINARY_DIR}/cli_report_work
+                   -P ${CMAKE_CURRENT_LIST_FILE})
+  set_tests_properties(cli_report PROPERTIES LABELS cli TIMEOUT 300)
+
+  add_test(NAME cli_help_footer COMMAND $<TARGET_FILE:abbe> --help)
+  set_tests_properties(cli_help_footer PROPERTIES LABELS cli
+    PASS_REGULAR_EXPRESSION "Examples:.*abbe report predict.*Exit codes: 0 ok, 1 bad input.*2 usage, 3 internal")
+  foreach(cmd path interpret predict simulate iso230)
+    add_test(NAME cli_help_example_${cmd} COMMAND $<TARGET_FILE:abbe> ${cmd} --help)
+    set_tests_properties(cli_help_example_${cmd} PROPERTIES LABELS cli
+      PASS_REGULAR_EXPRESSION "Example: abbe ${cmd} ")
+  endforeach()
+  add_test(NAME cli_help_example_report COMMAND $<TARGET_FILE:abbe> report predict --help)
+  set_tests_properties(cli_help_example_report PROPERTIES LABELS cli
+    PASS_REGULAR_EXPRESSION "Example: abbe report predict ")
+  return()
+endif()
+
+# ---- script mode ----
+file(REMOVE_RECURSE ${WORK})
+file(MAKE_DIRECTORY ${WORK})
+set(MACHINE ${SRC}/tests/data/machines/sample.yaml)
+
+function(run_ok what)
+  execute_process(COMMAND ${ABBE} ${ARGN} RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_VARIABLE out)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${what}: exit code ${rc}\n${err}")
+  endif()
+  # stderr is not a terminal here: no progress bar (no carriage returns).
+  if(err MATCHES "\r")
+    message(FATAL_ERROR "${what}: progress output on a non-terminal stderr:\n${err}")
+  endif()
+endfunction()
+
+function(expect_in file what)
+  file(READ ${file} html)
+  foreach(s ${ARGN})
+    string(FIND "${html}" "${s}" pos)
+    if(pos EQUAL -1)
+      message(FATAL_ERROR "${what}: '${s}' not found in ${file}")
+    endif()
+  endforeach()
+  if(html MATCHES "=\"[^\"]*[^a-z]nan[^a-z]" OR html MATCHES "=\"-?inf")
+    message(FATAL_ERROR "${what}: NaN or inf in an attribute of ${file}")
+  endif()
+endfunction()
+
+# predict report of a thesis toolpath, all models.
+run_ok("report predict" report predict ${SRC}/nc-samples/thesis-toolpath-1.ngc
+       --machine ${MACHINE} --model all --exaggerate 2000 -o ${WORK}/predict.html)
+expect_in(${WORK}/predict.html "report predict"
+  "<!DOCTYPE html>" "id=\"summary-table\"" "id=\"toolpath-iso\"" "id=\"toolpath-xy\""
+  "id=\"toolpath-xz\"" "id=\"toolpath-yz\"" "id=\"deviation-htm\"" "id=\"deviation-ae-arm\""
+  "id=\"deviation-dual\"" "XY plane, deviation × 2000" "predicted ae-arm (× 2000)"
+  ">x (mm)</text>" ">path length (mm)</text>" ">deviation (µm)</text>"
+  "<title>line 18: G1 X-650 F1000")
+# The summary table agrees with `abbe predict` on the same program.
+execute_process(COMMAND ${ABBE} predict ${SRC}/nc-samples/thesis-toolpath-1.ngc --machine ${MACHINE}
+                        --model ae-arm --summary-only OUTPUT_VARIABLE summary RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0 OR NOT summary MATCHES "ae-arm +([0-9.]+) +([0-9.]+) +([0-9.]+) +([0-9.]+) +([0-9.]+)")
+  message(FATAL_ERROR "abbe predict summary: ${summary}")
+endif()
+set(rms ${CMAKE_MATCH_4})
+set(maxd ${CMAKE_MATCH_5})
+file(READ ${WORK}/predict.html html)
+if(NOT html MATCHES "<td>ae-arm</td><td>[0-9.]+</td><td>[0-9.]+</td><td>[0-9.]+</td><td>([0-9.]+)</td><td>([0-9.]+)</td>")
+  message(FATAL_ERROR "no ae-arm row in the summary table")
+endif()
+string(SUBSTRING "${CMAKE_MATCH_2}" 0 5 a)
+string(SUBSTRING "${maxd}" 0 5 b)
+if(NOT a STREQUAL b)
+  message(FATAL_ERROR "max |d| of ae-arm: report ${CMAKE_MATCH_2}, predict ${maxd}")
+endif()
+
+# From standard input, to standard output.
+execute_process(COMMAND ${ABBE} report predict - --machine ${MACHINE} --model htm -o -
+                INPUT_FILE ${SRC}/nc-samples/thesis-toolpath-2.ngc
+                OUTPUT_VARIABLE out RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0 OR NOT out MATCHES "^<!DOCTYPE html>.*id=\"deviation-htm\".*</html>\n$")
+  message(FATAL_ERROR "report predict - -o -: exit ${rc}")
+endif()
+
+# map report.
+run_ok("report map" report map --machine ${MACHINE} --grid 100 -o ${WORK}/map.html)
+expect_in(${WORK}/map.html "report map"
+  "id=\"map-table\"" "id=\"map-htm-xy0\"" "id=\"map-ae-arm-xy0\"" "class=\"scale-bar\""
+  ">|d| (µm)</text>" "htm against ae-arm")
+
+# Bad input: exit 1, file and line named, an existing output left alone.
+file(WRITE ${WORK}/bad.ngc "G0 X0\nG1 X10 Q7 F100\n")
+file(WRITE ${WORK}/keep.html "previous\n")
+execute_process(COMMAND ${ABBE} report predict ${WORK}/bad.ngc --machine ${MACHINE}
+                        -o ${WORK}/keep.html
+                RESULT_VARIABLE rc ERROR_VARIABLE err)
+if(NOT rc EQUAL 1 OR NOT err MATCHES "bad.ngc:2:")
+  message(FATAL_ERROR "bad program: exit ${rc}\n${err}")
+endif()
+file(READ ${WORK}/keep.html keep)
+if(NOT keep STREQUAL "previous\n")
+  message(FATAL_ERROR "bad program: the output was changed")
+endif()
+execute_process(COMMAND ${ABBE} report predict ${WORK}/missing.ngc --machine ${MACHINE}
+                        -o ${WORK}/keep.html RESULT_VARIABLE rc ERROR_VARIABLE err)
+if(NOT rc EQUAL 1 OR NOT err MATCHES "missing.ngc")
+  message(FATAL_ERROR "missing program: exit ${rc}\n${err}")
+endif()
+# Usage errors: exit 2.
+execute_process(COMMAND ${ABBE} report predict ${WORK}/bad.ngc RESULT_VARIABLE rc
+                ERROR_VARIABLE err OUTPUT_VARIABLE out)
+if(NOT rc EQUAL 2)
+  message(FATAL_ERROR "missing --machine: exit ${rc}, expected 2")
+endif()

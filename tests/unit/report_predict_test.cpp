@@ -1,0 +1,147 @@
+// PredictedPath and the predict report: the statistics agree with the error
+// model evaluated point by point, thinning keeps the statistics of every
+// point, the page contains the expected plots.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <regex>
+#include <sstream>
+
+#include "abbe/io/input_error.hpp"
+#include "abbe/machine/machine.hpp"
+#include "abbe/model/error_model.hpp"
+#include "abbe/report/html_page.hpp"
+#include "abbe/report/predict_section.hpp"
+#include "abbe/report/predicted_path.hpp"
+
+namespace abbe::report {
+namespace {
+
+const std::string kMachine = std::string(ABBE_TEST_DATA_DIR) + "/machines/sample.yaml";
+
+// A rectangle at z = -280 with G43 H1 (200 mm), 5 mm steps, 300 × 200 mm.
+const char* kProgram =
+    "G17 G21 G90 G94\n"
+    "G43 H1\n"
+    "G0 X-350 Y-150 Z-270\n"
+    "G1 Z-280 F300\n"
+    "G1 X-650 F1000\n"
+    "G1 Y-350\n"
+    "G1 X-350\n"
+    "G1 Y-150\n"
+    "M30\n";
+
+TEST(ReportPredict, StatisticsMatchTheModelPointByPoint) {
+  const machine::Machine m = machine::Machine::load(kMachine);
+  PredictPathOptions o;
+  o.models = {model::ModelKind::htm, model::ModelKind::ae_arm};
+  std::istringstream in(kProgram);
+  const PredictedPath r = predict_program(m, in, "rect.ngc", o);
+  EXPECT_EQ(r.stride, 1u);
+  ASSERT_EQ(r.nominal.size(), r.total_points);
+  // Path length: the sum of the steps; the four cuts (lines 5-8) are 1000 mm
+  // in 5 mm steps.
+  double length = 0.0;
+  for (std::size_t i = 1; i < r.nominal.size(); ++i)
+    length += (r.nominal[i] - r.nominal[i - 1]).norm();
+  EXPECT_NEAR(r.path_length.back(), length, 1e-9);
+  const auto first_cut = static_cast<std::size_t>(
+      std::find(r.line.begin(), r.line.end(), std::size_t{5}) - r.line.begin());
+  ASSERT_LT(first_cut, r.line.size());
+  EXPECT_NEAR(r.path_length.back() - r.path_length[first_cut - 1], 1000.0, 1e-9);
+  EXPECT_EQ(r.total_points - first_cut, 200u);
+  EXPECT_EQ(r.line.back(), 8u);
+  EXPECT_EQ(r.source.at(5), "G1 X-650 F1000");
+
+  for (std::size_t k = 0; k < 2; ++k) {
+    const model::ErrorModel em(m, o.models[k]);
+    model::ModelData data;
+    double max_d = 0.0;
+    for (std::size_t i = 0; i < r.nominal.size(); ++i) {
+      max_d = std::max(max_d, r.deviation_um[k][i].norm());
+    }
+    EXPECT_DOUBLE_EQ(r.stats[k].max_um, max_d);
+    EXPECT_GT(r.stats[k].max_um, 0.0);
+    // One point recomputed independently (direction of motion: -X).
+    model::EvalPoint p;
+    p.p = r.nominal[first_cut + 30];  // on the first cut along −X
+    p.tool_length = 200.0;
+    p.dir = {-1, -1, -1};  // every axis last moved towards −
+    const Eigen::Vector3d e = em.evaluate(p, data).e_um;
+    EXPECT_NEAR((e - r.deviation_um[k][first_cut + 30]).norm(), 0.0, 1e-9) << k;
+  }
+  // htm and ae-arm differ on this machine (reflectors far from machine zero).
+  EXPECT_GT(std::abs(r.stats[0].max_um - r.stats[1].max_um), 0.1);
+}
+
+TEST(ReportPredict, ThinningKeepsStatisticsOfAllPoints) {
+  const machine::Machine m = machine::Machine::load(kMachine);
+  PredictPathOptions full, thin;
+  thin.max_points = 40;
+  std::istringstream a(kProgram), b(kProgram);
+  const PredictedPath rf = predict_program(m, a, "rect.ngc", full);
+  const PredictedPath rt = predict_program(m, b, "rect.ngc", thin);
+  EXPECT_EQ(rt.total_points, rf.total_points);
+  EXPECT_LT(rt.nominal.size(), 40u);
+  EXPECT_GE(rt.nominal.size(), 20u);
+  EXPECT_GT(rt.stride, 1u);
+  EXPECT_DOUBLE_EQ(rt.stats[0].max_um, rf.stats[0].max_um);
+  EXPECT_DOUBLE_EQ(rt.stats[0].rms_um, rf.stats[0].rms_um);
+  for (std::size_t i = 0; i < rt.nominal.size(); ++i) {
+    EXPECT_EQ(rt.nominal[i], rf.nominal[i * rt.stride]);
+    EXPECT_DOUBLE_EQ(rt.path_length[i], rf.path_length[i * rt.stride]);
+  }
+}
+
+TEST(ReportPredict, BadProgramNamesFileAndLine) {
+  const machine::Machine m = machine::Machine::load(kMachine);
+  std::istringstream in("G1 X0 F100\nG1 X1 Q\n");
+  try {
+    predict_program(m, in, "bad.ngc", PredictPathOptions{});
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().file, "bad.ngc");
+    EXPECT_EQ(e.where().line, 2u);
+  }
+}
+
+TEST(ReportPredict, PageHasEveryPlotAndTheSummary) {
+  const machine::Machine m = machine::Machine::load(kMachine);
+  PredictPathOptions o;
+  o.models = {model::ModelKind::htm, model::ModelKind::ae_arm, model::ModelKind::dual};
+  std::istringstream in(kProgram);
+  const PredictedPath r = predict_program(m, in, "rect.ngc", o);
+  const double k = auto_exaggeration(r);
+  // The largest deviation drawn is about 4 % of the 300 mm extent.
+  Eigen::Vector3d lo = r.nominal[0], hi = lo;
+  for (const auto& p : r.nominal) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const double extent = (hi - lo).maxCoeff();
+  const double drawn =
+      k * 1e-3 * std::max({r.stats[0].max_um, r.stats[1].max_um, r.stats[2].max_um});
+  EXPECT_GT(drawn, 0.004 * extent);
+  EXPECT_LE(drawn, 0.04 * extent + 1e-9);
+
+  HtmlPage page("t");
+  render_predict_report(page, r, 0.0);
+  const std::string html = page.render();
+  for (const char* id :
+       {"toolpath-iso", "toolpath-xy", "toolpath-xz", "toolpath-yz", "deviation-models",
+        "deviation-htm", "deviation-ae-arm", "deviation-dual", "summary-table"})
+    EXPECT_NE(html.find(std::string("id=\"") + id + "\""), std::string::npos) << id;
+  EXPECT_NE(html.find("line 5: G1 X-650 F1000"), std::string::npos);
+  EXPECT_FALSE(std::regex_search(html, std::regex("\\bnan\\b|\\binf\\b", std::regex::icase)));
+}
+
+TEST(ReportPredict, IsometricDrawing) {
+  // Z is straight up, X and Y go down to the left and right at 30°.
+  EXPECT_NEAR(isometric({0, 0, 1}).x(), 0.0, 1e-12);
+  EXPECT_NEAR(isometric({0, 0, 1}).y(), 1.0, 1e-12);
+  EXPECT_LT(isometric({1, 0, 0}).x(), 0.0);
+  EXPECT_GT(isometric({0, 1, 0}).x(), 0.0);
+  EXPECT_NEAR(isometric({1, 0, 0}).y(), -0.5, 1e-12);
+  EXPECT_NEAR(isometric({1, 0, 0}).norm(), 1.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace abbe::report

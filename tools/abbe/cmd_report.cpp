@@ -1,0 +1,153 @@
+// abbe report: a self-contained HTML page of plots and tables (inline SVG,
+// no network needed) — `report predict` for an NC program (toolpath with the
+// deviation exaggerated, deviation along the path, summary per model) and
+// `report map` for the workspace (colour maps of |d| on slices, htm and
+// ae-arm side by side). See docs/report.md.
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "abbe/identify/workspace_map.hpp"
+#include "abbe/io/atomic_file.hpp"
+#include "abbe/io/input_error.hpp"
+#include "abbe/io/progress.hpp"
+#include "abbe/machine/machine.hpp"
+#include "abbe/report/html_page.hpp"
+#include "abbe/report/map_section.hpp"
+#include "abbe/report/predict_section.hpp"
+#include "abbe/report/predicted_path.hpp"
+#include "command.hpp"
+
+namespace abbe::cli {
+namespace {
+
+struct ReportOptions {
+  std::string input;
+  std::string machine;
+  std::string model = "all";
+  std::string output;
+  double exaggerate = 0.0;  // ≤ 0: automatic
+  double step = 5.0;
+  double grid = 50.0;
+  double tool_length = -1.0;
+  std::size_t max_points = 20000;
+};
+
+std::vector<model::ModelKind> parse_models(const std::string& m) {
+  if (m == "all") return {model::ModelKind::htm, model::ModelKind::ae_arm, model::ModelKind::dual};
+  if (auto k = model::parse_model_kind(m)) return {*k};
+  throw InputError({"<command line>", 0, 0, "--model", ""},
+                   fmt::format("unknown model \"{}\" (htm, ae-arm, dual or all)", m));
+}
+
+void write_page(const std::string& path, const report::HtmlPage& page) {
+  const std::string html = page.render();
+  io::AtomicOutputFile out(path);
+  out.write(html.data(), html.size());
+  out.commit();
+  if (path != "-") spdlog::info("wrote {} ({} kB)", path, (html.size() + 512) / 1024);
+}
+
+int run_report_predict(const ReportOptions& o, const GlobalOptions& g) {
+  const machine::Machine machine = machine::Machine::load(o.machine);
+  report::PredictPathOptions po;
+  po.models = parse_models(o.model);
+  po.step = o.step;
+  po.max_points = o.max_points;
+  std::ifstream file;
+  std::istream* in = &std::cin;
+  if (o.input != "-") {
+    file.open(o.input, std::ios::binary);
+    if (!file)
+      throw InputError({o.input, 0, 0, "", ""},
+                       std::string("cannot open the NC program: ") + std::strerror(errno));
+    in = &file;
+  }
+  io::Progress progress("report: predict", io::Progress::file_size(o.input), !g.quiet);
+  po.progress = [&](std::uint64_t bytes) { progress.update(bytes); };
+  const report::PredictedPath path = report::predict_program(machine, *in, o.input, po);
+  progress.finish();
+  report::HtmlPage page(fmt::format("abbe: predicted toolpath of {}", o.input));
+  report::render_predict_report(page, path, o.exaggerate);
+  write_page(o.output, page);
+  return kOk;
+}
+
+int run_report_map(const ReportOptions& o) {
+  const machine::Machine machine = machine::Machine::load(o.machine);
+  identify::MapOptions mo;
+  mo.models = parse_models(o.model);
+  if (!(o.grid > 0.0))
+    throw InputError({"<command line>", 0, 0, "--grid", ""}, "grid spacing must be > 0 mm");
+  mo.spacing_mm = o.grid;
+  mo.tool_length = o.tool_length >= 0.0 ? o.tool_length : machine.tool_length();
+  identify::travel_box(machine, mo.tool_length, mo.lo, mo.hi);
+  double n = 1.0;
+  for (int i = 0; i < 3; ++i) n *= std::floor((mo.hi[i] - mo.lo[i]) / mo.spacing_mm) + 2.0;
+  if (n > 2e6)
+    throw InputError({"<command line>", 0, 0, "--grid", ""},
+                     "more than 2 million grid points; use a coarser grid");
+  const identify::WorkspaceMap map = identify::compute_map(machine, mo);
+  report::HtmlPage page(fmt::format("abbe: workspace error map of {}", machine.name()));
+  page.add_fact("tool length", fmt::format("{:g} mm", mo.tool_length));
+  report::render_map_report(page, map, machine.name());
+  write_page(o.output, page);
+  return kOk;
+}
+
+const CommandRegistrar registrar(
+    "report", "Write an HTML report with plots: a program's predicted toolpath, or a workspace map",
+    80, [](CLI::App& sub, const GlobalOptions& g) -> CommandAction {
+      auto o = std::make_shared<ReportOptions>();
+      const GlobalOptions* gp = &g;
+      sub.require_subcommand(1);
+      sub.footer(
+          "Example: abbe report predict nc-samples/thesis-toolpath-1.ngc "
+          "--machine machines/sample/machine.yaml -o report.html");
+      CLI::App* predict = sub.add_subcommand(
+          "predict", "Toolpath (3-D and planes, deviation exaggerated), deviation along the path");
+      predict->add_option("program", o->input, "NC program, - for stdin")->required();
+      predict->add_option("--machine", o->machine, "Machine file (YAML)")->required();
+      predict->add_option("--model", o->model, "htm, ae-arm, dual or all")
+          ->check(CLI::IsMember({"htm", "ae-arm", "dual", "all"}))
+          ->capture_default_str();
+      predict->add_option("--exaggerate", o->exaggerate,
+                          "Draw nominal + K·deviation (default: automatic)");
+      predict->add_option("--step", o->step, "Largest distance between points, mm")
+          ->check(CLI::PositiveNumber)
+          ->capture_default_str();
+      predict->add_option("--max-points", o->max_points, "Most points drawn (thinned beyond)")
+          ->check(CLI::Range(16, 1000000))
+          ->capture_default_str();
+      predict->add_option("-o,--output", o->output, "HTML file (written atomically), - for stdout")
+          ->required();
+      predict->footer(
+          "Example: abbe report predict nc-samples/thesis-toolpath-1.ngc "
+          "--machine machines/sample/machine.yaml --model all --exaggerate 2000 -o report.html");
+      CLI::App* map = sub.add_subcommand(
+          "map", "Colour maps of |d| on slices of the workspace, htm and ae-arm side by side");
+      map->add_option("--machine", o->machine, "Machine file (YAML)")->required();
+      map->add_option("--grid", o->grid, "Grid spacing, mm")->capture_default_str();
+      map->add_option("--tool-length", o->tool_length, "Tool length, mm (default: the machine's)");
+      map->add_option("--model", o->model, "htm, ae-arm, dual or all")
+          ->check(CLI::IsMember({"htm", "ae-arm", "dual", "all"}))
+          ->capture_default_str();
+      map->add_option("-o,--output", o->output, "HTML file (written atomically), - for stdout")
+          ->required();
+      map->footer(
+          "Example: abbe report map --machine machines/sample/machine.yaml --grid 50 -o map.html");
+      return [o, gp, predict, map]() -> int {
+        if (predict->parsed()) return run_report_predict(*o, *gp);
+        if (map->parsed()) return run_report_map(*o);
+        return kUsage;
+      };
+    });
+
+}  // namespace
+}  // namespace abbe::cli
