@@ -3,6 +3,9 @@
 #include <cmath>
 #include <deque>
 #include <functional>
+#include <limits>
+#include <optional>
+#include <vector>
 
 #include "abbe/compensate/motion_path.hpp"
 #include "abbe/gcode/parser.hpp"
@@ -40,33 +43,28 @@ bool is_feed(const gcode::Motion& m) {
   return m.kind == gcode::MotionKind::linear || m.kind == gcode::MotionKind::arc;
 }
 
-// Direction signs of the compensated path for the table lookups: an axis
-// counts as moving in a motion only if it moves by more than `deadband`
-// over it; smaller moves are compensation corrections of an axis that is
-// nominally at rest and keep its previous direction (as the solver, which
-// uses the nominal directions). Within arcs the in-plane axes follow the
-// tangent.
-class DirectionTracker {
- public:
-  explicit DirectionTracker(double deadband) : deadband_(deadband) {}
-  std::array<std::int8_t, 3> update(const gcode::Motion& m) {
-    for (int k = 0; k < 3; ++k) {
-      const double d = m.end[k] - m.start[k];
-      if (std::abs(d) > deadband_) dir_[static_cast<std::size_t>(k)] = d > 0 ? 1 : -1;
-    }
-    return dir_;
-  }
-
- private:
-  double deadband_;
-  std::array<std::int8_t, 3> dir_{0, 0, 0};
-};
-
 struct Curve {
   gcode::Motion motion;
   MotionPath path;
-  std::array<std::int8_t, 3> dir;  // at the end of the motion
+  std::array<std::int8_t, 3> dir;  // at the end of the motion (its own program's directions)
 };
+
+// Direction signs on a curve at parameter t: the curve's own; for the
+// in-plane axes of an arc, the chord from one fragment step back (what the
+// fragmenter gives the solver: the sign of the last motion before the point).
+std::array<std::int8_t, 3> direction_at(const Curve& c, double t, double step) {
+  std::array<std::int8_t, 3> dir = c.dir;
+  if (c.path.is_arc()) {
+    const double h = c.path.length() > 0.0 ? std::min(0.5, 0.02 * step / c.path.length()) : 1e-4;
+    const Vector3d v = c.path.at(t) - c.path.at(std::max(0.0, t - h));
+    const auto plane = plane_axes(c.motion.plane);
+    for (int k = 0; k < 2; ++k) {
+      const int i = plane[static_cast<std::size_t>(k)];
+      if (std::abs(v[i]) > 1e-9) dir[static_cast<std::size_t>(i)] = v[i] > 0 ? 1 : -1;
+    }
+  }
+  return dir;
+}
 
 struct PassStats {
   std::size_t n = 0;
@@ -74,18 +72,18 @@ struct PassStats {
   std::size_t max_line = 0;
 };
 
-// Streams the feed points of `a` (mapped by `point`) and measures each to the
-// nearest of a window of `b`'s feed curves (distance by `dist`).
+using CurveMetric = std::function<double(const Curve&, const path::PathPoint&)>;
+
+// Streams the feed points of `a`; each is matched to the nearest (by
+// `match`) of a window of `b`'s feed curves and measured (by `measure`).
 PassStats run_pass(MotionStream& a, MotionStream& b, double step, std::size_t window,
-                   double deadband, const std::function<Vector3d(const path::PathPoint&)>& point,
-                   const std::function<double(const Curve&, const Vector3d&)>& dist) {
+                   double slack, const CurveMetric& match, const CurveMetric& measure) {
   PassStats st;
   path::Fragmenter fa(path::FragmentOptions{step, 10000.0});
   path::Fragmenter fb(path::FragmentOptions{step, 10000.0});
   std::deque<Curve> curves;
   std::size_t cursor = 0;
   bool b_done = false;
-  DirectionTracker ta(deadband), tb(deadband);
   auto pull = [&]() {
     gcode::Motion m;
     while (!b_done) {
@@ -93,9 +91,12 @@ PassStats run_pass(MotionStream& a, MotionStream& b, double step, std::size_t wi
         b_done = true;
         return;
       }
-      const std::array<std::int8_t, 3> dir = tb.update(m);
+      std::array<std::int8_t, 3> dir{0, 0, 0};
       bool any = false;
-      fb.add(m, [&](const path::PathPoint&) { any = true; });
+      fb.add(m, [&](const path::PathPoint& pp) {
+        dir = pp.dir;
+        any = true;
+      });
       if (is_feed(m) && any) {
         curves.push_back({m, MotionPath(m), dir});
         return;
@@ -105,34 +106,31 @@ PassStats run_pass(MotionStream& a, MotionStream& b, double step, std::size_t wi
   gcode::Motion m;
   while (a.next(m)) {
     const bool feed = is_feed(m);
-    const std::array<std::int8_t, 3> base = ta.update(m);
-    const auto plane = plane_axes(m.plane);
-    fa.add(m, [&](const path::PathPoint& fp) {
-      if (!feed || (fp.p - m.start).norm() == 0.0) return;
-      path::PathPoint pp = fp;
-      for (std::size_t k = 0; k < 3; ++k)
-        if (m.kind != gcode::MotionKind::arc || static_cast<int>(k) == plane[2])
-          pp.dir[k] = base[k];
+    fa.add(m, [&](const path::PathPoint& pp) {
+      if (!feed || (pp.p - m.start).norm() == 0.0) return;
       while (!b_done && curves.size() < cursor + window + 1) pull();
       if (curves.empty()) return;
-      const Vector3d q = point(pp);
+      // Candidates: the curves within `slack` of the best match (a point at
+      // a corner or where the path passes itself is near several). The
+      // cursor moves to the first of them in path order from the current
+      // curve; the point is measured to the nearest of them.
       const std::size_t lo = cursor > 0 ? cursor - 1 : 0;
       const std::size_t hi = std::min(curves.size(), cursor + window + 1);
+      std::vector<double> d(hi - lo);
       double best = std::numeric_limits<double>::infinity();
-      std::size_t arg = cursor;
+      for (std::size_t i = lo; i < hi; ++i) best = std::min(best, d[i - lo] = match(curves[i], pp));
+      std::optional<std::size_t> next;
+      double um = std::numeric_limits<double>::infinity();
       for (std::size_t i = lo; i < hi; ++i) {
-        const double d = dist(curves[i], q);
-        if (d < best - 1e-12) {
-          best = d;
-          arg = i;
-        }
+        if (d[i - lo] > best + slack) continue;
+        if (i >= cursor && !next) next = i;
+        um = std::min(um, 1e3 * measure(curves[i], pp));
       }
-      if (arg > cursor) cursor = arg;
+      if (next && *next > cursor) cursor = *next;
       while (cursor > 1) {
         curves.pop_front();
         --cursor;
       }
-      const double um = 1e3 * best;
       ++st.n;
       st.sum2 += um * um;
       if (um > st.max) {
@@ -159,56 +157,44 @@ VerifyStats verify_program(std::istream& compensated, const std::string& compens
     ep.dir = dir;
     return Vector3d(1e-3 * model.evaluate(ep, data).e_um);
   };
-  // Forward: predicted compensated points to the nominal original curves.
+  // Forward: each commanded point c of the compensated program is matched to
+  // the nearest nominal curve, predicted with that curve's (nominal)
+  // direction signs — those the solver used — and measured to the curve.
   {
     MotionStream a(compensated, compensated_file, config);
     MotionStream b(original, original_file, config);
     const PassStats st = run_pass(
-        a, b, options.step, options.window, options.deadband,
-        [&](const path::PathPoint& pp) {
-          return Vector3d(pp.p + error_mm(pp.p, pp.tool_length, pp.dir));
-        },
-        [](const Curve& c, const Vector3d& q) { return c.path.distance(q); });
+        a, b, options.step, options.window, options.slack,
+        [](const Curve& c, const path::PathPoint& pp) { return c.path.distance(pp.p); },
+        [&](const Curve& c, const path::PathPoint& pp) {
+          const auto dir = direction_at(c, c.path.closest(pp.p), options.step);
+          return c.path.distance(pp.p + error_mm(pp.p, pp.tool_length, dir));
+        });
     out.points = st.n;
     out.max_um = st.max;
     out.rms_um = st.n ? std::sqrt(st.sum2 / static_cast<double>(st.n)) : 0.0;
     out.max_line = st.max_line;
   }
-  // Backward: nominal original points to the predicted compensated curves.
   compensated.clear();
   compensated.seekg(0);
   original.clear();
   original.seekg(0);
+  // Backward: each nominal point n of the original to the predicted
+  // compensated curve: the commanded point p whose prediction p + e(p) is
+  // nearest to n, by iterating t ← closest(n − e(p(t))), with n's directions.
   {
     MotionStream a(original, original_file, config);
     MotionStream b(compensated, compensated_file, config);
-    const PassStats st = run_pass(
-        a, b, options.step, options.window, options.deadband,
-        [](const path::PathPoint& pp) { return pp.p; },
-        [&](const Curve& c, const Vector3d& q) {
-          // The point of the predicted curve nearest to q: the commanded
-          // point p whose prediction p + e(p) is nearest, by iterating
-          // t ← closest(q − e(p(t))); directions as in the forward pass,
-          // the in-plane axes of an arc from its tangent.
-          Vector3d e = Vector3d::Zero();
-          Vector3d p = Vector3d::Zero();
-          for (int it = 0; it < 3; ++it) {
-            const double t = c.path.closest(q - e);
-            p = c.path.at(t);
-            std::array<std::int8_t, 3> dir = c.dir;
-            if (c.path.is_arc()) {
-              const double h = 1e-4;
-              const Vector3d v = c.path.at(std::min(1.0, t + h)) - c.path.at(std::max(0.0, t - h));
-              const auto plane = plane_axes(c.motion.plane);
-              for (int k = 0; k < 2; ++k) {
-                const int i = plane[static_cast<std::size_t>(k)];
-                if (std::abs(v[i]) > 1e-9) dir[static_cast<std::size_t>(i)] = v[i] > 0 ? 1 : -1;
-              }
-            }
-            e = error_mm(p, c.motion.tool_length, dir);
-          }
-          return (p + e - q).norm();
-        });
+    const CurveMetric predicted = [&](const Curve& c, const path::PathPoint& pp) {
+      Vector3d e = Vector3d::Zero();
+      Vector3d p = Vector3d::Zero();
+      for (int it = 0; it < 3; ++it) {
+        p = c.path.at(c.path.closest(pp.p - e));
+        e = error_mm(p, c.motion.tool_length, pp.dir);
+      }
+      return (p + e - pp.p).norm();
+    };
+    const PassStats st = run_pass(a, b, options.step, options.window, options.slack, predicted, predicted);
     out.backward_points = st.n;
     out.backward_max_um = st.max;
     out.backward_rms_um = st.n ? std::sqrt(st.sum2 / static_cast<double>(st.n)) : 0.0;

@@ -102,6 +102,7 @@ struct SolvedPoint {
   Vector3d n;      // nominal, mm
   Vector3d delta;  // c − n, mm
   double t = 0.0;  // parameter along the motion
+  bool reversal = false;  // an in-plane axis of an arc reverses here: a piece ends here
 };
 
 class Compensator {
@@ -290,16 +291,65 @@ class Compensator {
     }
   }
 
-  // True if the correction is linear enough between points a and b.
-  bool linear_ok(const std::vector<SolvedPoint>& sp, std::size_t a, std::size_t b) const {
+  // True if a single piece from point a to point b (a line, or an arc about
+  // the centre moved by the mean of the end corrections) passes within
+  // tol/2 of the commanded point of every fragment point between them.
+  bool piece_ok(const gcode::Motion& m, const std::vector<SolvedPoint>& sp, std::size_t a,
+                std::size_t b) const {
+    if (b <= a + 1) return true;
     const double tol = 0.5e-3 * o_.tol_um;
-    const double span = sp[b].t - sp[a].t;
-    for (std::size_t k = a + 1; k < b; ++k) {
-      const double f = span > 0.0 ? (sp[k].t - sp[a].t) / span : 0.0;
-      const Vector3d lin = sp[a].delta + f * (sp[b].delta - sp[a].delta);
-      if ((sp[k].delta - lin).norm() > tol) return false;
+    gcode::Motion piece = m;
+    piece.start = sp[a].n + sp[a].delta;
+    piece.end = sp[b].n + sp[b].delta;
+    if (m.kind == gcode::MotionKind::arc) {
+      piece.center = m.center + 0.5 * (sp[a].delta + sp[b].delta);
+      const int normal = plane_axes(m.plane)[2];
+      piece.center[normal] = piece.start[normal];
+      if (a != 0 || b + 1 != sp.size()) piece.rotation = m.rotation > 0 ? 1 : -1;
     }
+    const MotionPath path(piece);
+    for (std::size_t k = a + 1; k < b; ++k)
+      if (path.distance(sp[k].n + sp[k].delta) > tol) return false;
     return true;
+  }
+
+  // The points of an arc where an in-plane axis reverses (its tangent
+  // component changes sign, every quarter turn): the bidirectional tables
+  // switch there, so the correction jumps and a piece must end exactly
+  // there. Solved with the directions of the motion before the point.
+  void add_reversals(const gcode::Motion& m, const MotionPath& path, std::vector<SolvedPoint>& sp) {
+    const auto ax = plane_axes(m.plane);
+    const double theta0 = std::atan2(m.start[ax[1]] - m.center[ax[1]], m.start[ax[0]] - m.center[ax[0]]);
+    const double sweep = path.sweep();
+    if (sweep == 0.0) return;
+    const double half_pi = 0.5 * M_PI;
+    const double k0 = std::ceil(std::min(theta0, theta0 + sweep) / half_pi);
+    const double k1 = std::floor(std::max(theta0, theta0 + sweep) / half_pi);
+    for (double k = k0; k <= k1; k += 1.0) {
+      const double t = (k * half_pi - theta0) / sweep;
+      if (t <= 1e-6 || t >= 1.0 - 1e-6) continue;
+      auto it = std::lower_bound(sp.begin(), sp.end(), t,
+                                 [](const SolvedPoint& x, double v) { return x.t < v; });
+      if (it != sp.end() && std::abs(it->t - t) < 1e-6) {
+        it->reversal = true;
+        continue;
+      }
+      path::PathPoint pp;
+      pp.p = path.at(t);
+      pp.tool_length = m.tool_length;
+      pp.line = m.line;
+      pp.kind = m.kind;
+      // Directions just before the point: the normal axis as along the
+      // whole arc, the in-plane axes from the tangent.
+      pp.dir = points_[0].front().dir;
+      const Vector3d v = path.at(t) - path.at(std::max(0.0, t - 1e-4));
+      for (int i = 0; i < 2; ++i) {
+        const int a = ax[static_cast<std::size_t>(i)];
+        if (std::abs(v[a]) > 1e-9) pp.dir[static_cast<std::size_t>(a)] = v[a] > 0 ? 1 : -1;
+      }
+      const Vector3d d = solve(pp);
+      sp.insert(it, SolvedPoint{pp.p, d, t, true});
+    }
   }
 
   void feed(const gcode::Block& block, BlockEditor& ed, std::vector<std::string>& pieces) {
@@ -316,11 +366,12 @@ class Compensator {
       if (!path.is_arc() && len > 0.0) t = (pts[k].p - m.start).norm() / len;
       sp.push_back({pts[k].p, solve(pts[k]), t});
     }
+    if (m.kind == gcode::MotionKind::arc && std::abs(m.rotation) == 1) add_reversals(m, path, sp);
     // Greedy pieces: each as long as the correction stays linear along it.
     std::vector<std::size_t> breaks;
     for (std::size_t a = 0; a + 1 < sp.size();) {
       std::size_t b = a + 1;
-      while (b + 1 < sp.size() && linear_ok(sp, a, b + 1)) ++b;
+      while (b + 1 < sp.size() && !sp[b].reversal && piece_ok(m, sp, a, b + 1)) ++b;
       breaks.push_back(b);
       a = b;
     }

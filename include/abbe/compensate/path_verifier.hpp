@@ -10,8 +10,10 @@
 //    motions from the current one a few ahead (the compensated program has
 //    the same motions, some split into pieces);
 //  - backward: every nominal fragment point n of the original is measured
-//    to the predicted compensated motion that passes nearest (the commanded
-//    curve moved by the error at its closest point).
+//    to the predicted compensated curve that passes nearest.
+// Direction signs for the bidirectional tables are the nominal motion's (as
+// in the solver): the micro-motions a correction adds to an axis that is
+// nominally at rest are not counted as reversals (docs/compensation.md).
 #include <cstddef>
 #include <istream>
 #include <string>
@@ -24,9 +26,7 @@ namespace abbe::compensate {
 struct VerifyOptions {
   double step = 5.0;       // fragment step, mm
   std::size_t window = 6;  // original motions searched ahead of the current one
-  // An axis moving less than this over a motion (a compensation correction
-  // of an axis nominally at rest) keeps its previous direction sign, mm.
-  double deadband = 0.05;
+  double slack = 0.05;     // curves matching within this of the best are candidates, mm
 };
 
 struct VerifyStats {
