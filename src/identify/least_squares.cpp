@@ -64,6 +64,16 @@ LeastSquaresResult solve_least_squares(const Eigen::MatrixXd& a, const Eigen::Ve
     d /= d.norm();
     out.null_space.push_back({d, vn.col(c)});
   }
+  // The rank is decided on the scaled problem, but of all least-squares
+  // solutions return the one of minimum norm in the caller's unknowns (the
+  // Moore–Penrose solution proper): project the null space, taken in those
+  // unknowns, out of x. Identifiable unknowns are untouched by this.
+  if (vn.cols() > 0) {
+    const Eigen::MatrixXd nd = scale.cwiseInverse().asDiagonal() * vn;
+    Eigen::HouseholderQR<Eigen::MatrixXd> nq(nd);
+    const Eigen::MatrixXd q = nq.householderQ() * Eigen::MatrixXd::Identity(n, vn.cols());
+    out.x -= q * (q.transpose() * out.x);
+  }
   // cov(x_s) = σ² V_r Σ_r⁻² V_rᵀ, then back to the original scale.
   out.stderr_x = Eigen::VectorXd::Constant(n, std::numeric_limits<double>::quiet_NaN());
   for (Eigen::Index j = 0; j < n; ++j) {

@@ -1,5 +1,6 @@
 #include "abbe/identify/parameter_identification.hpp"
 
+#include <Eigen/QR>
 #include <cmath>
 
 namespace abbe::identify {
@@ -129,6 +130,24 @@ ParamIdentification identify_linear(const ChainExpansion& chain,
     p += step.x;
     out.iterations = it + 1;
     if (step.x.norm() <= 1e-13 * std::max(1.0, p.norm())) break;
+  }
+  // Along unidentifiable combinations the start is arbitrary (the monomial
+  // fit's choice): take the minimum-norm parameters there, then settle again.
+  linearise(d, data, p, jac, res);
+  const LeastSquaresResult probe = solve_least_squares(jac, res, options.least_squares);
+  if (!probe.null_space.empty()) {
+    Eigen::MatrixXd nd(kParamCount, static_cast<Eigen::Index>(probe.null_space.size()));
+    for (std::size_t c = 0; c < probe.null_space.size(); ++c)
+      nd.col(static_cast<Eigen::Index>(c)) = probe.null_space[c].direction;
+    Eigen::HouseholderQR<Eigen::MatrixXd> qr(nd);
+    const Eigen::MatrixXd q = qr.householderQ() * Eigen::MatrixXd::Identity(kParamCount, nd.cols());
+    p -= q * (q.transpose() * p);
+    for (int it = 0; it < options.max_iterations; ++it) {
+      linearise(d, data, p, jac, res);
+      const LeastSquaresResult step = solve_least_squares(jac, res, options.least_squares);
+      p += step.x;
+      if (step.x.norm() <= 1e-13 * std::max(1.0, p.norm())) break;
+    }
   }
   linearise(d, data, p, jac, res);
   // The statistics of the last linearisation: the step is zero there, so its

@@ -5,8 +5,9 @@
 // never hidden.
 //
 // The columns are scaled to unit norm first (the unknowns differ by orders of
-// magnitude: a parameter and a product of two); rank, condition number and
-// the minimum-norm choice refer to the scaled problem. A = Q·R (Householder)
+// magnitude: a parameter and a product of two); rank and condition number
+// refer to the scaled problem. Of all least-squares solutions the one of
+// minimum norm in the caller's unknowns is returned (Moore–Penrose). A = Q·R (Householder)
 // then R = U·Σ·Vᵀ (Jacobi SVD), so tall systems stay cheap.
 #include <Eigen/Core>
 #include <limits>
