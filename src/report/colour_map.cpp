@@ -74,7 +74,7 @@ std::string ColourMap::render(int width, int height) const {
           viridis(std::isfinite(v) ? (v - lo) / (hi - lo) : std::nan("")), escape_xml(text));
     }
   o += "</g>\n";
-  o += f.axes(x, y, title);
+  o += f.axes(x, y, false);
 
   // Scale bar: the legend of the colours.
   const double bx = f.right + 18.0, bw = 16.0, bt = f.top, bb = f.bottom;

@@ -19,7 +19,7 @@ struct LegendLayout {
 };
 
 double legend_item_width(const std::string& name) {
-  return 34.0 + 6.5 * static_cast<double>(name.size());
+  return 44.0 + 7.4 * static_cast<double>(name.size());
 }
 
 LegendLayout layout_legend(const std::vector<Series>& series, double width) {
@@ -80,7 +80,7 @@ std::string LinePlot::render(int width, int height) const {
 
   std::string o;
   o += f.open_svg(id, width, height, title);
-  o += f.axes(x, y, title);
+  o += f.axes(x, y);
 
   // Series, clipped to the plot area.
   o += fmt::format("<g clip-path=\"url(#{}-clip)\">\n", escape_xml(id));

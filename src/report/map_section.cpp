@@ -62,9 +62,10 @@ void render_map_report(HtmlPage& page, const identify::WorkspaceMap& map,
   page.add_table(t);
   if (map.has_comparison)
     page.add_paragraph(fmt::format(
-        "htm against ae-arm: the mean |d| is {:.3f} µm larger with htm; ae-arm's mean is {:.1f} % "
-        "smaller; the mean length of the difference vector is {:.3f} µm.",
-        map.mean_difference_um, map.percent_smaller, map.mean_abs_vector_difference_um));
+        "htm against ae-arm: ae-arm's mean |d| is {:.3f} µm ({:.1f} %) {} than htm's; the two "
+        "models' deviation vectors differ by {:.3f} µm on average (mean |d_htm − d_ae-arm|).",
+        std::abs(map.mean_difference_um), std::abs(map.percent_smaller),
+        map.mean_difference_um >= 0.0 ? "smaller" : "larger", map.mean_abs_vector_difference_um));
   if (map.out_of_range_lookups > 0)
     page.add_note(
         fmt::format("{} table lookups lay outside the measured range.", map.out_of_range_lookups));
@@ -94,11 +95,20 @@ void render_map_report(HtmlPage& page, const identify::WorkspaceMap& map,
       maps.push_back(slice(map, m, plane, k));
       for (double v : maps.back().values) hi = std::max(hi, v);
     }
+    // Height from the slice's aspect ratio (equal scale): plot area 360 px
+    // wide and 160…480 px high. The cells reach half a step beyond the ends.
+    auto extent = [](const std::vector<double>& v) {
+      if (v.size() < 2) return 1.0;
+      return (v.back() - v.front()) * static_cast<double>(v.size()) /
+             static_cast<double>(v.size() - 1);
+    };
+    const double ratio = extent(maps.front().ys) / extent(maps.front().xs);
+    const int height = 80 + static_cast<int>(std::clamp(360.0 * ratio, 160.0, 480.0));
     std::vector<std::string> svgs;
     for (auto& c : maps) {
       c.vmin = 0.0;
       c.vmax = hi;
-      svgs.push_back(c.render(560, 440));
+      svgs.push_back(c.render(530, height));
     }
     page.add_figures(svgs);
   }

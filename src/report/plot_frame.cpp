@@ -40,16 +40,16 @@ std::string PlotFrame::open_svg(const std::string& plot_id, int width, int heigh
       escape_xml(plot_id), width, height, svg_coord(0.5 * width), escape_xml(title));
 }
 
-std::string PlotFrame::axes(const AxisSpec& x, const AxisSpec& y, const std::string&) const {
+std::string PlotFrame::axes(const AxisSpec& x, const AxisSpec& y, bool grid) const {
   std::string o;
   const int xt = std::max(2, static_cast<int>((right - left) / 90.0));
   const int yt = std::max(2, static_cast<int>((bottom - top) / 60.0));
   const Ticks tx = nice_ticks(xlo, xhi, xt), ty = nice_ticks(ylo, yhi, yt);
   o += "<g class=\"grid\" stroke=\"#e4e4e4\" stroke-width=\"1\">\n";
-  for (double v : tx.values)
+  for (double v : grid ? tx.values : std::vector<double>{})
     o += fmt::format("<line x1=\"{0}\" y1=\"{1}\" x2=\"{0}\" y2=\"{2}\"/>", svg_coord(px(v)),
                      svg_coord(top), svg_coord(bottom));
-  for (double v : ty.values)
+  for (double v : grid ? ty.values : std::vector<double>{})
     o += fmt::format("<line x1=\"{1}\" y1=\"{0}\" x2=\"{2}\" y2=\"{0}\"/>", svg_coord(py(v)),
                      svg_coord(left), svg_coord(right));
   o += "\n</g>\n<g class=\"axes\" stroke=\"#333\" stroke-width=\"1\">\n";

@@ -75,6 +75,8 @@ LinePlot toolpath_plot(const PredictedPath& r, double k, const std::string& id,
     s.name = fmt::format("predicted {} (× {:g})", model_name(r.models[m]), k);
     s.colour = model_colour(r.models[m]);
     s.width = 1.4;
+    // dual's first order is ae-arm: dashed, so that both stay visible.
+    if (r.models[m] == model::ModelKind::dual) s.style = SeriesStyle::dashed;
     for (std::size_t i = 0; i < r.nominal.size(); ++i) {
       const Eigen::Vector2d q = project(r.nominal[i] + k * 1e-3 * r.deviation_um[m][i]);
       s.x.push_back(q.x());

@@ -24,7 +24,8 @@ struct PlotFrame {
   // "<svg …>" with white background and the title text.
   std::string open_svg(const std::string& plot_id, int width, int height, const std::string& title);
   // Grid, ticks, tick labels, axis labels "label (unit)", frame, clip path.
-  std::string axes(const AxisSpec& x, const AxisSpec& y, const std::string& title) const;
+  // `grid` = false leaves out the grid lines (colour maps).
+  std::string axes(const AxisSpec& x, const AxisSpec& y, bool grid = true) const;
 };
 
 // "label (unit)", or the label alone without a unit.
