@@ -59,6 +59,26 @@ TEST(IdentifyDesign, ExpansionReproducesTheChain) {
   }
 }
 
+// The paper: "the coefficient of f1·g1 is in the form x·y²/2" (in Δx). The
+// chain gives exactly that (×10⁻¹⁵ µm for f, g in µrad/m, x, y in mm), and
+// nothing in Δy, Δz.
+TEST(IdentifyDesign, ProductF1G1HasThePapersCoefficient) {
+  const machine::Machine m = load("paper.yaml");
+  const ChainExpansion chain(m);
+  const int k = product_index(static_cast<int>(Param::f1), static_cast<int>(Param::g1));
+  for (double x : {300.0, 450.0})
+    for (double y : {200.0, 300.0})
+      for (double z : {-200.0, -100.0}) {
+        model::EvalPoint e;
+        e.p = {x, y, z};
+        e.tool_length = 100.0;
+        const MonomialRows r = chain.monomials(e);
+        EXPECT_NEAR(r(0, k), 1e-15 * x * y * y / 2.0, 1e-12 * 1e-15 * x * y * y);
+        EXPECT_EQ(r(1, k), 0.0);
+        EXPECT_EQ(r(2, k), 0.0);
+      }
+}
+
 // The parametrised chain equals the project's dual ErrorModel on a component
 // table that tabulates the parametrisation at 1 mm knots (the s²/2
 // straightness is interpolated to h²/8 · f · 1e-6 µm).
