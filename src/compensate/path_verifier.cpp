@@ -16,18 +16,36 @@ namespace {
 
 using Eigen::Vector3d;
 
-// Pulls the motions of a program one at a time.
+// Pulls the motions of a program one at a time. In a canned cycle (a block
+// with several motions) only the hole bottoms are compared — compensate
+// corrects the hole position there, the cycle words stay — so the other
+// motions of the block are flagged.
 class MotionStream {
  public:
   MotionStream(std::istream& in, const std::string& file, const gcode::InterpreterConfig& config)
       : reader_(in, file), interp_(config, file) {}
-  bool next(gcode::Motion& m) {
+  // `bottom_only`: measure only the end point (a hole bottom), or nothing.
+  bool next(gcode::Motion& m, bool& skip) {
     while (pending_.empty()) {
       if (interp_.program_ended() || !reader_.next(block_)) return false;
-      interp_.execute(block_, reader_.raw_line(),
-                      [&](const gcode::Motion& x) { pending_.push_back(x); });
+      block_motions_.clear();
+      interp_.execute(block_, reader_.raw_line(), [&](const gcode::Motion& x) {
+        if (x.kind != gcode::MotionKind::dwell) block_motions_.push_back(x);
+      });
+      const bool cycle = block_motions_.size() > 1;
+      for (std::size_t i = 0; i < block_motions_.size(); ++i) {
+        const gcode::Motion& x = block_motions_[i];
+        bool bottom = false;
+        if (cycle && x.kind == gcode::MotionKind::linear) {
+          const Eigen::Vector3d d = x.end - x.start;
+          bottom = i + 1 < block_motions_.size() &&
+                   (block_motions_[i + 1].end - block_motions_[i + 1].start).dot(d) < 0.0;
+        }
+        pending_.push_back({x, cycle && !bottom});
+      }
     }
-    m = pending_.front();
+    m = pending_.front().first;
+    skip = pending_.front().second;
     pending_.pop_front();
     return true;
   }
@@ -36,7 +54,8 @@ class MotionStream {
   gcode::BlockReader reader_;
   gcode::Interpreter interp_;
   gcode::Block block_;
-  std::deque<gcode::Motion> pending_;
+  std::vector<gcode::Motion> block_motions_;
+  std::deque<std::pair<gcode::Motion, bool>> pending_;
 };
 
 bool is_feed(const gcode::Motion& m) {
@@ -86,8 +105,9 @@ PassStats run_pass(MotionStream& a, MotionStream& b, double step, std::size_t wi
   bool b_done = false;
   auto pull = [&]() {
     gcode::Motion m;
+    bool skip_b = false;
     while (!b_done) {
-      if (!b.next(m)) {
+      if (!b.next(m, skip_b)) {
         b_done = true;
         return;
       }
@@ -104,10 +124,13 @@ PassStats run_pass(MotionStream& a, MotionStream& b, double step, std::size_t wi
     }
   };
   gcode::Motion m;
-  while (a.next(m)) {
-    const bool feed = is_feed(m);
+  bool skip = false;
+  while (a.next(m, skip)) {
+    const bool feed = is_feed(m) && !skip;
+    const bool cycle = m.sub > 0 || skip;
     fa.add(m, [&](const path::PathPoint& pp) {
       if (!feed || (pp.p - m.start).norm() == 0.0) return;
+      if (cycle && pp.p != m.end) return;  // a hole: its bottom only
       while (!b_done && curves.size() < cursor + window + 1) pull();
       if (curves.empty()) return;
       // Candidates: the curves within `slack` of the best match (a point at

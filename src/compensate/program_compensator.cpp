@@ -71,6 +71,15 @@ class BlockEditor {
     return round_to(target, decimals_);
   }
 
+  // Deletes a word (and the blank before it).
+  void remove(char letter) {
+    const gcode::Word* w = find_word(block_, letter);
+    if (!w) return;
+    std::uint32_t b = w->begin;
+    if (b > 0 && raw_[b - 1] == ' ') --b;
+    edits_.push_back({b, w->end, ""});
+  }
+
   bool changed() const { return !edits_.empty(); }
   bool spaced() const { return spaced_; }
 
@@ -244,16 +253,15 @@ class Compensator {
     const Vector3d d = solve(points_[0].back());
     for (int a = 0; a < 3; ++a) {
       const gcode::Word* w = find_word(block, kAxis[a]);
-      if (!w) continue;
       if (g53) {  // machine coordinates: the number moves by the correction
+        if (!w) continue;  // an unwritten axis stays where it was
         const double v = ed.set(kAxis[a], w->value + d[a] / unit_, w->value, false);
         cmd_[a] = pos_after_[a] + (v - w->value);
       } else {
         const double target = prog(motions_[0].end)[a] + d[a] / unit_;
-        cmd_[a] = set_abs(ed, kAxis[a], target, cmd_[a], cmd_[a], incremental_, false);
+        cmd_[a] = set_abs(ed, kAxis[a], target, cmd_[a], cmd_[a], incremental_, true);
       }
     }
-    // Unwritten axes: the commanded coordinate stays where it was (no insertion for rapids).
   }
 
   void cycle(const gcode::Block& block, BlockEditor& ed) {
@@ -262,8 +270,7 @@ class Compensator {
     if (incremental_) {
       const gcode::Word* l = find_word(block, 'L');
       if (l && l->value > 1.0) {
-        ++s_.uncompensated_blocks;
-        warn(block.line, "canned cycle with L repeats in G91: holes left uncompensated");
+        repeated_cycle(block, ed, static_cast<int>(std::lround(l->value)));
         return;
       }
     }
@@ -289,6 +296,50 @@ class Compensator {
       const double v = ed.set(kAxis[n], h[n] + d[n] / unit_, h[n] + depth_delta_ / unit_, true);
       depth_delta_ = (v - h[n]) * unit_;
     }
+  }
+
+  // G91 canned cycle with L repeats: one increment serves every hole, so the
+  // holes get the correction δ_before + k·g (k = 1..L) with g the least-
+  // squares fit to the corrections δ_k at the hole bottoms; the depth (Z
+  // relative to R) moves by the mean of δ_k − δ_before along the drill axis.
+  void repeated_cycle(const gcode::Block& block, BlockEditor& ed, int repeats) {
+    const auto ax = plane_axes(interp_.plane());
+    const int n = ax[2];
+    std::vector<Vector3d> holes;  // corrections at the bottoms, in order
+    for (std::size_t i = 0; i < motions_.size(); ++i) {
+      if (motions_[i].kind != gcode::MotionKind::linear || points_[i].empty()) continue;
+      // The feed into a hole: the drill axis moves; its end is the bottom
+      // when the next motion leaves it (a retract).
+      const Vector3d d = motions_[i].end - motions_[i].start;
+      if (std::abs(d[n]) <= 0.0) continue;
+      const bool bottom = i + 1 == motions_.size() ||
+                          (motions_[i + 1].end[n] - motions_[i + 1].start[n]) * d[n] < 0.0;
+      if (bottom) holes.push_back(solve(points_[i].back()));
+    }
+    if (holes.size() != static_cast<std::size_t>(repeats)) {
+      ++s_.uncompensated_blocks;
+      warn(block.line, "canned cycle with L repeats in G91: holes left uncompensated");
+      return;
+    }
+    Vector3d num = Vector3d::Zero();
+    double den = 0.0;
+    double mean_n = 0.0;
+    for (std::size_t k = 0; k < holes.size(); ++k) {
+      const double kk = static_cast<double>(k + 1);
+      num += kk * (holes[k] - delta_);
+      den += kk * kk;
+      mean_n += (holes[k] - delta_)[n] / static_cast<double>(holes.size());
+    }
+    const Vector3d g = num / den;
+    for (int k = 0; k < 2; ++k) {
+      const int a = ax[static_cast<std::size_t>(k)];
+      const gcode::Word* w = find_word(block, kAxis[a]);
+      const double inc = (w ? w->value : 0.0) + g[a] / unit_;
+      const double v = ed.set(kAxis[a], inc, w ? w->value : 0.0, true);
+      cmd_[a] += static_cast<double>(repeats) * (v - (w ? w->value : 0.0));
+    }
+    if (const gcode::Word* z = find_word(block, kAxis[n]))
+      ed.set(kAxis[n], z->value + mean_n / unit_, z->value, false);
   }
 
   // True if a single piece from point a to point b (a line, or an arc about
@@ -366,7 +417,7 @@ class Compensator {
       if (!path.is_arc() && len > 0.0) t = (pts[k].p - m.start).norm() / len;
       sp.push_back({pts[k].p, solve(pts[k]), t});
     }
-    if (m.kind == gcode::MotionKind::arc && std::abs(m.rotation) == 1) add_reversals(m, path, sp);
+    if (m.kind == gcode::MotionKind::arc) add_reversals(m, path, sp);
     // Greedy pieces: each as long as the correction stays linear along it.
     std::vector<std::size_t> breaks;
     for (std::size_t a = 0; a + 1 < sp.size();) {
@@ -377,11 +428,11 @@ class Compensator {
     }
     const bool arc = m.kind == gcode::MotionKind::arc;
     const bool r_form = arc && find_word(block, 'R') != nullptr;
+    // A multi-turn arc in pieces: every piece is at most a quarter turn
+    // (pieces end at the reversal points), so the P word (turns) goes.
     if (arc && breaks.size() > 1 && std::abs(m.rotation) > 1) {
-      ++s_.arcs_over_tolerance;
-      warn(block.line,
-           "multi-turn arc kept whole although its correction is not linear within tol");
-      breaks = {sp.size() - 1};
+      ed.remove('P');
+      ++s_.arcs_split_turns;
     }
     const auto ax = plane_axes(m.plane);
     const Vector3d centre = prog(m.center);
