@@ -204,9 +204,6 @@ const CommandRegistrar registrar(
     "with injected effects",
     70, [](CLI::App& sub, const GlobalOptions&) -> CommandAction {
       sub.require_subcommand(1);
-      sub.footer(
-          "Example: abbe simulate measure --truth machines/sample/truth.yaml --grid 100 "
-          "-o measured.csv");
       auto mo = std::make_shared<MachineOptions>();
       CLI::App* machine = sub.add_subcommand(
           "machine",
@@ -271,6 +268,9 @@ const CommandRegistrar registrar(
           ->capture_default_str();
       measure->add_option("-o,--output", me->output, "Output CSV (default stdout)");
 
+      sub.footer(
+          "Example: abbe simulate measure --truth machines/sample/truth.yaml --grid 100 "
+          "-o measured.csv");
       return [machine, campaign, measure, mo, co, me, grid, program]() {
         if (machine->parsed()) return run_machine(*mo);
         if (campaign->parsed()) return run_campaign_cmd(*co);

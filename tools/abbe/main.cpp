@@ -22,16 +22,6 @@ int main(int argc, char** argv) {
                "and why.\n"
                "Exit codes: 0 ok, 1 bad input, 2 usage, 3 internal error."};
   app.set_version_flag("--version", std::string("abbe ") + ABBE_VERSION);
-  app.footer(
-      "Examples:\n"
-      "  abbe predict nc-samples/thesis-toolpath-1.ngc --machine machines/sample/machine.yaml "
-      "--model all\n"
-      "  abbe report predict nc-samples/thesis-toolpath-1.ngc --machine "
-      "machines/sample/machine.yaml -o report.html\n"
-      "  abbe COMMAND --help shows the options and an example of each command.\n"
-      "A progress bar appears on stderr for long jobs when it is a terminal (not with -q).\n"
-      "Exit codes: 0 ok, 1 bad input (file, line and column named), 2 usage, 3 internal error.\n"
-      "Walk-through: docs/getting-started.md");
   app.require_subcommand(1);
   GlobalOptions global;
   app.add_flag("-v,--verbose", global.verbose, "More log output (repeat for debug)");
@@ -49,6 +39,17 @@ int main(int argc, char** argv) {
     CLI::App* sub = app.add_subcommand(info.name, info.description);
     actions[sub] = info.setup(*sub, global);
   }
+  // Set after the subcommands: CLI11 copies the footer into subcommands added later.
+  app.footer(
+      "Examples:\n"
+      "  abbe predict nc-samples/thesis-toolpath-1.ngc --machine machines/sample/machine.yaml "
+      "--model all\n"
+      "  abbe report predict nc-samples/thesis-toolpath-1.ngc --machine "
+      "machines/sample/machine.yaml -o report.html\n"
+      "  abbe COMMAND --help shows the options and an example of each command.\n"
+      "A progress bar appears on stderr for long jobs when it is a terminal (not with -q).\n"
+      "Exit codes: 0 ok, 1 bad input (file, line and column named), 2 usage, 3 internal error.\n"
+      "Walk-through: docs/getting-started.md");
 
   try {
     app.parse(argc, argv);
