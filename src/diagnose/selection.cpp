@@ -355,10 +355,22 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
       break;
     }
 
-    // Held-out check.
+    // Held-out check. A smooth function that fails it gives way to the best
+    // significant named candidate (with fewer columns it may still pass).
     Mat Xn(n, X.cols() + C.cols());
     Xn << X, C;
-    const double cv = cross_validated_sse(pb, Xn, y, folds, o.folds);
+    double cv = cross_validated_sse(pb, Xn, y, folds, o.folds);
+    if (!(cv < cv_prev * (1.0 - 1e-6)) && pick.kind == TermKind::unexplained && best_named) {
+      res.log.push_back(fmt::format("step {}: {} rejected: held-out SSE {:.6g} ≥ {:.6g}", step + 1,
+                                    pick.label(), cv, cv_prev));
+      pick = best_named->c->term;
+      C = best_named->c->C;
+      d_pick = best_named->d;
+      amb.clear();
+      Xn.resize(n, X.cols() + C.cols());
+      Xn << X, C;
+      cv = cross_validated_sse(pb, Xn, y, folds, o.folds);
+    }
     if (!(cv < cv_prev * (1.0 - 1e-6))) {
       res.log.push_back(fmt::format("step {}: {} rejected: held-out SSE {:.6g} ≥ {:.6g}", step + 1,
                                     pick.label(), cv, cv_prev));
@@ -392,33 +404,71 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     res.sigma_um = std::sqrt(y.squaredNorm() / std::max<double>(static_cast<double>(n), 1.0));
     return res;
   }
-  const Eigen::Index P = X.cols();
-  Mat XtX = X.transpose() * X;
-  XtX.diagonal().array() += 1e-12 * XtX.trace() / static_cast<double>(P);
-  Eigen::LDLT<Mat> ldlt(XtX);
-  const Vec beta = ldlt.solve(X.transpose() * y);
-  res.residual = y - X * beta;
-  const double rss = res.residual.squaredNorm();
-  const double s2 = rss / std::max<double>(static_cast<double>(n - P), 1.0);
-  res.sigma_um = std::sqrt(s2);
-  const Mat inv = ldlt.solve(Mat::Identity(P, P));
-  Eigen::Index col = 0;
-  for (std::size_t i = 0; i < chosen.size(); ++i) {
-    SelectedTerm st;
-    st.term = chosen[i];
-    const auto k = static_cast<Eigen::Index>(st.term.columns());
-    const Vec bt = beta.segment(col, k);
-    const Mat Vt = inv.block(col, col, k, k);
-    for (Eigen::Index c = 0; c < k; ++c) {
-      st.term.coef.push_back(bt[c]);
-      st.term.stderr_.push_back(std::sqrt(std::max(s2 * Vt(c, c), 0.0)));
+  // Two stages: the named effects jointly, then the smooth (unexplained)
+  // remainder on what they leave, so that the smooth functions cannot take
+  // over part of a named effect's parameters.
+  std::vector<Eigen::Index> start(chosen.size());
+  {
+    Eigen::Index col = 0;
+    for (std::size_t i = 0; i < chosen.size(); ++i) {
+      start[i] = col;
+      col += chosen[i].columns();
     }
-    // SS this term alone removes given the others: βᵀ V⁻¹ β.
-    const double drop = bt.dot(Vt.ldlt().solve(bt));
-    st.explained_fraction = res.baseline_sse > 0.0 ? drop / res.baseline_sse : 0.0;
-    st.ambiguous_with = ambiguous[i];
-    res.terms.push_back(std::move(st));
-    col += k;
+  }
+  struct StageFit {
+    std::vector<std::size_t> terms;
+    Vec beta;
+    Mat inv;  // (XᵀX)⁻¹
+  };
+  auto fit_stage = [&](bool smooth, const Vec& target, Vec& residual) {
+    StageFit f;
+    Eigen::Index P = 0;
+    for (std::size_t i = 0; i < chosen.size(); ++i)
+      if ((chosen[i].kind == TermKind::unexplained) == smooth) {
+        f.terms.push_back(i);
+        P += chosen[i].columns();
+      }
+    residual = target;
+    if (P == 0) return f;
+    Mat Xs(n, P);
+    Eigen::Index c = 0;
+    for (std::size_t i : f.terms) {
+      Xs.middleCols(c, chosen[i].columns()) = X.middleCols(start[i], chosen[i].columns());
+      c += chosen[i].columns();
+    }
+    Mat XtX = Xs.transpose() * Xs;
+    XtX.diagonal().array() += 1e-12 * XtX.trace() / static_cast<double>(P);
+    Eigen::LDLT<Mat> ldlt(XtX);
+    f.beta = ldlt.solve(Xs.transpose() * target);
+    f.inv = ldlt.solve(Mat::Identity(P, P));
+    residual = target - Xs * f.beta;
+    return f;
+  };
+  Vec r1, r2;
+  const StageFit named_fit = fit_stage(false, y, r1);
+  const StageFit smooth_fit = fit_stage(true, r1, r2);
+  res.residual = r2;
+  const double s2 = r2.squaredNorm() / std::max<double>(static_cast<double>(n - X.cols()), 1.0);
+  res.sigma_um = std::sqrt(s2);
+  for (const StageFit* f : {&named_fit, &smooth_fit}) {
+    Eigen::Index col = 0;
+    for (std::size_t i : f->terms) {
+      SelectedTerm st;
+      st.term = chosen[i];
+      const auto k = static_cast<Eigen::Index>(st.term.columns());
+      const Vec bt = f->beta.segment(col, k);
+      const Mat Vt = f->inv.block(col, col, k, k);
+      for (Eigen::Index c = 0; c < k; ++c) {
+        st.term.coef.push_back(bt[c]);
+        st.term.stderr_.push_back(std::sqrt(std::max(s2 * Vt(c, c), 0.0)));
+      }
+      // SS this term alone removes given the others of its stage: βᵀ V⁻¹ β.
+      const double drop = bt.dot(Vt.ldlt().solve(bt));
+      st.explained_fraction = res.baseline_sse > 0.0 ? drop / res.baseline_sse : 0.0;
+      st.ambiguous_with = ambiguous[i];
+      res.terms.push_back(std::move(st));
+      col += k;
+    }
   }
   std::stable_sort(res.terms.begin(), res.terms.end(),
                    [](const SelectedTerm& a, const SelectedTerm& b) {

@@ -57,6 +57,7 @@ const char* variable_name(int v) {
 int Term::columns() const {
   if (kind == TermKind::cyclic) return 2;
   if (kind == TermKind::unexplained) {
+    // (degree+1)^nv multi-indices without the constant.
     int n = 1;
     for (std::size_t i = 0; i < vars.size(); ++i) n *= degree + 1;
     return n - 1;
@@ -113,16 +114,22 @@ void Term::basis(const PointContext& pc,
         const double u = 2.0 * (variable(pc, vars[i]) - lo[v]) / (hi[v] - lo[v]) - 1.0;
         legendre(u, degree, poly[i]);
       }
-      // Columns: every multi-index (d_1..d_nv) in [0, degree]^nv except all-zero.
-      const int n = columns();
-      for (int c = 1; c <= n; ++c) {
-        int rest = c;
+      // Columns: every multi-index (d_1..d_nv) in [0, degree]^nv except the
+      // constant (a setup offset). The linear parts stay: a smooth function
+      // must be able to take the whole of an effect outside the catalogue.
+      int n = 1;
+      for (std::size_t i = 0; i < nv; ++i) n *= degree + 1;
+      Eigen::Index col = 0;
+      for (int c = 1; c < n; ++c) {
+        int rest = c, total = 0;
         double g = 1.0;
         for (std::size_t i = 0; i < nv; ++i) {
-          g *= poly[i][rest % (degree + 1)];
+          const int d = rest % (degree + 1);
+          total += d;
+          g *= poly[i][d];
           rest /= degree + 1;
         }
-        out(direction, c - 1) = g;
+        if (total >= 1) out(direction, col++) = g;
       }
       break;
     }

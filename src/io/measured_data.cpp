@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -59,7 +60,10 @@ MeasuredData read_measured_data(std::istream& in, const std::string& file) {
       break;
     }
   }
-  if (!have_header) fail(1, "header", "empty measured-data file: a header is required");
+  if (!have_header) {
+    line_no = std::max<std::size_t>(line_no, 1);
+    fail(1, "header", "empty measured-data file: a header is required");
+  }
   std::array<int, kNames.size()> col;
   col.fill(-1);
   const auto names = split(line);

@@ -59,17 +59,21 @@ TEST(DiagnoseCases, EffectOutsideTheCatalogueIsUnexplainedInYAndZ) {
     io::MeasuredData data = measure(vm, 300, static_cast<std::uint64_t>(40 + i), lo, hi);
     for (auto& r : data.rows) r.d[0] += 10.0 * kNoise * std::sin(r.p.y() / 40.0) * r.p.z() / 460.0;
     const Diagnosis d = diagnose(vm.machine, data, DiagnoseOptions{});
+    // The most important effect is the smooth function of (y, z) in X; a
+    // named kind may take a small share (the z-linear part of the shape is
+    // a catalogued form), never a large one.
     bool unexplained_yz = false, wrong_named = false;
-    for (const auto& st : d.effects) {
-      const Term& t = st.term;
-      if (t.kind == TermKind::unexplained) {
-        if (t.direction == 0 && t.vars == std::vector<int>{1, 2}) unexplained_yz = true;
-      } else if (st.explained_fraction > 0.02) {
-        wrong_named = true;
-      }
+    if (!d.effects.empty()) {
+      const Term& t = d.effects.front().term;
+      unexplained_yz =
+          t.kind == TermKind::unexplained && t.direction == 0 && t.vars == std::vector<int>{1, 2};
     }
-    if (unexplained_yz && !wrong_named) ++ok;
-    else ADD_FAILURE() << report_text(d);
+    for (const auto& st : d.effects)
+      if (st.term.kind != TermKind::unexplained && st.explained_fraction > 0.05) wrong_named = true;
+    if (unexplained_yz && !wrong_named)
+      ++ok;
+    else
+      ADD_FAILURE() << report_text(d);
   }
   EXPECT_EQ(ok, n);
 }
@@ -126,9 +130,10 @@ TEST(DiagnoseCases, OverlayRoundTripAndExtendRemovesTheEffect) {
 
 TEST(DiagnoseCases, OverlayErrorsNameTheField) {
   try {
-    Overlay::parse("format: abbe-overlay-1\nmodel: ae-arm\neffects:\n  - term: cyclic\n    axis: X\n"
-                   "    direction: Q\n    period_mm: 10\n    coef: [1, 2]\n",
-                   "o.yaml");
+    Overlay::parse(
+        "format: abbe-overlay-1\nmodel: ae-arm\neffects:\n  - term: cyclic\n    axis: X\n"
+        "    direction: Q\n    period_mm: 10\n    coef: [1, 2]\n",
+        "o.yaml");
     FAIL() << "no error";
   } catch (const InputError& e) {
     EXPECT_EQ(e.where().file, "o.yaml");

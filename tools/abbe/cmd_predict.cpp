@@ -19,6 +19,8 @@
 #include <string_view>
 #include <vector>
 
+#include "abbe/diagnose/context.hpp"
+#include "abbe/diagnose/overlay.hpp"
 #include "abbe/gcode/program.hpp"
 #include "abbe/io/atomic_file.hpp"
 #include "abbe/io/input_error.hpp"
@@ -39,6 +41,7 @@ struct PredictOptions {
   std::string output = "-";
   std::string format = "csv";
   std::string summary_json;
+  std::string extend;  // overlay of effects found by `abbe diagnose` (docs/formats.md)
   double step = 5.0;
   double rapid_rate = 10000.0;
   bool points = false;  // input is a CSV of points even without the .csv extension
@@ -292,6 +295,13 @@ int run_predict(const PredictOptions& o, const GlobalOptions& g) {
   std::vector<model::ModelData> data(kinds.size());
   std::vector<ModelStats> stats(kinds.size());
   std::vector<model::Deviation> devs(kinds.size());
+  // --extend: the overlay's extra deviation is added to every model's prediction.
+  std::optional<diagnose::Overlay> overlay;
+  std::optional<diagnose::ContextBuilder> overlay_context;
+  if (!o.extend.empty()) {
+    overlay = diagnose::Overlay::load(o.extend);
+    overlay_context.emplace(machine, *model::parse_model_kind(overlay->base_model));
+  }
 
   std::ifstream file;
   std::istream* in = &std::cin;
@@ -331,8 +341,14 @@ int run_predict(const PredictOptions& o, const GlobalOptions& g) {
                          fmt::format("at the point ({:.4f}, {:.4f}, {:.4f}) mm: {}", p.p.x(),
                                      p.p.y(), p.p.z(), e.message()));
       }
-      stats[i].add(devs[i].e_um);
     }
+    if (overlay) {
+      Eigen::Vector3d base;
+      const diagnose::PointContext pc = overlay_context->make(p, "", base);
+      const Eigen::Vector3d extra = overlay->evaluate(pc);
+      for (auto& d : devs) d.e_um += extra;
+    }
+    for (std::size_t i = 0; i < models.size(); ++i) stats[i].add(devs[i].e_um);
     ++n_points;
     tick();
     if (writer) writer->write(p, line, devs);
@@ -440,6 +456,8 @@ const CommandRegistrar registrar(
       sub.add_flag("--points", o->points, "The input is a CSV of points (also for non-.csv names)");
       sub.add_flag("--summary-only", o->summary_only, "Write no points, only the summary");
       sub.add_option("--summary-json", o->summary_json, "Also write the summary as JSON to FILE");
+      sub.add_option("--extend", o->extend,
+                     "Add the effects of an overlay written by `abbe diagnose --overlay`");
       return [o, gp] { return run_predict(*o, *gp); };
     });
 

@@ -1,0 +1,97 @@
+# Command-level tests of `abbe diagnose` and `abbe import plugplate` (label
+# cli), run with `cmake -P`: a hidden reversal found in simulated data, the
+# JSON report keys, the overlay accepted by predict and diagnose (--extend),
+# the plug-plate importer, and errors.
+if(NOT CMAKE_SCRIPT_MODE_FILE)
+  add_test(NAME cli_diagnose
+           COMMAND ${CMAKE_COMMAND} -DABBE=$<TARGET_FILE:abbe> -DSRC=${PROJECT_SOURCE_DIR}
+                   -DWORK=${CMAKE_CURRENT_BINARY_DIR}/cli_diagnose -P ${CMAKE_CURRENT_LIST_FILE})
+  set_tests_properties(cli_diagnose PROPERTIES LABELS cli TIMEOUT 300)
+  return()
+endif()
+
+function(run)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${ARGN}: exit code ${rc}\n${err}")
+  endif()
+  set(run_out "${out}" PARENT_SCOPE)
+endfunction()
+
+function(expect_failure expected_message)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 1)
+    message(FATAL_ERROR "${ARGN}: exit code ${rc}, expected 1\n${err}")
+  endif()
+  string(FIND "${err}" "${expected_message}" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "${ARGN}: message lacks '${expected_message}':\n${err}")
+  endif()
+endfunction()
+
+file(REMOVE_RECURSE ${WORK})
+file(MAKE_DIRECTORY ${WORK})
+set(M ${SRC}/machines/sample)
+set(P ${SRC}/tests/data/plugplate)
+
+# A large reversal of Y hidden in a grid measurement of the sample machine.
+run(${ABBE} simulate measure --truth ${M}/truth.yaml --grid 100 --inject reversal:Y:12um
+    --noise 0.5um --seed 3 -o ${WORK}/rev.csv)
+run(${ABBE} diagnose --machine ${M}/machine.yaml --measured ${WORK}/rev.csv
+    --out ${WORK}/report.json --overlay ${WORK}/overlay.yaml)
+string(FIND "${run_out}" "reversal" at)
+if(at EQUAL -1)
+  message(FATAL_ERROR "the summary names no reversal:\n${run_out}")
+endif()
+file(READ ${WORK}/report.json js)
+foreach(key model n_points models baseline effects extended)
+  string(JSON v ERROR_VARIABLE e GET "${js}" ${key})
+  if(e)
+    message(FATAL_ERROR "report.json lacks ${key}")
+  endif()
+endforeach()
+string(JSON kind GET "${js}" effects 0 kind)
+string(JSON axis GET "${js}" effects 0 axis)
+if(NOT kind STREQUAL "reversal" OR NOT axis STREQUAL "Y")
+  message(FATAL_ERROR "first effect is ${kind} ${axis}, expected reversal Y")
+endif()
+string(JSON gain GET "${js}" extended gain_percent)
+if(gain LESS 50)
+  message(FATAL_ERROR "gain ${gain} % too small")
+endif()
+
+# The overlay: predict accepts it, and diagnosing again with it finds no reversal.
+run(${ABBE} predict ${WORK}/rev.csv --machine ${M}/machine.yaml --extend ${WORK}/overlay.yaml
+    -o ${WORK}/pred.csv)
+run(${ABBE} diagnose --machine ${M}/machine.yaml --measured ${WORK}/rev.csv
+    --extend ${WORK}/overlay.yaml --out ${WORK}/again.json)
+file(READ ${WORK}/again.json js2)
+string(FIND "${js2}" "\"reversal\"" at)
+if(NOT at EQUAL -1)
+  message(FATAL_ERROR "the reversal is still found with --extend")
+endif()
+
+# Plug plates.
+run(${ABBE} import plugplate ${P}/D8131_1 -o ${WORK}/p1.csv)
+file(STRINGS ${WORK}/p1.csv lines)
+list(LENGTH lines n)
+if(NOT n EQUAL 83)
+  message(FATAL_ERROR "p1.csv has ${n} lines, expected 83")
+endif()
+run(${ABBE} diagnose --machine ${P}/machine.yaml --measured ${WORK}/p1.csv)
+string(FIND "${run_out}" "rotated by +506" at)
+if(at EQUAL -1)
+  message(FATAL_ERROR "plate 8131: rotation not found:\n${run_out}")
+endif()
+
+# Errors: exit code 1 with file and line.
+file(WRITE ${WORK}/bad.csv "x,y,z,dx\n1,2,3,4\n1,2,zz,4\n")
+expect_failure("bad.csv:3:5" ${ABBE} diagnose --machine ${M}/machine.yaml --measured ${WORK}/bad.csv)
+file(WRITE ${WORK}/bad.yaml "format: abbe-overlay-1\neffects:\n  - term: wobble\n    coef: [1]\n")
+expect_failure("bad.yaml:3" ${ABBE} predict ${WORK}/rev.csv --machine ${M}/machine.yaml
+               --extend ${WORK}/bad.yaml)
+file(WRITE ${WORK}/bad_plate "Plug Plate: 1\nMeas X Meas Y Nom X Nom Y Err X Err Y\n1 2 1 2 0\n")
+expect_failure("bad_plate:3" ${ABBE} import plugplate ${WORK}/bad_plate -o ${WORK}/x.csv)
+if(EXISTS ${WORK}/x.csv)
+  message(FATAL_ERROR "a failed import left its output")
+endif()
