@@ -7,6 +7,11 @@ if(NOT CMAKE_SCRIPT_MODE_FILE)
            COMMAND ${CMAKE_COMMAND} -DABBE=$<TARGET_FILE:abbe> -DSRC=${PROJECT_SOURCE_DIR}
                    -DWORK=${CMAKE_CURRENT_BINARY_DIR}/cli_diagnose -P ${CMAKE_CURRENT_LIST_FILE})
   set_tests_properties(cli_diagnose PROPERTIES LABELS cli TIMEOUT 300)
+  # The larger hidden-effect sweep (200 seeds instead of 40): ctest -L slow.
+  add_test(NAME diagnose_hidden_effect_sweep
+           COMMAND $<TARGET_FILE:abbe_tests> --gtest_filter=DiagnoseHiddenEffect.*)
+  set_tests_properties(diagnose_hidden_effect_sweep PROPERTIES LABELS slow TIMEOUT 1800
+                       ENVIRONMENT ABBE_DIAGNOSE_SEEDS=200)
   return()
 endif()
 
