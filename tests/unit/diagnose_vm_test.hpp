@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include "abbe/diagnose/diagnosis.hpp"
 #include "abbe/diagnose/selection.hpp"
 #include "abbe/io/measured_data.hpp"
@@ -47,7 +49,9 @@ inline VirtualMachine build_virtual_machine(bool strip_short_waves, const std::s
         c.waves = keep;
       }
     const sim::CampaignResult r = sim::run_campaign(g);
-    const auto dir = std::filesystem::path(::testing::TempDir()) / name;
+    // One directory per process: ctest runs tests of this binary in parallel.
+    const auto dir = std::filesystem::path(::testing::TempDir()) /
+                     (name + "_" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     { std::ofstream(dir / "errors.csv") << sim::table_to_csv(r); }
     machine::Machine m =
