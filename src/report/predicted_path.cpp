@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
 #include <sstream>
 
@@ -60,11 +61,15 @@ PredictedPath predict_program(const machine::Machine& machine, std::istream& in,
   Eigen::Vector3d previous = Eigen::Vector3d::Zero();
   std::vector<Eigen::Vector3d> e(models.size());
   const std::size_t max_points = std::max<std::size_t>(o.max_points, 16);
+  std::array<bool, 3> hold{false, false, false};
+  std::array<std::int8_t, 3> dir{0, 0, 0};
   const path::PointSink sink = [&](const path::PathPoint& pp) {
     model::EvalPoint p;
     p.p = pp.p;
     p.tool_length = pp.tool_length;
-    p.dir = pp.dir;
+    for (std::size_t a = 0; a < 3; ++a)
+      if (!hold[a]) dir[a] = pp.dir[a];
+    p.dir = dir;
     p.time = pp.time;
     for (std::size_t i = 0; i < models.size(); ++i) {
       try {
@@ -95,8 +100,13 @@ PredictedPath predict_program(const machine::Machine& machine, std::istream& in,
       if (pos >= 0) o.progress(static_cast<std::uint64_t>(pos));
     }
   };
-  gcode::run_program(program, file, config,
-                     [&](const gcode::Motion& m) { fragmenter.add(m, sink); });
+  gcode::run_program(program, file, config, [&](const gcode::Motion& m) {
+    for (Eigen::Index a = 0; a < 3; ++a)
+      hold[static_cast<std::size_t>(a)] = o.min_reversal_mm > 0.0 &&
+                                          m.kind != gcode::MotionKind::arc &&
+                                          std::abs(m.end[a] - m.start[a]) < o.min_reversal_mm;
+    fragmenter.add(m, sink);
+  });
   if (o.progress) o.progress(text.size());
 
   for (std::size_t i = 0; i < models.size(); ++i) {

@@ -46,6 +46,11 @@ machine="$src/tests/data/machines/sample.yaml"
   --model all -o "$work/predict.html" || fail "abbe report predict exited with $?"
 "$abbe" -q report map --machine "$machine" --grid 100 -o "$work/map.html" ||
   fail "abbe report map exited with $?"
+"$abbe" -q compensate "$src/nc-samples/thesis-toolpath-1.ngc" --machine "$machine" \
+  -o "$work/compensated.ngc" || fail "abbe compensate exited with $?"
+"$abbe" -q report compensate "$src/nc-samples/thesis-toolpath-1.ngc" \
+  --compensated "$work/compensated.ngc" --machine "$machine" -o "$work/compensate.html" ||
+  fail "abbe report compensate exited with $?"
 
 run_browser() {  # run_browser PROFILE_DIR ARGS...
   local profile=$1
@@ -94,6 +99,8 @@ check_page() {  # check_page NAME ID...
 
 check_page predict summary-table toolpath-iso toolpath-xy toolpath-xz toolpath-yz \
   deviation-models deviation-htm deviation-ae-arm deviation-dual
+check_page compensate compensate-table compensate-iso compensate-xy compensate-xz compensate-yz \
+  compensate-deviation
 check_page map map-table map-htm-xy0 map-ae-arm-xy0 map-htm-xz3 map-ae-arm-yz5
 
 if [ "$failures" -gt 0 ]; then

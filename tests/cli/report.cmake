@@ -92,6 +92,26 @@ expect_in(${WORK}/map.html "report map"
   "id=\"map-table\"" "id=\"map-htm-xy0\"" "id=\"map-ae-arm-xy0\"" "class=\"scale-bar\""
   ">|d| (µm)</text>" "htm against ae-arm")
 
+# compensate report: the output of abbe compensate against the original.
+run_ok("compensate" compensate ${SRC}/nc-samples/thesis-toolpath-1.ngc --machine ${MACHINE}
+       -o ${WORK}/comp.ngc)
+run_ok("report compensate" report compensate ${SRC}/nc-samples/thesis-toolpath-1.ngc
+       --compensated ${WORK}/comp.ngc --machine ${MACHINE} -o ${WORK}/compensation.html)
+expect_in(${WORK}/compensation.html "report compensate"
+  "id=\"compensate-table\"" "id=\"compensate-iso\"" "id=\"compensate-xy\""
+  "id=\"compensate-deviation\"" "predicted compensated (×")
+file(READ ${WORK}/compensation.html html)
+if(NOT html MATCHES "<td>original: predicted deviation \\|d\\|</td><td>[0-9]+</td><td>([0-9]+)\\.[0-9]+</td>")
+  message(FATAL_ERROR "report compensate: no row of the original")
+endif()
+set(rms_original ${CMAKE_MATCH_1})
+if(NOT html MATCHES "<td>compensated: predicted − nearest nominal</td><td>[0-9]+</td><td>([0-9]+)\\.[0-9]+</td>")
+  message(FATAL_ERROR "report compensate: no row of the compensated program")
+endif()
+if(NOT CMAKE_MATCH_1 LESS rms_original)
+  message(FATAL_ERROR "report compensate: rms ${CMAKE_MATCH_1} µm not below the original's ${rms_original}")
+endif()
+
 # Bad input: exit 1, file and line named, an existing output left alone.
 file(WRITE ${WORK}/bad.ngc "G0 X0\nG1 X10 Q7 F100\n")
 file(WRITE ${WORK}/keep.html "previous\n")

@@ -11,6 +11,7 @@
 #include "abbe/io/input_error.hpp"
 #include "abbe/machine/machine.hpp"
 #include "abbe/model/error_model.hpp"
+#include "abbe/report/compensate_section.hpp"
 #include "abbe/report/html_page.hpp"
 #include "abbe/report/predict_section.hpp"
 #include "abbe/report/predicted_path.hpp"
@@ -141,6 +142,36 @@ TEST(ReportPredict, IsometricDrawing) {
   EXPECT_GT(isometric({0, 1, 0}).x(), 0.0);
   EXPECT_NEAR(isometric({1, 0, 0}).y(), -0.5, 1e-12);
   EXPECT_NEAR(isometric({1, 0, 0}).norm(), 1.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace abbe::report
+
+namespace abbe::report {
+namespace {
+
+TEST(ReportCompensate, UncompensatedProgramIsAsFarAsItsPredictedDeviationAllows) {
+  // The "compensated" program is the original itself: every predicted point
+  // lies at most |d| from the nominal path (the nearest point can only be
+  // closer than the point it came from), and feed points are not on it.
+  const machine::Machine m = machine::Machine::load(kMachine);
+  PredictPathOptions o;
+  const CompensationComparison c = compare_compensation(m, kProgram, "a.ngc", kProgram, "b.ngc", o);
+  ASSERT_EQ(c.residual_um.size(), c.compensated.nominal.size());
+  ASSERT_EQ(c.compensated.nominal.size(), c.original.nominal.size());
+  double max_r = 0.0;
+  for (std::size_t i = 0; i < c.residual_um.size(); ++i) {
+    EXPECT_LE(c.residual_um[i].norm(), c.original.deviation_um[0][i].norm() + 1e-6) << i;
+    max_r = std::max(max_r, c.residual_um[i].norm());
+  }
+  EXPECT_DOUBLE_EQ(c.residual_max_um, max_r);
+  EXPECT_GT(c.residual_rms_um, 1.0);
+  HtmlPage page("c");
+  render_compensate_report(page, c, 0.0);
+  const std::string html = page.render();
+  for (const char* id :
+       {"compensate-table", "compensate-iso", "compensate-xy", "compensate-deviation"})
+    EXPECT_NE(html.find(std::string("id=\"") + id + "\""), std::string::npos) << id;
 }
 
 }  // namespace

@@ -18,6 +18,7 @@
 #include "abbe/io/input_error.hpp"
 #include "abbe/io/progress.hpp"
 #include "abbe/machine/machine.hpp"
+#include "abbe/report/compensate_section.hpp"
 #include "abbe/report/html_page.hpp"
 #include "abbe/report/map_section.hpp"
 #include "abbe/report/predict_section.hpp"
@@ -32,6 +33,7 @@ struct ReportOptions {
   std::string machine;
   std::string model = "all";
   std::string output;
+  std::string compensated;
   double exaggerate = 0.0;  // ≤ 0: automatic
   double step = 5.0;
   double grid = 50.0;
@@ -101,6 +103,31 @@ int run_report_map(const ReportOptions& o) {
   return kOk;
 }
 
+std::string read_text(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f)
+    throw InputError({path, 0, 0, "", ""},
+                     std::string("cannot open the NC program: ") + std::strerror(errno));
+  return {std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
+}
+
+int run_report_compensate(const ReportOptions& o) {
+  const machine::Machine machine = machine::Machine::load(o.machine);
+  report::PredictPathOptions po;
+  po.models = parse_models(o.model);
+  if (po.models.size() != 1)
+    throw InputError({"<command line>", 0, 0, "--model", ""},
+                     "report compensate takes one model (htm, ae-arm or dual)");
+  po.step = o.step;
+  po.max_points = o.max_points;
+  const report::CompensationComparison c = report::compare_compensation(
+      machine, read_text(o.input), o.input, read_text(o.compensated), o.compensated, po);
+  report::HtmlPage page(fmt::format("abbe: compensation of {}", o.input));
+  report::render_compensate_report(page, c, o.exaggerate);
+  write_page(o.output, page);
+  return kOk;
+}
+
 const CommandRegistrar registrar(
     "report", "Write an HTML report with plots: a program's predicted toolpath, or a workspace map",
     80, [](CLI::App& sub, const GlobalOptions& g) -> CommandAction {
@@ -142,9 +169,34 @@ const CommandRegistrar registrar(
           ->required();
       map->footer(
           "Example: abbe report map --machine machines/sample/machine.yaml --grid 50 -o map.html");
-      return [o, gp, predict, map]() -> int {
+      CLI::App* comp = sub.add_subcommand(
+          "compensate", "Nominal, predicted original and predicted compensated toolpath");
+      comp->add_option("program", o->input, "The original NC program")->required();
+      comp->add_option("--compensated", o->compensated,
+                       "The compensated program (output of abbe compensate)")
+          ->required();
+      comp->add_option("--machine", o->machine, "Machine file (YAML)")->required();
+      comp->add_option("--model", o->model, "htm, ae-arm or dual (as given to abbe compensate)")
+          ->check(CLI::IsMember({"htm", "ae-arm", "dual"}))
+          ->default_str("ae-arm");
+      comp->add_option("--exaggerate", o->exaggerate, "Draw deviations × K (default: automatic)");
+      comp->add_option("--step", o->step, "Largest distance between points, mm")
+          ->check(CLI::PositiveNumber)
+          ->capture_default_str();
+      comp->add_option("-o,--output", o->output, "HTML file (written atomically), - for stdout")
+          ->required();
+      comp->footer(
+          "Example: abbe compensate nc-samples/thesis-toolpath-1.ngc --machine "
+          "machines/sample/machine.yaml -o comp.ngc && abbe report compensate "
+          "nc-samples/thesis-toolpath-1.ngc --compensated comp.ngc --machine "
+          "machines/sample/machine.yaml -o compensation.html");
+      return [o, gp, predict, map, comp]() -> int {
         if (predict->parsed()) return run_report_predict(*o, *gp);
         if (map->parsed()) return run_report_map(*o);
+        if (comp->parsed()) {
+          if (o->model == "all") o->model = "ae-arm";
+          return run_report_compensate(*o);
+        }
         return kUsage;
       };
     });

@@ -23,6 +23,11 @@ struct PredictPathOptions {
   double step = 5.0;            // mm, fragmentation
   double rapid_rate = 10000.0;  // mm/min
   std::size_t max_points = 20000;
+  // An axis that moves less than this within a straight motion keeps the
+  // direction sign it had (for compensated programs: the micro-motions a
+  // correction adds to an axis at rest are no reversals, as in `abbe
+  // verify`). 0: every motion counts (as `abbe predict`).
+  double min_reversal_mm = 0.0;
   // Called now and then with the bytes of the input consumed so far.
   std::function<void(std::uint64_t)> progress;
 };
