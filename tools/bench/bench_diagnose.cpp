@@ -1,0 +1,84 @@
+// Diagnosis speed: 100 k measured points of the virtual machine (two hidden
+// effects, noise 0.5 µm) against the full candidate catalogue — residuals of
+// the three models, candidates, stepwise selection with 5-fold held-out
+// checks, final fit (docs/performance.md, "Diagnosis").
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "abbe/diagnose/diagnosis.hpp"
+#include "abbe/io/measured_data.hpp"
+#include "abbe/machine/machine.hpp"
+#include "abbe/sim/effect.hpp"
+#include "abbe/sim/laser_campaign.hpp"
+#include "abbe/sim/truth_generator.hpp"
+#include "abbe/sim/validation_measurement.hpp"
+
+namespace {
+
+struct Setup {
+  abbe::sim::GeneratedMachine generated;
+  abbe::machine::Machine machine;
+  abbe::io::MeasuredData data;
+};
+
+Setup make_setup(int points) {
+  abbe::sim::GeneratorOptions go;
+  go.seed = 7;
+  go.noise_scale = 0.0;
+  abbe::sim::GeneratedMachine g = abbe::sim::generate_machine(go);
+  const abbe::sim::CampaignResult r = abbe::sim::run_campaign(g);
+  const auto dir = std::filesystem::temp_directory_path() / "abbe_bench_diagnose";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "errors.csv") << abbe::sim::table_to_csv(r);
+  abbe::machine::Machine m = abbe::machine::Machine::parse(
+      abbe::sim::machine_to_yaml(g, r, "errors.csv"), "<bench>", dir.string());
+  g.truth.effects = {abbe::sim::parse_effect("reversal:Y:3um"),
+                     abbe::sim::parse_effect("thermal_drift:Z:4um:tau=1800")};
+  Eigen::Vector3d lo, hi;
+  abbe::sim::default_box(g.truth, g.truth.tool_length, lo, hi);
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<abbe::sim::TipState> tips;
+  for (int i = 0; i < points; ++i) {
+    abbe::sim::TipState t;
+    for (int k = 0; k < 3; ++k) t.p[k] = lo[k] + (hi[k] - lo[k]) * u(rng);
+    t.tool_length = g.truth.tool_length;
+    for (auto& d : t.dir) d = u(rng) < 0.5 ? -1 : 1;
+    t.time = 0.1 * i;
+    t.set = "run";
+    tips.push_back(t);
+  }
+  abbe::io::MeasuredData data;
+  data.file = "<bench>";
+  data.has_column = {true, true, true};
+  for (const auto& mp : abbe::sim::measure(g.truth, tips, 0.5, 2)) {
+    abbe::io::MeasuredRow row;
+    row.p = mp.tip.p;
+    for (int k = 0; k < 3; ++k) row.d[static_cast<std::size_t>(k)] = mp.deviation_um[k];
+    row.t = mp.tip.time;
+    for (std::size_t k = 0; k < 3; ++k) row.v[k] = static_cast<std::int8_t>(mp.tip.dir[k]);
+    row.tool_length = mp.tip.tool_length;
+    row.set = mp.tip.set;
+    data.rows.push_back(row);
+  }
+  return Setup{std::move(g), std::move(m), std::move(data)};
+}
+
+void BM_Diagnose(benchmark::State& state) {
+  const Setup s = make_setup(static_cast<int>(state.range(0)));
+  std::size_t effects = 0;
+  for (auto _ : state) {
+    const abbe::diagnose::Diagnosis d =
+        abbe::diagnose::diagnose(s.machine, s.data, abbe::diagnose::DiagnoseOptions{});
+    effects = d.effects.size();
+    benchmark::DoNotOptimize(effects);
+  }
+  state.counters["points"] = static_cast<double>(state.range(0));
+  state.counters["effects"] = static_cast<double>(effects);
+}
+BENCHMARK(BM_Diagnose)->Arg(10000)->Arg(100000)->Unit(benchmark::kSecond)->Iterations(1);
+
+}  // namespace
