@@ -21,7 +21,7 @@ table { border-collapse: collapse; margin: 8px 0 16px 0; background: #fff; }
 caption { text-align: left; font-weight: bold; padding: 4px 0; }
 th, td { border: 1px solid #ccc; padding: 4px 10px; text-align: right; }
 th { background: #eee; }
-td:first-child, th:first-child { text-align: left; }
+td:first-child, th:first-child, td.text { text-align: left; }
 #toc { font-size: 14px; }
 #toc a { margin-right: 14px; }
 )";
@@ -73,7 +73,10 @@ void HtmlPage::add_table(const Table& t) {
   body_ += "</tr>\n";
   for (const auto& row : t.rows) {
     body_ += "<tr>";
-    for (const auto& c : row) body_ += fmt::format("<td>{}</td>", escape_xml(c));
+    for (std::size_t i = 0; i < row.size(); ++i)
+      body_ += fmt::format(
+          t.last_column_text && i + 1 == row.size() ? "<td class=\"text\">{}</td>" : "<td>{}</td>",
+          escape_xml(row[i]));
     body_ += "</tr>\n";
   }
   body_ += "</table>\n";

@@ -42,8 +42,8 @@ std::string PlotFrame::open_svg(const std::string& plot_id, int width, int heigh
 
 std::string PlotFrame::axes(const AxisSpec& x, const AxisSpec& y, bool grid) const {
   std::string o;
-  const int xt = std::max(2, static_cast<int>((right - left) / 90.0));
-  const int yt = std::max(2, static_cast<int>((bottom - top) / 60.0));
+  const int xt = std::max(3, static_cast<int>((right - left) / 90.0));
+  const int yt = std::max(4, static_cast<int>((bottom - top) / 50.0));
   const Ticks tx = nice_ticks(xlo, xhi, xt), ty = nice_ticks(ylo, yhi, yt);
   o += "<g class=\"grid\" stroke=\"#e4e4e4\" stroke-width=\"1\">\n";
   for (double v : grid ? tx.values : std::vector<double>{})

@@ -99,6 +99,10 @@ check_page() {  # check_page NAME ID...
 
 check_page predict summary-table toolpath-iso toolpath-xy toolpath-xz toolpath-yz \
   deviation-models deviation-htm deviation-ae-arm deviation-dual
+"$abbe" -q report diagnose --measured "$src/machines/sample/measured-grid.csv" \
+  --machine "$src/machines/sample/machine.yaml" -o "$work/diagnose.html" ||
+  fail "abbe report diagnose exited with $?"
+check_page diagnose diagnose-models diagnose-effects residual-x residual-y residual-z residual-t
 check_page compensate compensate-table compensate-iso compensate-xy compensate-xz compensate-yz \
   compensate-deviation
 check_page map map-table map-htm-xy0 map-ae-arm-xy0 map-htm-xz3 map-ae-arm-yz5

@@ -112,6 +112,13 @@ if(NOT CMAKE_MATCH_1 LESS rms_original)
   message(FATAL_ERROR "report compensate: rms ${CMAKE_MATCH_1} µm not below the original's ${rms_original}")
 endif()
 
+# diagnose report on the sample machine's measured grid.
+run_ok("report diagnose" report diagnose --measured ${SRC}/machines/sample/measured-grid.csv
+       --machine ${SRC}/machines/sample/machine.yaml -o ${WORK}/diagnosis.html)
+expect_in(${WORK}/diagnosis.html "report diagnose"
+  "id=\"diagnose-models\"" "id=\"diagnose-effects\"" "id=\"residual-x\"" "id=\"residual-t\""
+  ">s_x (mm)</text>" ">t (s)</text>" ">residual (µm)</text>" "<td>ae-arm + effects</td>")
+
 # Bad input: exit 1, file and line named, an existing output left alone.
 file(WRITE ${WORK}/bad.ngc "G0 X0\nG1 X10 Q7 F100\n")
 file(WRITE ${WORK}/keep.html "previous\n")

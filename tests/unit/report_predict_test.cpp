@@ -9,9 +9,11 @@
 #include <sstream>
 
 #include "abbe/io/input_error.hpp"
+#include "abbe/io/measured_data.hpp"
 #include "abbe/machine/machine.hpp"
 #include "abbe/model/error_model.hpp"
 #include "abbe/report/compensate_section.hpp"
+#include "abbe/report/diagnose_section.hpp"
 #include "abbe/report/html_page.hpp"
 #include "abbe/report/predict_section.hpp"
 #include "abbe/report/predicted_path.hpp"
@@ -171,6 +173,34 @@ TEST(ReportCompensate, UncompensatedProgramIsAsFarAsItsPredictedDeviationAllows)
   const std::string html = page.render();
   for (const char* id :
        {"compensate-table", "compensate-iso", "compensate-xy", "compensate-deviation"})
+    EXPECT_NE(html.find(std::string("id=\"") + id + "\""), std::string::npos) << id;
+}
+
+}  // namespace
+}  // namespace abbe::report
+
+namespace abbe::report {
+namespace {
+
+TEST(ReportDiagnose, ResidualAfterTheExtensionIsTheExtendedModels) {
+  // The sample machine's measured grid (SYNTHETIC, abbe simulate measure):
+  // the residual rebuilt with the overlay is what the diagnosis reports for
+  // the extended model, and smaller than before.
+  const std::string dir = std::string(ABBE_SOURCE_DIR) + "/machines/sample/";
+  const machine::Machine m = machine::Machine::load(dir + "machine.yaml");
+  const io::MeasuredData data = io::load_measured_data(dir + "measured-grid.csv");
+  const DiagnosisForReport r = diagnose_for_report(m, data, diagnose::DiagnoseOptions{});
+  ASSERT_EQ(r.before.y.size(), r.after.y.size());
+  const auto before = diagnose::residual_stats(r.before, r.before.y);
+  const auto after = diagnose::residual_stats(r.after, r.after.y);
+  EXPECT_NEAR(before.rms_um, r.diagnosis.baseline.rms_um, 1e-9);
+  EXPECT_NEAR(after.rms_um, r.diagnosis.extended.rms_um, 0.02 * r.diagnosis.extended.rms_um);
+  EXPECT_LT(after.rms_um, before.rms_um);
+  HtmlPage page("d");
+  render_diagnose_report(page, r);
+  const std::string html = page.render();
+  for (const char* id : {"diagnose-models", "diagnose-effects", "residual-x", "residual-y",
+                         "residual-z", "residual-t"})
     EXPECT_NE(html.find(std::string("id=\"") + id + "\""), std::string::npos) << id;
 }
 

@@ -16,9 +16,11 @@
 #include "abbe/identify/workspace_map.hpp"
 #include "abbe/io/atomic_file.hpp"
 #include "abbe/io/input_error.hpp"
+#include "abbe/io/measured_data.hpp"
 #include "abbe/io/progress.hpp"
 #include "abbe/machine/machine.hpp"
 #include "abbe/report/compensate_section.hpp"
+#include "abbe/report/diagnose_section.hpp"
 #include "abbe/report/html_page.hpp"
 #include "abbe/report/map_section.hpp"
 #include "abbe/report/predict_section.hpp"
@@ -128,6 +130,22 @@ int run_report_compensate(const ReportOptions& o) {
   return kOk;
 }
 
+int run_report_diagnose(const ReportOptions& o) {
+  const machine::Machine machine = machine::Machine::load(o.machine);
+  const io::MeasuredData data = io::load_measured_data(o.input);
+  diagnose::DiagnoseOptions dopt;
+  const auto kinds = parse_models(o.model);
+  if (kinds.size() != 1)
+    throw InputError({"<command line>", 0, 0, "--model", ""},
+                     "report diagnose takes one model (htm, ae-arm or dual)");
+  dopt.model = kinds.front();
+  const report::DiagnosisForReport d = report::diagnose_for_report(machine, data, dopt);
+  report::HtmlPage page(fmt::format("abbe: diagnosis of {}", o.input));
+  report::render_diagnose_report(page, d);
+  write_page(o.output, page);
+  return kOk;
+}
+
 const CommandRegistrar registrar(
     "report", "Write an HTML report with plots: a program's predicted toolpath, or a workspace map",
     80, [](CLI::App& sub, const GlobalOptions& g) -> CommandAction {
@@ -190,7 +208,23 @@ const CommandRegistrar registrar(
           "machines/sample/machine.yaml -o comp.ngc && abbe report compensate "
           "nc-samples/thesis-toolpath-1.ngc --compensated comp.ngc --machine "
           "machines/sample/machine.yaml -o compensation.html");
-      return [o, gp, predict, map, comp]() -> int {
+      CLI::App* diag = sub.add_subcommand(
+          "diagnose", "Residual against each variable before/after the extension, effect table");
+      diag->add_option("--measured", o->input, "Measured data (CSV, docs/formats.md)")->required();
+      diag->add_option("--machine", o->machine, "Machine file (YAML)")->required();
+      diag->add_option("--model", o->model, "htm, ae-arm or dual")
+          ->check(CLI::IsMember({"htm", "ae-arm", "dual"}))
+          ->default_str("ae-arm");
+      diag->add_option("-o,--output", o->output, "HTML file (written atomically), - for stdout")
+          ->required();
+      diag->footer(
+          "Example: abbe report diagnose --measured machines/sample/measured-grid.csv "
+          "--machine machines/sample/machine.yaml -o diagnosis.html");
+      return [o, gp, predict, map, comp, diag]() -> int {
+        if (diag->parsed()) {
+          if (o->model == "all") o->model = "ae-arm";
+          return run_report_diagnose(*o);
+        }
         if (predict->parsed()) return run_report_predict(*o, *gp);
         if (map->parsed()) return run_report_map(*o);
         if (comp->parsed()) {

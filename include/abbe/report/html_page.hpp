@@ -13,6 +13,7 @@ struct Table {
   std::vector<std::string> header;
   std::vector<std::vector<std::string>> rows;  // cells as text
   std::string id;                              // optional id attribute
+  bool last_column_text = false;               // left-align the last column (prose)
 };
 
 class HtmlPage {
