@@ -381,10 +381,7 @@ class Compensator {
       if (t <= 1e-6 || t >= 1.0 - 1e-6) continue;
       auto it = std::lower_bound(sp.begin(), sp.end(), t,
                                  [](const SolvedPoint& x, double v) { return x.t < v; });
-      if (it != sp.end() && std::abs(it->t - t) < 1e-6) {
-        it->reversal = true;
-        continue;
-      }
+      const bool existing = it != sp.end() && std::abs(it->t - t) < 1e-6;
       path::PathPoint pp;
       pp.p = path.at(t);
       pp.tool_length = m.tool_length;
@@ -399,7 +396,25 @@ class Compensator {
         if (std::abs(v[a]) > 1e-9) pp.dir[static_cast<std::size_t>(a)] = v[a] > 0 ? 1 : -1;
       }
       const Vector3d d = solve(pp);
-      sp.insert(it, SolvedPoint{pp.p, d, t, true});
+      // Only a jump of the correction (different tables on either side)
+      // needs a piece end here.
+      path::PathPoint after = pp;
+      const Vector3d v2 = path.at(std::min(1.0, t + 1e-4)) - path.at(t);
+      for (int i = 0; i < 2; ++i) {
+        const int a = ax[static_cast<std::size_t>(i)];
+        if (std::abs(v2[a]) > 1e-9) after.dir[static_cast<std::size_t>(a)] = v2[a] > 0 ? 1 : -1;
+      }
+      if (after.dir == pp.dir) continue;
+      model::EvalPoint ea;
+      ea.p = after.p;
+      ea.tool_length = after.tool_length;
+      ea.dir = after.dir;
+      const Vector3d d2 = solver_.solve(ea, data_).c - after.p;
+      if ((d2 - d).norm() <= 0.5e-3 * o_.tol_um) continue;
+      if (existing)
+        it->reversal = true;
+      else
+        sp.insert(it, SolvedPoint{pp.p, d, t, true});
     }
   }
 
@@ -420,7 +435,11 @@ class Compensator {
     if (m.kind == gcode::MotionKind::arc) add_reversals(m, path, sp);
     // Greedy pieces: each as long as the correction stays linear along it.
     std::vector<std::size_t> breaks;
-    for (std::size_t a = 0; a + 1 < sp.size();) {
+    bool reversal = false;
+    for (const auto& x : sp) reversal = reversal || x.reversal;
+    if (!reversal && piece_ok(m, sp, 0, sp.size() - 1)) breaks.push_back(sp.size() - 1);
+    // Otherwise greedy pieces, each as long as it stays within tol/2.
+    for (std::size_t a = 0; breaks.empty() || breaks.back() + 1 < sp.size();) {
       std::size_t b = a + 1;
       while (b + 1 < sp.size() && !sp[b].reversal && piece_ok(m, sp, a, b + 1)) ++b;
       breaks.push_back(b);
