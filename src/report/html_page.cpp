@@ -21,7 +21,7 @@ table { border-collapse: collapse; margin: 8px 0 16px 0; background: #fff; }
 caption { text-align: left; font-weight: bold; padding: 4px 0; }
 th, td { border: 1px solid #ccc; padding: 4px 10px; text-align: right; }
 th { background: #eee; }
-td:first-child, th:first-child, td.text { text-align: left; }
+td:first-child, th:first-child, td.text, th.text { text-align: left; }
 #toc { font-size: 14px; }
 #toc a { margin-right: 14px; }
 )";
@@ -69,7 +69,11 @@ void HtmlPage::add_table(const Table& t) {
   body_ += t.id.empty() ? "<table>" : fmt::format("<table id=\"{}\">", escape_xml(t.id));
   if (!t.caption.empty()) body_ += fmt::format("<caption>{}</caption>", escape_xml(t.caption));
   body_ += "\n<tr>";
-  for (const auto& h : t.header) body_ += fmt::format("<th>{}</th>", escape_xml(h));
+  for (std::size_t i = 0; i < t.header.size(); ++i)
+    body_ +=
+        fmt::format(t.last_column_text && i + 1 == t.header.size() ? "<th class=\"text\">{}</th>"
+                                                                   : "<th>{}</th>",
+                    escape_xml(t.header[i]));
   body_ += "</tr>\n";
   for (const auto& row : t.rows) {
     body_ += "<tr>";
