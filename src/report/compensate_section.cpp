@@ -18,10 +18,7 @@ namespace {
 // The nominal path of a program fragmented at `step`.
 std::vector<Eigen::Vector3d> fine_path(const machine::Machine& machine, const std::string& text,
                                        const std::string& file, double step) {
-  gcode::InterpreterConfig config;
-  config.default_tool_length = machine.tool_length();
-  config.tool_lengths = machine.tool_table();
-  config.work_offsets = machine.work_offsets();
+  const gcode::InterpreterConfig config = report_interpreter_config(machine);
   path::FragmentOptions fo;
   fo.step = step;
   path::Fragmenter fragmenter(fo);

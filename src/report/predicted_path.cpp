@@ -30,6 +30,14 @@ void thin(PredictedPath& r) {
 
 }  // namespace
 
+gcode::InterpreterConfig report_interpreter_config(const machine::Machine& machine) {
+  gcode::InterpreterConfig config;
+  config.default_tool_length = machine.tool_length();
+  config.tool_lengths = machine.tool_table();
+  config.work_offsets = machine.work_offsets();
+  return config;
+}
+
 PredictedPath predict_program(const machine::Machine& machine, std::istream& in,
                               const std::string& file, const PredictPathOptions& o) {
   PredictedPath r;
@@ -48,10 +56,7 @@ PredictedPath predict_program(const machine::Machine& machine, std::istream& in,
   r.deviation_um.resize(models.size());
   for (std::size_t i = 0; i < models.size(); ++i) r.stats[i].model = o.models[i];
 
-  gcode::InterpreterConfig config;
-  config.default_tool_length = machine.tool_length();
-  config.tool_lengths = machine.tool_table();
-  config.work_offsets = machine.work_offsets();
+  const gcode::InterpreterConfig config = report_interpreter_config(machine);
   path::FragmentOptions fo;
   fo.step = o.step;
   fo.rapid_rate = o.rapid_rate;

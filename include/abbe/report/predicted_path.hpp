@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "abbe/gcode/interpreter.hpp"
 #include "abbe/machine/machine.hpp"
 #include "abbe/model/model_kind.hpp"
 
@@ -55,6 +56,10 @@ struct PredictedPath {
   std::vector<ModelPathStats> stats;                       // per model, all points
   std::map<std::size_t, std::string> source;  // text of the source lines of kept points
 };
+
+// The interpreter setup from the machine file (work offsets, tool table,
+// tool without G43), the same as `abbe predict` uses.
+gcode::InterpreterConfig report_interpreter_config(const machine::Machine& machine);
 
 // Streams the program through parser, interpreter, fragmenter and the error
 // models. Throws abbe::InputError on bad input (file, line, column).
