@@ -75,6 +75,9 @@ const CommandRegistrar registrar(
     "Find where the error model is wrong on measured data, name the cause, extend the model", 70,
     [](CLI::App& sub, const GlobalOptions& g) -> CommandAction {
       auto o = std::make_shared<DiagnoseCliOptions>();
+      sub.footer(
+          "Example: abbe diagnose --machine machines/sample/machine.yaml "
+          "--measured machines/sample/measured-grid.csv --out diagnosis.json");
       sub.add_option("--machine", o->machine, "Machine file (YAML, docs/formats.md)")->required();
       sub.add_option("--measured", o->measured, "Measured data (CSV, docs/formats.md)")->required();
       sub.add_option("--model", o->model, "Error model diagnosed: htm, ae-arm or dual")

@@ -208,6 +208,9 @@ const CommandRegistrar registrar(
     "Identify the error parameters (linear parametrisation or tables) from volumetric data", 55,
     [](CLI::App& sub, const GlobalOptions&) -> CommandAction {
       auto o = std::make_shared<IdentifyCliOptions>();
+      sub.footer(
+          "Example: abbe identify --measured machines/sample/measured-grid.csv "
+          "--machine machines/sample/machine.yaml -o identified.json");
       sub.add_option("--measured", o->measured, "Measured-data CSV (docs/formats.md)")->required();
       sub.add_option("--machine", o->machine, "Machine file (YAML): chain, arms, squareness, L")
           ->required();

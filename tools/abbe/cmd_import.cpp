@@ -30,6 +30,7 @@ const CommandRegistrar registrar(
     "import", "Convert a measurement report into measured-data CSV (formats: plugplate)", 75,
     [](CLI::App& sub, const GlobalOptions&) -> CommandAction {
       auto o = std::make_shared<ImportOptions>();
+      sub.footer("Example: abbe import plugplate PLATE_REPORT.txt -o measured.csv");
       sub.add_option("format", o->format, "Report format: plugplate")
           ->required()
           ->check(CLI::IsMember({"plugplate"}));

@@ -139,6 +139,7 @@ const CommandRegistrar registrar(
     "map", "Volumetric error over the travel (or a box) per model, htm vs ae-arm", 60,
     [](CLI::App& sub, const GlobalOptions&) -> CommandAction {
       auto o = std::make_shared<MapCliOptions>();
+      sub.footer("Example: abbe map --machine machines/sample/machine.yaml --grid 100 --json map.json");
       sub.add_option("--machine", o->machine, "Machine file (YAML, docs/formats.md)")->required();
       sub.add_option("--grid", o->grid, "Grid spacing, mm")->capture_default_str();
       sub.add_option("--box", o->box, "Box of tool tips x0,y0,z0,x1,y1,z1 mm (default: the travel)")
