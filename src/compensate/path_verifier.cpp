@@ -1,5 +1,6 @@
 #include "abbe/compensate/path_verifier.hpp"
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <deque>
 #include <functional>
@@ -66,7 +67,19 @@ struct Curve {
   gcode::Motion motion;
   MotionPath path;
   std::array<std::int8_t, 3> dir;  // at the end of the motion (its own program's directions)
+  Eigen::AlignedBox3d box;         // bounds the curve
 };
+
+Eigen::AlignedBox3d bounds(const gcode::Motion& m) {
+  Eigen::AlignedBox3d b(m.start);
+  b.extend(m.end);
+  if (m.kind == gcode::MotionKind::arc) {
+    const double r = std::max((m.start - m.center).norm(), (m.end - m.center).norm());
+    b.extend(m.center - Eigen::Vector3d::Constant(r));
+    b.extend(m.center + Eigen::Vector3d::Constant(r));
+  }
+  return b;
+}
 
 // Direction signs on a curve at parameter t: the curve's own; for the
 // in-plane axes of an arc, the chord from one fragment step back (what the
@@ -95,8 +108,8 @@ using CurveMetric = std::function<double(const Curve&, const path::PathPoint&)>;
 
 // Streams the feed points of `a`; each is matched to the nearest (by
 // `match`) of a window of `b`'s feed curves and measured (by `measure`).
-PassStats run_pass(MotionStream& a, MotionStream& b, double step, std::size_t window,
-                   double slack, const CurveMetric& match, const CurveMetric& measure) {
+PassStats run_pass(MotionStream& a, MotionStream& b, double step, std::size_t window, double slack,
+                   const CurveMetric& match, const CurveMetric& measure) {
   PassStats st;
   path::Fragmenter fa(path::FragmentOptions{step, 10000.0});
   path::Fragmenter fb(path::FragmentOptions{step, 10000.0});
@@ -118,7 +131,7 @@ PassStats run_pass(MotionStream& a, MotionStream& b, double step, std::size_t wi
         any = true;
       });
       if (is_feed(m) && any) {
-        curves.push_back({m, MotionPath(m), dir});
+        curves.push_back({m, MotionPath(m), dir, bounds(m)});
         return;
       }
     }
@@ -141,7 +154,14 @@ PassStats run_pass(MotionStream& a, MotionStream& b, double step, std::size_t wi
       const std::size_t hi = std::min(curves.size(), cursor + window + 1);
       std::vector<double> d(hi - lo);
       double best = std::numeric_limits<double>::infinity();
-      for (std::size_t i = lo; i < hi; ++i) best = std::min(best, d[i - lo] = match(curves[i], pp));
+      // The box distance bounds the match from below (less the largest
+      // correction, 0.5 mm, for the predicted metric): far curves are skipped.
+      for (std::size_t i = lo; i < hi; ++i) {
+        const double lb = curves[i].box.exteriorDistance(pp.p) - 0.5;
+        d[i - lo] =
+            lb > best + slack ? std::numeric_limits<double>::infinity() : match(curves[i], pp);
+        best = std::min(best, d[i - lo]);
+      }
       std::optional<std::size_t> next;
       double um = std::numeric_limits<double>::infinity();
       for (std::size_t i = lo; i < hi; ++i) {
@@ -217,7 +237,8 @@ VerifyStats verify_program(std::istream& compensated, const std::string& compens
       }
       return (p + e - pp.p).norm();
     };
-    const PassStats st = run_pass(a, b, options.step, options.window, options.slack, predicted, predicted);
+    const PassStats st =
+        run_pass(a, b, options.step, options.window, options.slack, predicted, predicted);
     out.backward_points = st.n;
     out.backward_max_um = st.max;
     out.backward_rms_um = st.n ? std::sqrt(st.sum2 / static_cast<double>(st.n)) : 0.0;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <optional>
 
 #include "abbe/compensate/motion_path.hpp"
@@ -108,9 +109,9 @@ class BlockEditor {
 };
 
 struct SolvedPoint {
-  Vector3d n;      // nominal, mm
-  Vector3d delta;  // c − n, mm
-  double t = 0.0;  // parameter along the motion
+  Vector3d n;             // nominal, mm
+  Vector3d delta;         // c − n, mm
+  double t = 0.0;         // parameter along the motion
   bool reversal = false;  // an in-plane axis of an arc reverses here: a piece ends here
 };
 
@@ -253,7 +254,7 @@ class Compensator {
     const Vector3d d = solve(points_[0].back());
     for (int a = 0; a < 3; ++a) {
       const gcode::Word* w = find_word(block, kAxis[a]);
-      if (g53) {  // machine coordinates: the number moves by the correction
+      if (g53) {           // machine coordinates: the number moves by the correction
         if (!w) continue;  // an unwritten axis stays where it was
         const double v = ed.set(kAxis[a], w->value + d[a] / unit_, w->value, false);
         cmd_[a] = pos_after_[a] + (v - w->value);
@@ -370,7 +371,8 @@ class Compensator {
   // there. Solved with the directions of the motion before the point.
   void add_reversals(const gcode::Motion& m, const MotionPath& path, std::vector<SolvedPoint>& sp) {
     const auto ax = plane_axes(m.plane);
-    const double theta0 = std::atan2(m.start[ax[1]] - m.center[ax[1]], m.start[ax[0]] - m.center[ax[0]]);
+    const double theta0 =
+        std::atan2(m.start[ax[1]] - m.center[ax[1]], m.start[ax[0]] - m.center[ax[0]]);
     const double sweep = path.sweep();
     if (sweep == 0.0) return;
     const double half_pi = 0.5 * M_PI;
@@ -381,7 +383,14 @@ class Compensator {
       if (t <= 1e-6 || t >= 1.0 - 1e-6) continue;
       auto it = std::lower_bound(sp.begin(), sp.end(), t,
                                  [](const SolvedPoint& x, double v) { return x.t < v; });
-      const bool existing = it != sp.end() && std::abs(it->t - t) < 1e-6;
+      // A reversal within 0.1 mm of a sample is put on the sample: a piece
+      // shorter than the corrections could reverse (a full circle).
+      const double near = 0.1 / std::max(path.length(), 1e-9);
+      if (it != sp.end() && it != sp.begin() && std::prev(it)->t > t - near &&
+          (it->t - t > t - std::prev(it)->t))
+        --it;
+      const bool existing = it != sp.end() && std::abs(it->t - t) < near;
+      if (existing && (it == sp.begin() || std::next(it) == sp.end())) continue;
       path::PathPoint pp;
       pp.p = path.at(t);
       pp.tool_length = m.tool_length;

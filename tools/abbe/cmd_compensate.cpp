@@ -75,7 +75,8 @@ int run_compensate(CompensateCliOptions o) {
       o.input, s.lines, s.blocks_changed, s.pieces_inserted, s.points, s.max_correction_um,
       s.out_of_range_points, machine::to_string(machine.out_of_range()), s.unconverged_points);
   if (s.arcs_split_turns)
-    text += fmt::format("  {} multi-turn arcs split into pieces (P word removed)\n", s.arcs_split_turns);
+    text += fmt::format("  {} multi-turn arcs split into pieces (P word removed)\n",
+                        s.arcs_split_turns);
   if (s.uncompensated_blocks)
     text += fmt::format("  {} canned-cycle blocks left uncompensated\n", s.uncompensated_blocks);
   for (const auto& w : s.warnings) text += "  warning: " + w + "\n";

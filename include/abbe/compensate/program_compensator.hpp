@@ -37,9 +37,9 @@ struct CompensateSummary {
   std::size_t out_of_range_points = 0;  // points with a lookup outside the tables
   std::size_t unconverged_points = 0;
   std::vector<std::size_t> unconverged_lines;  // first 20
-  std::size_t arcs_split_turns = 0;  // multi-turn arcs split into pieces (their P word removed)
+  std::size_t arcs_split_turns = 0;      // multi-turn arcs split into pieces (their P word removed)
   std::size_t uncompensated_blocks = 0;  // G91 canned cycles whose holes could not be found
-  std::vector<std::string> warnings;           // first 20, "file:line: text"
+  std::vector<std::string> warnings;     // first 20, "file:line: text"
 };
 
 using TextSink = std::function<void(const char* data, std::size_t size)>;
