@@ -102,6 +102,7 @@ struct PassStats {
   std::size_t n = 0;
   double max = 0.0, sum2 = 0.0;
   std::size_t max_line = 0;
+  std::size_t over = 0;
 };
 
 using CurveMetric = std::function<double(const Curve&, const path::PathPoint&)>;
@@ -109,7 +110,7 @@ using CurveMetric = std::function<double(const Curve&, const path::PathPoint&)>;
 // Streams the feed points of `a`; each is matched to the nearest (by
 // `match`) of a window of `b`'s feed curves and measured (by `measure`).
 PassStats run_pass(MotionStream& a, MotionStream& b, double step, std::size_t window, double slack,
-                   const CurveMetric& match, const CurveMetric& measure) {
+                   double tol_um, const CurveMetric& match, const CurveMetric& measure) {
   PassStats st;
   path::Fragmenter fa(path::FragmentOptions{step, 10000.0});
   path::Fragmenter fb(path::FragmentOptions{step, 10000.0});
@@ -176,6 +177,7 @@ PassStats run_pass(MotionStream& a, MotionStream& b, double step, std::size_t wi
       }
       ++st.n;
       st.sum2 += um * um;
+      if (um > tol_um) ++st.over;
       if (um > st.max) {
         st.max = um;
         st.max_line = pp.line;
@@ -207,7 +209,7 @@ VerifyStats verify_program(std::istream& compensated, const std::string& compens
     MotionStream a(compensated, compensated_file, config);
     MotionStream b(original, original_file, config);
     const PassStats st = run_pass(
-        a, b, options.step, options.window, options.slack,
+        a, b, options.step, options.window, options.slack, options.tol_um,
         [](const Curve& c, const path::PathPoint& pp) { return c.path.distance(pp.p); },
         [&](const Curve& c, const path::PathPoint& pp) {
           const auto dir = direction_at(c, c.path.closest(pp.p), options.step);
@@ -217,6 +219,7 @@ VerifyStats verify_program(std::istream& compensated, const std::string& compens
     out.max_um = st.max;
     out.rms_um = st.n ? std::sqrt(st.sum2 / static_cast<double>(st.n)) : 0.0;
     out.max_line = st.max_line;
+    out.over_tol = st.over;
   }
   compensated.clear();
   compensated.seekg(0);
@@ -237,12 +240,13 @@ VerifyStats verify_program(std::istream& compensated, const std::string& compens
       }
       return (p + e - pp.p).norm();
     };
-    const PassStats st =
-        run_pass(a, b, options.step, options.window, options.slack, predicted, predicted);
+    const PassStats st = run_pass(a, b, options.step, options.window, options.slack, options.tol_um,
+                                  predicted, predicted);
     out.backward_points = st.n;
     out.backward_max_um = st.max;
     out.backward_rms_um = st.n ? std::sqrt(st.sum2 / static_cast<double>(st.n)) : 0.0;
     out.backward_max_line = st.max_line;
+    out.backward_over_tol = st.over;
   }
   out.out_of_range_lookups = data.out_of_range_lookups;
   return out;

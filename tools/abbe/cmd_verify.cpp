@@ -47,23 +47,25 @@ int run_verify(const VerifyCliOptions& o) {
   config.default_tool_length = machine.tool_length();
   config.tool_lengths = machine.tool_table();
   config.work_offsets = machine.work_offsets();
+  compensate::VerifyOptions vo = o.v;
+  vo.tol_um = o.tol_um;
   std::ifstream comp = open_input(o.input);
   std::ifstream orig = open_input(o.against);
   const compensate::VerifyStats s =
-      compensate::verify_program(comp, o.input, orig, o.against, config, model, o.v);
+      compensate::verify_program(comp, o.input, orig, o.against, config, model, vo);
   const double max = std::max(s.max_um, s.backward_max_um);
-  std::fputs(
-      fmt::format("{} against {} (model {}):\n"
-                  "  predicted compensated -> nominal: {} points, max {:.4f} µm (line {}), rms "
-                  "{:.4f} µm\n"
-                  "  nominal -> predicted compensated: {} points, max {:.4f} µm (line {}), rms "
-                  "{:.4f} µm\n"
-                  "  max {:.4f} µm, tol {} µm: {}\n",
-                  o.input, o.against, model::to_string(*kind), s.points, s.max_um, s.max_line,
-                  s.rms_um, s.backward_points, s.backward_max_um, s.backward_max_line,
-                  s.backward_rms_um, max, o.tol_um, max <= o.tol_um ? "pass" : "FAIL")
-          .c_str(),
-      stdout);
+  std::fputs(fmt::format("{} against {} (model {}):\n"
+                         "  predicted compensated -> nominal: {} points, max {:.4f} µm (line {}), "
+                         "rms {:.4f} µm, {} beyond tol\n"
+                         "  nominal -> predicted compensated: {} points, max {:.4f} µm (line {}), "
+                         "rms {:.4f} µm, {} beyond tol\n"
+                         "  max {:.4f} µm, tol {} µm: {}\n",
+                         o.input, o.against, model::to_string(*kind), s.points, s.max_um,
+                         s.max_line, s.rms_um, s.over_tol, s.backward_points, s.backward_max_um,
+                         s.backward_max_line, s.backward_rms_um, s.backward_over_tol, max, o.tol_um,
+                         max <= o.tol_um ? "pass" : "FAIL")
+                 .c_str(),
+             stdout);
   if (o.check && max > o.tol_um) return kBadInput;
   return kOk;
 }

@@ -26,6 +26,7 @@ namespace abbe::compensate {
 struct VerifyOptions {
   double step = 5.0;       // fragment step, mm
   std::size_t window = 6;  // original motions searched ahead of the current one
+  double tol_um = 1.0;     // points farther than this are counted
   double slack = 0.05;     // curves matching within this of the best are candidates, mm
 };
 
@@ -34,10 +35,12 @@ struct VerifyStats {
   double max_um = 0.0;
   double rms_um = 0.0;
   std::size_t max_line = 0;  // line of the compensated program at the max
+  std::size_t over_tol = 0;  // forward points farther than tol
   std::size_t backward_points = 0;
   double backward_max_um = 0.0;
   double backward_rms_um = 0.0;
   std::size_t backward_max_line = 0;  // line of the original at the backward max
+  std::size_t backward_over_tol = 0;
   std::size_t out_of_range_lookups = 0;
 };
 
