@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <random>
+#include <Eigen/Geometry>
 
 #include "abbe/sim/effect.hpp"
 #include "diagnose_vm_test.hpp"

@@ -20,6 +20,7 @@
 
 #include "abbe/gcode/program.hpp"
 #include "abbe/io/input_error.hpp"
+#include "abbe/machine/interpreter_setup.hpp"
 #include "abbe/machine/machine.hpp"
 #include "command.hpp"
 
@@ -86,10 +87,7 @@ std::pair<std::size_t, Eigen::Vector3d> parse_work_offset_option(const std::stri
 gcode::InterpreterConfig make_config(const InterpretOptions& o) {
   gcode::InterpreterConfig config;
   if (!o.machine.empty()) {
-    const machine::Machine m = machine::Machine::load(o.machine);
-    config.default_tool_length = m.tool_length();
-    config.tool_lengths = m.tool_table();
-    config.work_offsets = m.work_offsets();
+    config = machine::interpreter_config(machine::Machine::load(o.machine));
   }
   if (o.tool_length) {
     if (!std::isfinite(*o.tool_length))

@@ -19,6 +19,7 @@
 #include "abbe/io/input_error.hpp"
 #include "abbe/io/path_writer.hpp"
 #include "abbe/io/progress.hpp"
+#include "abbe/machine/interpreter_setup.hpp"
 #include "abbe/machine/machine.hpp"
 #include "abbe/path/fragmenter.hpp"
 #include "command.hpp"
@@ -66,12 +67,13 @@ std::pair<int, double> parse_tool(const std::string& text) {
 gcode::InterpreterConfig make_config(const PathOptions& o) {
   gcode::InterpreterConfig config;
   if (!o.machine.empty()) {
-    const machine::Machine m = machine::Machine::load(o.machine);
-    config.default_tool_length = m.tool_length();
-    config.tool_lengths = m.tool_table();
-    config.work_offsets = m.work_offsets();
+    config = machine::interpreter_config(machine::Machine::load(o.machine));
   }
-  if (o.tool_length) config.default_tool_length = *o.tool_length;
+  if (o.tool_length) {
+    // With a machine the program starts at home (s = 0): keep P = −L·e_z for the new L.
+    if (!o.machine.empty()) config.initial_position.z() = -*o.tool_length;
+    config.default_tool_length = *o.tool_length;
+  }
   for (const auto& t : o.tools) {
     const auto [h, length] = parse_tool(t);
     config.tool_lengths[h] = length;

@@ -26,6 +26,7 @@
 #include "abbe/io/input_error.hpp"
 #include "abbe/io/path_writer.hpp"
 #include "abbe/io/progress.hpp"
+#include "abbe/machine/interpreter_setup.hpp"
 #include "abbe/machine/machine.hpp"
 #include "abbe/model/error_model.hpp"
 #include "abbe/path/fragmenter.hpp"
@@ -361,10 +362,7 @@ int run_predict(const PredictOptions& o, const GlobalOptions& g) {
     std::size_t line = 0;
     while (reader.next(p, line)) evaluate(p, line);
   } else {
-    gcode::InterpreterConfig config;
-    config.default_tool_length = machine.tool_length();
-    config.tool_lengths = machine.tool_table();
-    config.work_offsets = machine.work_offsets();
+    const gcode::InterpreterConfig config = machine::interpreter_config(machine);
     path::FragmentOptions fo;
     fo.step = o.step;
     fo.rapid_rate = o.rapid_rate;
