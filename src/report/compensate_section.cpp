@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "abbe/gcode/program.hpp"
+#include "abbe/machine/interpreter_setup.hpp"
 #include "abbe/path/fragmenter.hpp"
 #include "abbe/report/line_plot.hpp"
 #include "abbe/report/predict_section.hpp"
@@ -18,7 +19,7 @@ namespace {
 // The nominal path of a program fragmented at `step`.
 std::vector<Eigen::Vector3d> fine_path(const machine::Machine& machine, const std::string& text,
                                        const std::string& file, double step) {
-  const gcode::InterpreterConfig config = report_interpreter_config(machine);
+  const gcode::InterpreterConfig config = machine::interpreter_config(machine);
   path::FragmentOptions fo;
   fo.step = step;
   path::Fragmenter fragmenter(fo);

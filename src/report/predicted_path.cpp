@@ -1,5 +1,7 @@
 #include "abbe/report/predicted_path.hpp"
 
+#include "abbe/machine/interpreter_setup.hpp"
+
 #include <fmt/format.h>
 
 #include <array>
@@ -30,14 +32,6 @@ void thin(PredictedPath& r) {
 
 }  // namespace
 
-gcode::InterpreterConfig report_interpreter_config(const machine::Machine& machine) {
-  gcode::InterpreterConfig config;
-  config.default_tool_length = machine.tool_length();
-  config.tool_lengths = machine.tool_table();
-  config.work_offsets = machine.work_offsets();
-  return config;
-}
-
 PredictedPath predict_program(const machine::Machine& machine, std::istream& in,
                               const std::string& file, const PredictPathOptions& o) {
   PredictedPath r;
@@ -56,7 +50,7 @@ PredictedPath predict_program(const machine::Machine& machine, std::istream& in,
   r.deviation_um.resize(models.size());
   for (std::size_t i = 0; i < models.size(); ++i) r.stats[i].model = o.models[i];
 
-  const gcode::InterpreterConfig config = report_interpreter_config(machine);
+  const gcode::InterpreterConfig config = machine::interpreter_config(machine);
   path::FragmentOptions fo;
   fo.step = o.step;
   fo.rapid_rate = o.rapid_rate;

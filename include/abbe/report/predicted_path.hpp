@@ -57,10 +57,6 @@ struct PredictedPath {
   std::map<std::size_t, std::string> source;  // text of the source lines of kept points
 };
 
-// The interpreter setup from the machine file (work offsets, tool table,
-// tool without G43), the same as `abbe predict` uses.
-gcode::InterpreterConfig report_interpreter_config(const machine::Machine& machine);
-
 // Streams the program through parser, interpreter, fragmenter and the error
 // models. Throws abbe::InputError on bad input (file, line, column).
 PredictedPath predict_program(const machine::Machine& machine, std::istream& in,
