@@ -2,18 +2,22 @@
 
 #include <fmt/format.h>
 
-#include <sstream>
+#include <cctype>
 #include <stdexcept>
 #include <vector>
 
 namespace abbe::machine {
 
 KinematicChain KinematicChain::parse(const std::string& text) {
+  // Tokens are single letters, each optionally followed by primes; blanks
+  // between them are optional ("w X' b Y Z t" and "wX'bYZt" are the same).
   std::vector<std::string> tokens;
-  {
-    std::istringstream in(text);
-    std::string token;
-    while (in >> token) tokens.push_back(token);
+  for (const char c : text) {
+    if (std::isspace(static_cast<unsigned char>(c))) continue;
+    if (c == '\'' && !tokens.empty())
+      tokens.back() += c;
+    else
+      tokens.emplace_back(1, c);
   }
   auto fail = [&](const std::string& why) {
     throw std::invalid_argument(fmt::format(
