@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "../../tools/gen/program_generator.hpp"
+#include "abbe/machine/interpreter_setup.hpp"
 #include "abbe/compensate/path_verifier.hpp"
 #include "abbe/compensate/program_compensator.hpp"
 #include "abbe/gcode/program.hpp"
@@ -36,11 +37,7 @@ std::string read(const std::string& path) {
 }
 
 gcode::InterpreterConfig config_of(const machine::Machine& m) {
-  gcode::InterpreterConfig c;
-  c.default_tool_length = m.tool_length();
-  c.tool_lengths = m.tool_table();
-  c.work_offsets = m.work_offsets();
-  return c;
+  return machine::interpreter_config(m);
 }
 
 struct Compensated {

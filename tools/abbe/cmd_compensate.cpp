@@ -14,6 +14,7 @@
 #include "abbe/compensate/program_compensator.hpp"
 #include "abbe/io/atomic_file.hpp"
 #include "abbe/io/input_error.hpp"
+#include "abbe/machine/interpreter_setup.hpp"
 #include "abbe/machine/machine.hpp"
 #include "abbe/model/error_model.hpp"
 #include "command.hpp"
@@ -56,10 +57,7 @@ int run_compensate(CompensateCliOptions o) {
     throw InputError({"<command line>", 0, 0, "--model", ""},
                      fmt::format("unknown model \"{}\" (htm, ae-arm or dual)", o.model));
   const model::ErrorModel model(machine, *kind);
-  gcode::InterpreterConfig config;
-  config.default_tool_length = machine.tool_length();
-  config.tool_lengths = machine.tool_table();
-  config.work_offsets = machine.work_offsets();
+  const gcode::InterpreterConfig config = machine::interpreter_config(machine);
 
   std::ifstream in(o.input, std::ios::binary);
   if (!in)

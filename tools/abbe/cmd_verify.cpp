@@ -11,6 +11,7 @@
 
 #include "abbe/compensate/path_verifier.hpp"
 #include "abbe/io/input_error.hpp"
+#include "abbe/machine/interpreter_setup.hpp"
 #include "abbe/machine/machine.hpp"
 #include "abbe/model/error_model.hpp"
 #include "command.hpp"
@@ -43,10 +44,7 @@ int run_verify(const VerifyCliOptions& o) {
     throw InputError({"<command line>", 0, 0, "--model", ""},
                      fmt::format("unknown model \"{}\" (htm, ae-arm or dual)", o.model));
   const model::ErrorModel model(machine, *kind);
-  gcode::InterpreterConfig config;
-  config.default_tool_length = machine.tool_length();
-  config.tool_lengths = machine.tool_table();
-  config.work_offsets = machine.work_offsets();
+  const gcode::InterpreterConfig config = machine::interpreter_config(machine);
   compensate::VerifyOptions vo = o.v;
   vo.tol_um = o.tol_um;
   std::ifstream comp = open_input(o.input);
