@@ -12,6 +12,13 @@ namespace abbe::gcode {
 
 namespace {
 
+// Limits that keep one block from expanding into an unbounded number of
+// motions (a typo such as L70000000 must be an error, not a hang).
+constexpr double kMaxCycleRepeats = 100000;
+constexpr double kMaxArcTurns = 10000;
+constexpr double kMaxPecks = 100000;
+
+
 constexpr double kMmPerInch = 25.4;
 
 // Axis indices (first, second, normal) of the arc / canned-cycle plane, in
@@ -361,8 +368,10 @@ void Interpreter::execute(const Block& block, const std::string& raw_line, const
       if (const Word* p = c.word('P')) {
         if (!is_integer(p->value))
           ctx.fail(p, fmt::format("P word (turns) of {} is not an integer", gname));
-        if (std::lround(p->value) < 1)
+        if (p->value < 1.0)
           ctx.fail(p, fmt::format("P word (turns) of {} must be 1 or more", gname));
+        if (p->value > kMaxArcTurns)
+          ctx.fail(p, fmt::format("P word (turns) of {} is larger than {}", gname, kMaxArcTurns));
         turns = static_cast<int>(std::lround(p->value));
       }
       const Eigen::Vector2d start2(st.pos[ax.first], st.pos[ax.second]);
@@ -406,9 +415,12 @@ void Interpreter::execute(const Block& block, const std::string& raw_line, const
         ctx.fail(motion_word, fmt::format("R plane missing for canned cycle {}", gname));
       int repeats = 1;
       if (const Word* l = c.word('L')) {
-        if (!is_integer(l->value) || std::lround(l->value) < 1)
+        if (!is_integer(l->value) || l->value < 1.0)
           ctx.fail(l,
                    fmt::format("L (repeats) of canned cycle {} must be a positive integer", gname));
+        if (l->value > kMaxCycleRepeats)
+          ctx.fail(l, fmt::format("L (repeats) of canned cycle {} is larger than {}", gname,
+                                  kMaxCycleRepeats));
         repeats = static_cast<int>(std::lround(l->value));
       }
       const char cc_letter = kAxisLetter[ax.normal];
@@ -457,6 +469,11 @@ void Interpreter::execute(const Block& block, const std::string& raw_line, const
           ctx.fail(c.has('Q') ? c.word('Q') : motion_word,
                    fmt::format("peck depth (Q) of canned cycle {} must be positive", gname));
         st.cycle_q = cyc.peck;
+        if ((cyc.r - cyc.bottom) / cyc.peck > kMaxPecks)
+          ctx.fail(c.has('Q') ? c.word('Q') : motion_word,
+                   fmt::format("peck depth (Q) of canned cycle {} is so small that the hole "
+                               "would take more than {} pecks",
+                               gname, kMaxPecks));
       }
       cyc.peck_clearance = st.inch ? 0.010 : 0.010 * kMmPerInch;
 
