@@ -30,6 +30,9 @@ if(NOT CMAKE_SCRIPT_MODE_FILE)
   return()
 endif()
 
+include(${SRC}/tests/cli/lib/script_helpers.cmake)
+
+# run() that also shows stdout on failure (identify prints its diagnostics there).
 function(run)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 0)
@@ -38,16 +41,6 @@ function(run)
   set(run_out "${out}" PARENT_SCOPE)
 endfunction()
 
-function(expect_failure expected_message)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 1)
-    message(FATAL_ERROR "${ARGN}: exit code ${rc}, expected 1\n${err}")
-  endif()
-  string(FIND "${err}" "${expected_message}" at)
-  if(at EQUAL -1)
-    message(FATAL_ERROR "${ARGN}: message lacks '${expected_message}':\n${err}")
-  endif()
-endfunction()
 
 function(expect_match text regex what)
   if(NOT text MATCHES "${regex}")
