@@ -13,22 +13,13 @@ if(NOT CMAKE_SCRIPT_MODE_FILE)
   set_tests_properties(cli_iso230_json PROPERTIES LABELS cli
     PASS_REGULAR_EXPRESSION "\"B_mean\": -0\\.5,.*\"R\": 6\\.0,.*\"targets\": \\[.*\"R\": null")
   add_test(NAME cli_iso230_errors
-           COMMAND ${CMAKE_COMMAND} -DABBE=$<TARGET_FILE:abbe> -DDATA=${ABBE_ISO230_DATA}
+           COMMAND ${CMAKE_COMMAND} -DABBE=$<TARGET_FILE:abbe> -DDATA=${ABBE_ISO230_DATA} -DSRC=${PROJECT_SOURCE_DIR}
                    -DWORK=${CMAKE_CURRENT_BINARY_DIR}/cli_iso230_errors -P ${CMAKE_CURRENT_LIST_FILE})
   set_tests_properties(cli_iso230_errors PROPERTIES LABELS cli)
   return()
 endif()
 
-function(expect_failure expected_message)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 1)
-    message(FATAL_ERROR "${ARGN}: exit code ${rc}, expected 1\n${err}")
-  endif()
-  string(FIND "${err}" "${expected_message}" at)
-  if(at EQUAL -1)
-    message(FATAL_ERROR "${ARGN}: message lacks '${expected_message}':\n${err}")
-  endif()
-endfunction()
+include(${SRC}/tests/cli/lib/script_helpers.cmake)
 
 expect_failure("bad-direction.csv:3:11 [direction]: error: direction 'sideways'"
                ${ABBE} iso230 ${DATA}/bad-direction.csv)

@@ -23,6 +23,7 @@
 #include "abbe/machine/machine.hpp"
 #include "abbe/path/fragmenter.hpp"
 #include "command.hpp"
+#include "interpreter_options.hpp"
 
 namespace abbe::cli {
 namespace {
@@ -39,31 +40,6 @@ struct PathOptions {
   bool count_only = false;
 };
 
-[[noreturn]] void bad_option(const std::string& field, const std::string& message) {
-  SourceLocation where;
-  where.file = "<command line>";
-  where.field = field;
-  throw InputError(where, message);
-}
-
-// "H=L": tool length L (mm) for G43 Hn.
-std::pair<int, double> parse_tool(const std::string& text) {
-  const auto eq = text.find('=');
-  int h = 0;
-  if (eq == std::string::npos || eq == 0)
-    bad_option("--tool", "expected H=L (e.g. 1=200), got '" + text + "'");
-  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + eq, h);
-  if (ec != std::errc() || ptr != text.data() + eq || h < 0)
-    bad_option("--tool", "tool number must be a non-negative integer in '" + text + "'");
-  const std::string value = text.substr(eq + 1);
-  char* end = nullptr;
-  errno = 0;
-  const double length = std::strtod(value.c_str(), &end);
-  if (value.empty() || end != value.c_str() + value.size() || errno != 0 || !std::isfinite(length))
-    bad_option("--tool", "tool length must be a number of mm in '" + text + "'");
-  return {h, length};
-}
-
 gcode::InterpreterConfig make_config(const PathOptions& o) {
   gcode::InterpreterConfig config;
   if (!o.machine.empty()) {
@@ -75,7 +51,7 @@ gcode::InterpreterConfig make_config(const PathOptions& o) {
     config.default_tool_length = *o.tool_length;
   }
   for (const auto& t : o.tools) {
-    const auto [h, length] = parse_tool(t);
+    const auto [h, length] = parse_tool_option(t);
     config.tool_lengths[h] = length;
   }
   return config;
