@@ -1,5 +1,7 @@
 #include "abbe/diagnose/term.hpp"
 
+#include <Eigen/Geometry>  // cross()
+
 #include <fmt/format.h>
 
 #include <cmath>

@@ -1,5 +1,7 @@
 #include "abbe/sim/truth_generator.hpp"
 
+#include <Eigen/Geometry>  // cross()
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>

@@ -1,5 +1,7 @@
 #include "abbe/sim/truth_machine.hpp"
 
+#include <Eigen/Geometry>  // cross()
+
 #include <cmath>
 
 namespace abbe::sim {

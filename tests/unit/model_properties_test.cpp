@@ -1,6 +1,8 @@
 // Properties of the three error models at random points and random chains.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>  // cross()
+
 #include "model_test_machines.hpp"
 
 namespace abbe {

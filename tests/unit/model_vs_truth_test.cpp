@@ -3,6 +3,8 @@
 // follow a smooth truth to 0.05 µm, at 0.5 mm the interpolation error is a
 // few nm), evaluated at every fragmented point of both thesis toolpaths.
 #include <gtest/gtest.h>
+
+#include <Eigen/Geometry>  // cross()
 #include <unistd.h>
 
 #include <filesystem>

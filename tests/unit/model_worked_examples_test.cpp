@@ -2,6 +2,8 @@
 // unchanged, q = P = (−300, −200, −250) mm), exact numbers.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>  // cross()
+
 #include "model_test_machines.hpp"
 
 namespace abbe {

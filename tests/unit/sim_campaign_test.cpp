@@ -2,6 +2,8 @@
 // truth at the reflector point, noise statistics, determinism, exact YAML
 // round trip, clear errors for bad truth files.
 #include <gtest/gtest.h>
+
+#include <Eigen/Geometry>  // cross()
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
