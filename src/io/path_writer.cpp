@@ -11,8 +11,7 @@
 namespace abbe::io {
 
 namespace {
-constexpr double kScale = 1e6;       // 6 decimals
-constexpr double kFastLimit = 9e12;  // |value| · 1e6 fits an int64 well below this
+constexpr double kScale = 1e6;  // 6 decimals
 
 // Kind names padded to 8 bytes so that the fast path copies a fixed size.
 struct KindName {
@@ -75,10 +74,9 @@ char* write_uint(char* p, unsigned long long v) {
   return p + n;
 }
 
-// The format of append_fixed6 for |value| < kFastLimit: at most 21 characters
-// at p; returns one past the last.
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+// Big-endian: digit by digit.
 char* write_fixed6_fast(char* p, double value) {
-  // Round half away from zero (printf differs only at exact binary ties).
   const double scaled = value * kScale;
   const long long r = static_cast<long long>(scaled < 0.0 ? scaled - 0.5 : scaled + 0.5);
   if (r < 0) *p++ = '-';
@@ -87,7 +85,6 @@ char* write_fixed6_fast(char* p, double value) {
   p = write_uint(p, u / 1000000ULL);
   const auto frac = static_cast<unsigned>(u % 1000000ULL);
   if (frac == 0) return p;
-  // ".dddddd", then drop the trailing zeros.
   p[0] = '.';
   std::memcpy(p + 1, kDigitPairs + (frac / 10000) * 2, 2);
   std::memcpy(p + 3, kDigitPairs + (frac / 100 % 100) * 2, 2);
@@ -96,8 +93,57 @@ char* write_fixed6_fast(char* p, double value) {
   while (end[-1] == '0') --end;
   return end;
 }
+#else
+// Little-endian: the digits are assembled in a register (the first character
+// in the lowest byte) and stored with one unaligned write, the lengths
+// computed without branches (the digit counts of a column vary from row to
+// row, which a branch predictor cannot follow).
 
-bool fast_number(double value) { return std::abs(value) < kFastLimit; }  // false for NaN
+// The two characters of v < 100 as a 16-bit word.
+std::uint64_t digit_pair(std::uint32_t v) {
+  std::uint16_t w;
+  std::memcpy(&w, kDigitPairs + v * 2, 2);
+  return w;
+}
+
+// v < 10⁴ without leading zeros: stores 4 bytes, returns one past the digits.
+char* write_int_part4(char* p, std::uint32_t v) {
+  const auto n = 1u + (v >= 10) + (v >= 100) + (v >= 1000);
+  auto w = static_cast<std::uint32_t>(digit_pair(v / 100) | digit_pair(v % 100) << 16);
+  w >>= 8 * (4 - n);  // drop the leading zeros
+  std::memcpy(p, &w, 4);
+  return p + n;
+}
+
+// The format of append_fixed6 for fixed6_fits(value) (|value| < 9e12, so that
+// value · 1e6 fits an int64): at most 21 characters at p (up to 24 bytes
+// stored); returns one past the last character.
+char* write_fixed6_fast(char* p, double value) {
+  // Round half away from zero (printf differs only at exact binary ties).
+  const double scaled = value * kScale;
+  const long long r = static_cast<long long>(scaled + std::copysign(0.5, scaled));
+  *p = '-';
+  p += r < 0;
+  const unsigned long long u =
+      r < 0 ? 0ULL - static_cast<unsigned long long>(r) : static_cast<unsigned long long>(r);
+  const unsigned long long int_part = u / 1000000ULL;
+  const auto frac = static_cast<std::uint32_t>(u - int_part * 1000000ULL);
+  p = int_part < 10000 ? write_int_part4(p, static_cast<std::uint32_t>(int_part))
+                       : write_uint(p, int_part);
+  if (frac == 0) return p;
+  // ".dddddd" and a zero byte in one store; keep the digits up to the last
+  // nonzero one (trailing zeros dropped).
+  const std::uint64_t digits =
+      digit_pair(frac / 10000) | digit_pair(frac / 100 % 100) << 16 | digit_pair(frac % 100) << 32;
+  const std::uint64_t w = '.' | digits << 8;
+  std::memcpy(p, &w, 8);
+  const std::uint64_t values = digits ^ 0x303030303030ULL;  // digit values, nonzero: frac > 0
+  const int last = (63 - __builtin_clzll(values)) / 8;      // byte of the last nonzero digit
+  return p + 2 + last;
+}
+#endif
+
+bool fast_number(double value) { return fixed6_fits(value); }
 
 void append_str(fmt::memory_buffer& out, std::string_view s) {
   out.append(s.data(), s.data() + s.size());
@@ -215,10 +261,10 @@ void format_tail(Out& out, PathFormat format, const path::PathPoint& pt) {
   }
 }
 
-// Longest row of the fast path: 6 numbers of at most 21 characters, a line
-// number of at most 20, the JSON keys and punctuation (< 120), the kind
-// copied as 8 bytes.
-constexpr std::size_t kMaxFastRow = 6 * 21 + 20 + 160;
+// Longest row of the fast path: 6 numbers of at most kFixed6MaxChars bytes
+// stored, a line number of at most 20, the JSON keys and punctuation (< 120),
+// the kind copied as 8 bytes.
+constexpr std::size_t kMaxFastRow = 6 * kFixed6MaxChars + 20 + 160;
 }  // namespace
 
 PathFormat parse_path_format(std::string_view name) {
@@ -229,6 +275,10 @@ PathFormat parse_path_format(std::string_view name) {
   where.field = "--format";
   throw InputError(where, "unknown path format '" + std::string(name) + "' (expected csv or json)");
 }
+
+char* write_fixed6(char* out, double value) { return write_fixed6_fast(out, value); }
+
+char* write_decimal(char* out, unsigned long long v) { return write_uint(out, v); }
 
 void append_fixed6(fmt::memory_buffer& out, double value) {
   if (!std::isfinite(value)) {

@@ -75,6 +75,9 @@ AxisErrorTable AxisErrorTable::build(const machine::ComponentTable& table, machi
               : 0.0;
   // Extrapolation past the last knot continues the last segment.
   if (grid.size() >= 2) out.knots_.back().slope = out.knots_[grid.size() - 2].slope;
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  out.open_lo_ = out.extrapolate_ ? -kInf : grid.front();
+  out.open_hi_ = out.extrapolate_ ? kInf : grid.back();
   return out;
 }
 
@@ -98,7 +101,7 @@ std::size_t AxisErrorTable::find_segment(double s, TableCursor& cursor) const {
   return cursor.segment = std::clamp<std::size_t>(j, 1, last + 1) - 1;
 }
 
-bool AxisErrorTable::eval(double s, TableCursor& cursor, AxisErrors& out) const {
+bool AxisErrorTable::eval_general(double s, TableCursor& cursor, AxisErrors& out) const {
   if (knots_.empty()) {
     out.delta_um.setZero();
     out.theta_urad.setZero();

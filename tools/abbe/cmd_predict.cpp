@@ -7,6 +7,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -55,10 +56,9 @@ struct ModelStats {
   Eigen::Vector3d max_abs = Eigen::Vector3d::Zero();  // µm
   double sum_d2 = 0.0;                                // µm²
   double max_d = 0.0;                                 // µm
-  void add(const Eigen::Vector3d& e) {
+  void add(const Eigen::Vector3d& e, double d) {      // d = |e|
     ++points;
     max_abs = max_abs.cwiseMax(e.cwiseAbs());
-    double d = e.norm();
     sum_d2 += d * d;
     max_d = std::max(max_d, d);
   }
@@ -173,11 +173,21 @@ class PointReader {
 };
 
 // Formats the per-point output into a buffer handed to the file in chunks.
+// A row whose numbers are all ordinary (io::fixed6_fits) is formatted in
+// place at the end of the buffer with io::write_fixed6 (no copy, no
+// allocation, no format string); a row with a huge or non-finite number goes
+// through io::append_fixed6. The line number text is kept while it repeats
+// (every point of a motion has the same line).
 class PredictionWriter {
  public:
   PredictionWriter(io::PathFormat format, std::vector<model::ModelKind> kinds, io::ByteSink sink)
       : format_(format), kinds_(std::move(kinds)), sink_(std::move(sink)) {
-    bool all = kinds_.size() > 1;
+    for (auto k : kinds_) {
+      json_keys_.push_back(fmt::format(", \"{}\": {{\"px\": ", model::to_string(k)));
+      row_max_ += 16 * (io::kFixed6MaxChars + 8) + json_keys_.back().size();
+    }
+    buf_.reserve(kChunk + row_max_);
+    const bool all = kinds_.size() > 1;
     if (format_ == io::PathFormat::csv) {
       std::string header = all ? "x,y,z,line" : "x,y,z,px,py,pz,dx,dy,dz,d";
       for (auto k : kinds_) {
@@ -192,60 +202,34 @@ class PredictionWriter {
     }
   }
 
-  void write(const model::EvalPoint& p, std::size_t line,
-             const std::vector<model::Deviation>& devs) {
-    bool all = kinds_.size() > 1;
-    if (format_ == io::PathFormat::csv) {
-      num3(p.p);
-      if (all) fmt::format_to(std::back_inserter(buf_), ",{}", line);
-      for (std::size_t i = 0; i < kinds_.size(); ++i) {
-        const model::Deviation& d = devs[i];
-        buf_.push_back(',');
-        num3(p.p + 1e-3 * d.e_um);
-        buf_.push_back(',');
-        num3(d.e_um);
-        buf_.push_back(',');
-        io::append_fixed6(buf_, d.e_um.norm());
-        if (kinds_[i] == model::ModelKind::dual) {
-          buf_.push_back(',');
-          num3(d.second_order_um);
-        }
-      }
-      if (!all) fmt::format_to(std::back_inserter(buf_), ",{}", line);
-      buf_.push_back('\n');
+  // norms[i] = |devs[i].e_um|.
+  void write(const model::EvalPoint& p, std::size_t line, const std::vector<model::Deviation>& devs,
+             const std::vector<double>& norms) {
+    if (line != line_ || line_size_ == 0) {
+      line_ = line;
+      line_size_ = static_cast<std::size_t>(
+          io::write_decimal(line_text_.data(), static_cast<unsigned long long>(line)) -
+          line_text_.data());
+    }
+    bool fits = io::fixed6_fits(p.p.x()) && io::fixed6_fits(p.p.y()) && io::fixed6_fits(p.p.z());
+    for (std::size_t i = 0; i < kinds_.size() && fits; ++i) {
+      const model::Deviation& d = devs[i];
+      fits = io::fixed6_fits(d.e_um.x()) && io::fixed6_fits(d.e_um.y()) &&
+             io::fixed6_fits(d.e_um.z()) && io::fixed6_fits(d.second_order_um.x()) &&
+             io::fixed6_fits(d.second_order_um.y()) && io::fixed6_fits(d.second_order_um.z());
+    }
+    if (fits) {
+      const std::size_t old_size = buf_.size();
+      buf_.resize(old_size + row_max_);
+      InPlace out{buf_.data() + old_size};
+      row(out, p, devs, norms);
+      buf_.resize(static_cast<std::size_t>(out.p - buf_.data()));
     } else {
-      if (points_) put(",\n");
-      put("{\"x\": ");
-      io::append_fixed6(buf_, p.p.x());
-      put(", \"y\": ");
-      io::append_fixed6(buf_, p.p.y());
-      put(", \"z\": ");
-      io::append_fixed6(buf_, p.p.z());
-      fmt::format_to(std::back_inserter(buf_), ", \"line\": {}", line);
-      for (std::size_t i = 0; i < kinds_.size(); ++i) {
-        const model::Deviation& d = devs[i];
-        fmt::format_to(std::back_inserter(buf_), ", \"{}\": {{", model::to_string(kinds_[i]));
-        const Eigen::Vector3d pred = p.p + 1e-3 * d.e_um;
-        const char* keys[] = {"px", "py", "pz", "dx", "dy", "dz"};
-        for (int k = 0; k < 6; ++k) {
-          fmt::format_to(std::back_inserter(buf_), "{}\"{}\": ", k ? ", " : "", keys[k]);
-          io::append_fixed6(buf_, k < 3 ? pred[k] : d.e_um[k - 3]);
-        }
-        put(", \"d\": ");
-        io::append_fixed6(buf_, d.e_um.norm());
-        if (kinds_[i] == model::ModelKind::dual) {
-          const char* k2[] = {"dx2", "dy2", "dz2"};
-          for (int k = 0; k < 3; ++k) {
-            fmt::format_to(std::back_inserter(buf_), ", \"{}\": ", k2[k]);
-            io::append_fixed6(buf_, d.second_order_um[k]);
-          }
-        }
-        put("}");
-      }
-      put("}");
+      Appended out{buf_};
+      row(out, p, devs, norms);
     }
     ++points_;
-    if (buf_.size() > (std::size_t{1} << 20)) flush();
+    if (buf_.size() >= kChunk) flush();
   }
 
   void finish(const nlohmann::json& summary) {
@@ -254,14 +238,84 @@ class PredictionWriter {
   }
 
  private:
-  void put(std::string_view s) { buf_.append(s.data(), s.data() + s.size()); }
-  void num3(const Eigen::Vector3d& v) {
-    io::append_fixed6(buf_, v.x());
-    buf_.push_back(',');
-    io::append_fixed6(buf_, v.y());
-    buf_.push_back(',');
-    io::append_fixed6(buf_, v.z());
+  static constexpr std::size_t kChunk = std::size_t{1} << 20;
+
+  // Text into memory reserved for a whole row (every number fits).
+  struct InPlace {
+    char* p;
+    void num(double v) { p = io::write_fixed6(p, v); }
+    void text(std::string_view s) {
+      std::memcpy(p, s.data(), s.size());
+      p += s.size();
+    }
+    void ch(char c) { *p++ = c; }
+  };
+  // Text appended to the buffer (any number).
+  struct Appended {
+    fmt::memory_buffer& b;
+    void num(double v) { io::append_fixed6(b, v); }
+    void text(std::string_view s) { b.append(s.data(), s.data() + s.size()); }
+    void ch(char c) { b.push_back(c); }
+  };
+
+  template <class Out>
+  void row(Out& out, const model::EvalPoint& p, const std::vector<model::Deviation>& devs,
+           const std::vector<double>& norms) const {
+    const std::string_view line(line_text_.data(), line_size_);
+    const bool all = kinds_.size() > 1;
+    if (format_ == io::PathFormat::csv) {
+      num3(out, p.p, "", ",", ",");
+      if (all) {
+        out.ch(',');
+        out.text(line);
+      }
+      for (std::size_t i = 0; i < kinds_.size(); ++i) {
+        const model::Deviation& d = devs[i];
+        const Eigen::Vector3d& e = d.e_um;
+        num3(out, p.p + 1e-3 * e, ",", ",", ",");
+        num3(out, e, ",", ",", ",");
+        out.ch(',');
+        out.num(norms[i]);
+        if (kinds_[i] == model::ModelKind::dual) num3(out, d.second_order_um, ",", ",", ",");
+      }
+      if (!all) {
+        out.ch(',');
+        out.text(line);
+      }
+      out.ch('\n');
+    } else {
+      out.text(points_ ? ",\n{\"x\": " : "{\"x\": ");
+      num3(out, p.p, "", ", \"y\": ", ", \"z\": ");
+      out.text(", \"line\": ");
+      out.text(line);
+      for (std::size_t i = 0; i < kinds_.size(); ++i) {
+        const model::Deviation& d = devs[i];
+        const Eigen::Vector3d& e = d.e_um;
+        out.text(json_keys_[i]);
+        num3(out, p.p + 1e-3 * e, "", ", \"py\": ", ", \"pz\": ");
+        num3(out, e, ", \"dx\": ", ", \"dy\": ", ", \"dz\": ");
+        out.text(", \"d\": ");
+        out.num(norms[i]);
+        if (kinds_[i] == model::ModelKind::dual)
+          num3(out, d.second_order_um, ", \"dx2\": ", ", \"dy2\": ", ", \"dz2\": ");
+        out.ch('}');
+      }
+      out.ch('}');
+    }
   }
+  // Three numbers, each after its separator.
+  template <class Out>
+  static void num3(Out& out, const Eigen::Vector3d& v, std::string_view s0, std::string_view s1,
+                   std::string_view s2) {
+    out.text(s0);
+    out.num(v.x());
+    out.text(s1);
+    out.num(v.y());
+    out.text(s2);
+    out.num(v.z());
+  }
+
+  void put(std::string_view s) { buf_.append(s.data(), s.data() + s.size()); }
   void flush() {
     sink_(buf_.data(), buf_.size());
     buf_.clear();
@@ -270,8 +324,13 @@ class PredictionWriter {
   io::PathFormat format_;
   std::vector<model::ModelKind> kinds_;
   io::ByteSink sink_;
+  std::vector<std::string> json_keys_;  // `, "<model>": {"px": ` per model
+  std::size_t row_max_ = 128;           // bytes an in-place row may take
   fmt::memory_buffer buf_;
   std::size_t points_ = 0;
+  std::array<char, 24> line_text_{};
+  std::size_t line_size_ = 0;
+  std::size_t line_ = 0;
 };
 
 bool ends_with(const std::string& s, const std::string& suffix) {
@@ -296,6 +355,7 @@ int run_predict(const PredictOptions& o, const GlobalOptions& g) {
   std::vector<model::ModelData> data(kinds.size());
   std::vector<ModelStats> stats(kinds.size());
   std::vector<model::Deviation> devs(kinds.size());
+  std::vector<double> norms(kinds.size());  // |e| per model, for the statistics and the output
   // --extend: the overlay's extra deviation is added to every model's prediction.
   std::optional<diagnose::Overlay> overlay;
   std::optional<diagnose::ContextBuilder> overlay_context;
@@ -349,10 +409,13 @@ int run_predict(const PredictOptions& o, const GlobalOptions& g) {
       const Eigen::Vector3d extra = overlay->evaluate(pc);
       for (auto& d : devs) d.e_um += extra;
     }
-    for (std::size_t i = 0; i < models.size(); ++i) stats[i].add(devs[i].e_um);
+    for (std::size_t i = 0; i < models.size(); ++i) {
+      norms[i] = devs[i].e_um.norm();
+      stats[i].add(devs[i].e_um, norms[i]);
+    }
     ++n_points;
     tick();
-    if (writer) writer->write(p, line, devs);
+    if (writer) writer->write(p, line, devs, norms);
   };
 
   const bool points_input = o.points || ends_with(o.input, ".csv") || ends_with(o.input, ".CSV");

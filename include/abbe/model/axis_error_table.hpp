@@ -43,7 +43,23 @@ class AxisErrorTable {
 
   // Values at s. Returns false when s lies outside [lo, hi] (the caller
   // counts it; clamp/extrapolate follow the policy the table was built with).
-  bool eval(double s, TableCursor& cursor, AxisErrors& out) const;
+  // Along a path the point usually stays in the segment found last: that
+  // case is inline, everything else (another segment, clamping, empty or
+  // one-knot tables) goes through eval_general.
+  bool eval(double s, TableCursor& cursor, AxisErrors& out) const {
+    const std::size_t i = cursor.segment;
+    if (i + 1 < s_.size() && s > open_lo_ && s < open_hi_ && s >= s_[i] && s <= s_[i + 1]) {
+      const Knot& k = knots_[i];
+      const double t = s - s_[i];
+      for (int d = 0; d < 3; ++d) {
+        const auto c = static_cast<std::size_t>(d);
+        out.delta_um[d] = k.value[c] + t * k.slope[c];
+        out.theta_urad[d] = k.value[c + 3] + t * k.slope[c + 3];
+      }
+      return s >= lo_ && s <= hi_;
+    }
+    return eval_general(s, cursor, out);
+  }
 
  private:
   struct Knot {
@@ -51,11 +67,15 @@ class AxisErrorTable {
     std::array<double, 6> slope;  // per mm, towards the next knot
   };
   std::size_t find_segment(double s, TableCursor& cursor) const;
+  bool eval_general(double s, TableCursor& cursor, AxisErrors& out) const;
 
   std::vector<double> s_;
   std::vector<Knot> knots_;
   double lo_ = 0.0, hi_ = 0.0;
   bool extrapolate_ = false;
+  // Where a lookup interpolates inside a segment rather than clamping to an
+  // end knot: (s_front, s_back), or everything when extrapolating.
+  double open_lo_ = 0.0, open_hi_ = 0.0;
 };
 
 }  // namespace abbe::model
