@@ -191,6 +191,7 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
   const std::size_t stride = std::max<std::size_t>(1, (np + o.scan_points - 1) / o.scan_points);
 
   for (int step = 0; step < o.max_terms; ++step) {
+    if (o.on_step) o.on_step(step);
     const double rr = r.squaredNorm();
     const double dof_base = static_cast<double>(n - Q.cols());
     if (dof_base < 4.0) break;

@@ -60,6 +60,8 @@ WorkspaceMap compute_map(const machine::Machine& machine, const MapOptions& opti
       st.max_abs_component_um = st.max_abs_component_um.cwiseMax(d.e_um.cwiseAbs());
       st.second_order_max_um = std::max(st.second_order_max_um, d.second_order_um.norm());
       so2 += d.second_order_um.squaredNorm();
+      if (options.progress && ((dev.size() & 4095) == 0 || dev.size() == map.points.size()))
+        options.progress(map.deviation_um.size() * map.points.size() + dev.size());
     }
     st.mean_um = sum / n;
     st.rms_um = std::sqrt(sum2 / n);

@@ -59,4 +59,36 @@ void Progress::finish() {
   drawn_ = false;
 }
 
+ProgressStreambuf::ProgressStreambuf(std::streambuf* source, Progress& progress,
+                                     std::uint64_t& counter)
+    : source_(source), progress_(progress), counter_(counter) {}
+
+ProgressStreambuf::int_type ProgressStreambuf::underflow() {
+  if (gptr() < egptr()) return traits_type::to_int_type(*gptr());
+  const std::streamsize n = source_->sgetn(buf_.data(), static_cast<std::streamsize>(buf_.size()));
+  if (n <= 0) return traits_type::eof();
+  setg(buf_.data(), buf_.data(), buf_.data() + n);
+  counter_ += static_cast<std::uint64_t>(n);
+  progress_.update(counter_);
+  return traits_type::to_int_type(*gptr());
+}
+
+ProgressStreambuf::pos_type ProgressStreambuf::seekoff(off_type off, std::ios_base::seekdir dir,
+                                                       std::ios_base::openmode which) {
+  const auto buffered = static_cast<off_type>(egptr() - gptr());
+  if (off == 0 && dir == std::ios_base::cur) {  // tellg(): the source is ahead by the buffer
+    const pos_type p = source_->pubseekoff(0, std::ios_base::cur, which);
+    return p == pos_type(off_type(-1)) ? p : pos_type(off_type(p) - buffered);
+  }
+  if (dir == std::ios_base::cur) off -= buffered;
+  setg(buf_.data(), buf_.data(), buf_.data());
+  return source_->pubseekoff(off, dir, which);
+}
+
+ProgressStreambuf::pos_type ProgressStreambuf::seekpos(pos_type pos,
+                                                       std::ios_base::openmode which) {
+  setg(buf_.data(), buf_.data(), buf_.data());
+  return source_->pubseekpos(pos, which);
+}
+
 }  // namespace abbe::io

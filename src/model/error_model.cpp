@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "abbe/io/input_error.hpp"
+#include "abbe/model/error_extension.hpp"
 
 namespace abbe::model {
 
@@ -53,15 +54,26 @@ Deviation ErrorModel::evaluate(const EvalPoint& point, ModelData& data) const {
   lookup(point, data);
   ++data.evaluations;
   const Eigen::Vector3d s = point.p + Eigen::Vector3d(0.0, 0.0, point.tool_length);
+  Deviation d;
   switch (kind_) {
     case ModelKind::ae_arm:
-      return evaluate_ae_arm(point, s, data);
+      d = evaluate_ae_arm(point, s, data);
+      break;
     case ModelKind::htm:
-      return evaluate_htm(point, s, data);
+      d = evaluate_htm(point, s, data);
+      break;
     case ModelKind::dual:
-      return evaluate_dual(point, s, data);
+      d = evaluate_dual(point, s, data);
+      break;
   }
-  return {};
+  if (extension_) d.e_um += extension_->extra_um(point, d, data);
+  return d;
+}
+
+ErrorModel ErrorModel::with_extension(std::shared_ptr<const ErrorExtension> extension) const {
+  ErrorModel m = *this;
+  m.extension_ = std::move(extension);
+  return m;
 }
 
 // (−EC0Y·y + EB0Z·z, −EA0Z·z, 0): µrad × mm = nm, hence the 1e-3.

@@ -61,7 +61,7 @@ expect_match("${run_out}" "residual RMS 0\\.3[0-9]+ µm" "noisy grid summary")
 
 # Tables: virtual machine grid → fitted component table → predict reads it.
 run(${ABBE} simulate measure --truth ${SRC}/machines/sample/truth.yaml
-    --box -800,-200,-400,-100,-500,-200 --grid 100 --noise 0.2um -o ${WORK}/grid.csv)
+    --box -800,-400,-500,-200,-100,-200 --grid 100 --noise 0.2um -o ${WORK}/grid.csv)
 run(${ABBE} identify --measured ${WORK}/grid.csv --machine ${SRC}/machines/sample/machine.yaml
     --param tables --knots 100 --table-out ${WORK}/fitted.csv -o ${WORK}/tables.json)
 expect_match("${run_out}" "residual RMS 0\\.[0-9]+ µm" "table fit summary")

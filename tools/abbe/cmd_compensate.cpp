@@ -12,8 +12,10 @@
 #include <string>
 
 #include "abbe/compensate/program_compensator.hpp"
+#include "abbe/diagnose/overlay_extension.hpp"
 #include "abbe/io/atomic_file.hpp"
 #include "abbe/io/input_error.hpp"
+#include "abbe/io/progress.hpp"
 #include "abbe/machine/interpreter_setup.hpp"
 #include "abbe/machine/machine.hpp"
 #include "abbe/model/error_model.hpp"
@@ -27,6 +29,7 @@ struct CompensateCliOptions {
   std::string machine;
   std::string model = "ae-arm";
   std::string output;
+  std::string extend;  // overlay of effects found by `abbe diagnose` (docs/compensation.md)
   compensate::CompensateOptions c;
   bool in_place = false;
   bool allow_unconverged = false;
@@ -38,7 +41,7 @@ bool same_file(const std::string& a, const std::string& b) {
   return std::filesystem::weakly_canonical(a, ec) == std::filesystem::weakly_canonical(b, ec);
 }
 
-int run_compensate(CompensateCliOptions o) {
+int run_compensate(CompensateCliOptions o, const GlobalOptions& g) {
   if (o.output.empty() && !o.in_place)
     throw InputError({"<command line>", 0, 0, "-o", ""},
                      "no output: give -o OUT.nc (or --in-place to replace the input)");
@@ -56,7 +59,8 @@ int run_compensate(CompensateCliOptions o) {
   if (!kind)
     throw InputError({"<command line>", 0, 0, "--model", ""},
                      fmt::format("unknown model \"{}\" (htm, ae-arm or dual)", o.model));
-  const model::ErrorModel model(machine, *kind);
+  model::ErrorModel model(machine, *kind);
+  if (!o.extend.empty()) model = diagnose::extend_model(model, machine, o.extend);
   const gcode::InterpreterConfig config = machine::interpreter_config(machine);
 
   std::ifstream in(o.input, std::ios::binary);
@@ -64,8 +68,14 @@ int run_compensate(CompensateCliOptions o) {
     throw InputError({o.input, 0, 0, "", ""},
                      std::string("cannot open the input: ") + std::strerror(errno));
   io::AtomicOutputFile out(o.output);
+  // Progress on a terminal: bytes of the program read.
+  io::Progress progress("compensate", io::Progress::file_size(o.input), !g.quiet);
+  std::uint64_t bytes_read = 0;
+  io::ProgressStreambuf counted(in.rdbuf(), progress, bytes_read);
+  std::istream program(&counted);
   const compensate::CompensateSummary s = compensate::compensate_program(
-      in, o.input, config, model, o.c, [&](const char* d, std::size_t n) { out.write(d, n); });
+      program, o.input, config, model, o.c, [&](const char* d, std::size_t n) { out.write(d, n); });
+  progress.finish();
 
   std::string text = fmt::format(
       "{}: {} lines, {} blocks changed, {} pieces inserted, {} points, max correction {:.4f} µm, "
@@ -98,7 +108,7 @@ int run_compensate(CompensateCliOptions o) {
 
 const CommandRegistrar registrar(
     "compensate", "Write the NC program with coordinates corrected for the predicted errors", 40,
-    [](CLI::App& sub, const GlobalOptions&) -> CommandAction {
+    [](CLI::App& sub, const GlobalOptions& g) -> CommandAction {
       auto o = std::make_shared<CompensateCliOptions>();
       sub.add_option("input", o->input, "NC program")->required();
       sub.add_option("--machine", o->machine, "Machine file (YAML, docs/formats.md)")->required();
@@ -106,6 +116,9 @@ const CommandRegistrar registrar(
           ->check(CLI::IsMember({"htm", "ae-arm", "dual"}))
           ->capture_default_str();
       sub.add_option("-o,--output", o->output, "Output program (written atomically), - for stdout");
+      sub.add_option("--extend", o->extend,
+                     "Compensate the extended model: add the effects of an overlay written by "
+                     "`abbe diagnose --overlay`");
       sub.add_option("--tol", o->c.tol_um,
                      "Allowed predicted deviation from the nominal path, µm (splits moves)")
           ->check(CLI::PositiveNumber)
@@ -121,7 +134,8 @@ const CommandRegistrar registrar(
       sub.add_flag("--in-place", o->in_place, "Replace the input (atomically)");
       sub.add_flag("--allow-unconverged", o->allow_unconverged,
                    "Write the output even if some points did not converge");
-      return [o] { return run_compensate(*o); };
+      const GlobalOptions* gp = &g;
+      return [o, gp] { return run_compensate(*o, *gp); };
     });
 
 }  // namespace

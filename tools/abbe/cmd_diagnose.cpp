@@ -12,6 +12,7 @@
 #include "abbe/io/atomic_file.hpp"
 #include "abbe/io/input_error.hpp"
 #include "abbe/io/measured_data.hpp"
+#include "abbe/io/progress.hpp"
 #include "abbe/machine/machine.hpp"
 #include "command.hpp"
 
@@ -32,8 +33,14 @@ struct DiagnoseCliOptions {
 
 int run_diagnose(const DiagnoseCliOptions& o, const GlobalOptions& g) {
   const machine::Machine machine = machine::Machine::load(o.machine);
-  const io::MeasuredData data = io::load_measured_data(o.measured);
   diagnose::DiagnoseOptions opt;
+  // Progress on a terminal, in steps: reading the data, the residuals and
+  // candidates, then each step of the effect selection (it may end early).
+  const int steps = 2 + opt.selection.max_terms;
+  io::Progress progress("diagnose", static_cast<std::uint64_t>(steps), !g.quiet, "steps");
+  progress.update(0);
+  const io::MeasuredData data = io::load_measured_data(o.measured);
+  progress.update(1);
   auto kind = model::parse_model_kind(o.model);
   if (!kind)
     throw InputError({"<command line>", 0, 0, "--model", ""},
@@ -47,7 +54,12 @@ int run_diagnose(const DiagnoseCliOptions& o, const GlobalOptions& g) {
     extend = diagnose::Overlay::load(o.extend);
     opt.extend = &*extend;
   }
+  if (progress.active())
+    opt.selection.on_step = [&](int step) {
+      progress.update(static_cast<std::uint64_t>(2 + step));
+    };
   const diagnose::Diagnosis d = diagnose::diagnose(machine, data, opt);
+  progress.finish();
   if (!o.out.empty()) {
     io::AtomicOutputFile f(o.out);
     const std::string body = diagnose::report_json(d);

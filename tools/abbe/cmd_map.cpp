@@ -15,7 +15,9 @@
 #include "abbe/identify/workspace_map.hpp"
 #include "abbe/io/atomic_file.hpp"
 #include "abbe/io/input_error.hpp"
+#include "abbe/io/progress.hpp"
 #include "abbe/machine/machine.hpp"
+#include "box_option.hpp"
 #include "command.hpp"
 
 namespace abbe::cli {
@@ -42,7 +44,7 @@ void write_file(const std::string& path, const std::string& text) {
   f.commit();
 }
 
-int run_map(const MapCliOptions& o) {
+int run_map(const MapCliOptions& o, const GlobalOptions& g) {
   const machine::Machine machine = machine::Machine::load(o.machine);
   identify::MapOptions mo;
   if (o.model == "all") {
@@ -56,19 +58,19 @@ int run_map(const MapCliOptions& o) {
   mo.spacing_mm = o.grid;
   mo.tool_length = o.tool_length >= 0.0 ? o.tool_length : machine.tool_length();
   identify::travel_box(machine, mo.tool_length, mo.lo, mo.hi);
-  if (!o.box.empty()) {
-    if (o.box.size() != 6) bad_option("--box", "expected x0,y0,z0,x1,y1,z1 (mm)");
-    for (int i = 0; i < 3; ++i) {
-      mo.lo[i] = o.box[static_cast<std::size_t>(i)];
-      mo.hi[i] = o.box[static_cast<std::size_t>(i + 3)];
-      if (!(mo.lo[i] <= mo.hi[i])) bad_option("--box", "each x0,y0,z0 must be ≤ its x1,y1,z1");
-    }
-  }
+  if (!o.box.empty()) parse_box_option(o.box, mo.lo, mo.hi);
   double n = 1.0;
   for (int i = 0; i < 3; ++i) n *= std::floor((mo.hi[i] - mo.lo[i]) / mo.spacing_mm) + 2.0;
   if (n > 5e6) bad_option("--grid", "more than 5 million points; use a coarser grid");
 
+  // Progress on a terminal: grid points evaluated (points × models).
+  std::uint64_t evaluations = 1;
+  for (int i = 0; i < 3; ++i)
+    evaluations *= identify::grid_axis(mo.lo[i], mo.hi[i], mo.spacing_mm).size();
+  io::Progress progress("map", evaluations * mo.models.size(), !g.quiet, "points");
+  if (progress.active()) mo.progress = [&](std::size_t done) { progress.update(done); };
   const identify::WorkspaceMap map = identify::compute_map(machine, mo);
+  progress.finish();
   if (!o.output.empty()) write_file(o.output, identify::map_to_csv(map));
   if (!o.slices.empty()) {
     std::error_code ec;
@@ -137,12 +139,13 @@ int run_map(const MapCliOptions& o) {
 
 const CommandRegistrar registrar(
     "map", "Volumetric error over the travel (or a box) per model, htm vs ae-arm", 60,
-    [](CLI::App& sub, const GlobalOptions&) -> CommandAction {
+    [](CLI::App& sub, const GlobalOptions& g) -> CommandAction {
       auto o = std::make_shared<MapCliOptions>();
-      sub.footer("Example: abbe map --machine machines/sample/machine.yaml --grid 100 --json map.json");
+      sub.footer(
+          "Example: abbe map --machine machines/sample/machine.yaml --grid 100 --json map.json");
       sub.add_option("--machine", o->machine, "Machine file (YAML, docs/formats.md)")->required();
       sub.add_option("--grid", o->grid, "Grid spacing, mm")->capture_default_str();
-      sub.add_option("--box", o->box, "Box of tool tips x0,y0,z0,x1,y1,z1 mm (default: the travel)")
+      sub.add_option("--box", o->box, std::string(kBoxHelp) + " (default: the travel)")
           ->delimiter(',')
           ->expected(6);
       sub.add_option("--model", o->model, "htm, ae-arm, dual or all")
@@ -152,7 +155,8 @@ const CommandRegistrar registrar(
       sub.add_option("-o,--output", o->output, "CSV of the grid points (written atomically)");
       sub.add_option("--slices", o->slices, "Directory for slice CSVs (XY at 3 z, XZ, YZ)");
       sub.add_option("--json", o->json, "Statistics as JSON to FILE");
-      return [o] { return run_map(*o); };
+      const GlobalOptions* gp = &g;
+      return [o, gp] { return run_map(*o, *gp); };
     });
 
 }  // namespace

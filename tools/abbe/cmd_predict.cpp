@@ -20,8 +20,7 @@
 #include <string_view>
 #include <vector>
 
-#include "abbe/diagnose/context.hpp"
-#include "abbe/diagnose/overlay.hpp"
+#include "abbe/diagnose/overlay_extension.hpp"
 #include "abbe/gcode/program.hpp"
 #include "abbe/io/atomic_file.hpp"
 #include "abbe/io/input_error.hpp"
@@ -352,17 +351,16 @@ int run_predict(const PredictOptions& o, const GlobalOptions& g) {
   const io::PathFormat format = io::parse_path_format(o.format);
   std::vector<model::ErrorModel> models;
   for (auto k : kinds) models.emplace_back(machine, k);
+  // --extend: every model carries the overlay's extra deviation.
+  if (!o.extend.empty()) {
+    const auto extension = std::make_shared<const diagnose::OverlayExtension>(
+        diagnose::Overlay::load(o.extend), machine);
+    for (auto& m : models) m = m.with_extension(extension);
+  }
   std::vector<model::ModelData> data(kinds.size());
   std::vector<ModelStats> stats(kinds.size());
   std::vector<model::Deviation> devs(kinds.size());
   std::vector<double> norms(kinds.size());  // |e| per model, for the statistics and the output
-  // --extend: the overlay's extra deviation is added to every model's prediction.
-  std::optional<diagnose::Overlay> overlay;
-  std::optional<diagnose::ContextBuilder> overlay_context;
-  if (!o.extend.empty()) {
-    overlay = diagnose::Overlay::load(o.extend);
-    overlay_context.emplace(machine, *model::parse_model_kind(overlay->base_model));
-  }
 
   std::ifstream file;
   std::istream* in = &std::cin;
@@ -402,12 +400,6 @@ int run_predict(const PredictOptions& o, const GlobalOptions& g) {
                          fmt::format("at the point ({:.4f}, {:.4f}, {:.4f}) mm: {}", p.p.x(),
                                      p.p.y(), p.p.z(), e.message()));
       }
-    }
-    if (overlay) {
-      Eigen::Vector3d base;
-      const diagnose::PointContext pc = overlay_context->make(p, "", base);
-      const Eigen::Vector3d extra = overlay->evaluate(pc);
-      for (auto& d : devs) d.e_um += extra;
     }
     for (std::size_t i = 0; i < models.size(); ++i) {
       norms[i] = devs[i].e_um.norm();

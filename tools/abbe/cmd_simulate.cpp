@@ -19,6 +19,7 @@
 #include "abbe/sim/text_file.hpp"
 #include "abbe/sim/truth_file.hpp"
 #include "abbe/sim/validation_measurement.hpp"
+#include "box_option.hpp"
 #include "command.hpp"
 
 namespace abbe::cli {
@@ -179,14 +180,7 @@ int run_measure(const MeasureOptions& o) {
     if (o.repeat < 1) bad_option("--repeat", "must be ≥ 1");
     if (!(o.interval >= 0.0)) bad_option("--interval", "must be ≥ 0 s");
     sim::default_box(truth, tool_length, go.lo, go.hi);
-    if (!o.box.empty()) {
-      if (o.box.size() != 6) bad_option("--box", "expected xmin,xmax,ymin,ymax,zmin,zmax (mm)");
-      for (int i = 0; i < 3; ++i) {
-        go.lo[i] = o.box[static_cast<std::size_t>(2 * i)];
-        go.hi[i] = o.box[static_cast<std::size_t>(2 * i + 1)];
-        if (!(go.lo[i] <= go.hi[i])) bad_option("--box", "each min must be ≤ its max");
-      }
-    }
+    if (!o.box.empty()) parse_box_option(o.box, go.lo, go.hi);
     if (!(go.spacing_mm > 0.0)) bad_option("--grid", "grid spacing must be > 0 mm");
     tips = sim::grid_points(go);
     if (tips.size() > 5'000'000)
@@ -248,9 +242,7 @@ const CommandRegistrar registrar(
       auto* program =
           measure->add_option("--program", me->program, "NC program: measure its fragmented path");
       grid->excludes(program);
-      measure
-          ->add_option("--box", me->box,
-                       "Grid box of tool-tip positions xmin,xmax,ymin,ymax,zmin,zmax")
+      measure->add_option("--box", me->box, std::string("Grid: ") + kBoxHelp)
           ->delimiter(',')
           ->expected(6);
       measure->add_option("--tool-length", me->tool_length,

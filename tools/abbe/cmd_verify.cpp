@@ -10,7 +10,9 @@
 #include <string>
 
 #include "abbe/compensate/path_verifier.hpp"
+#include "abbe/diagnose/overlay_extension.hpp"
 #include "abbe/io/input_error.hpp"
+#include "abbe/io/progress.hpp"
 #include "abbe/machine/interpreter_setup.hpp"
 #include "abbe/machine/machine.hpp"
 #include "abbe/model/error_model.hpp"
@@ -24,6 +26,7 @@ struct VerifyCliOptions {
   std::string against;
   std::string machine;
   std::string model = "ae-arm";
+  std::string extend;  // overlay of effects found by `abbe diagnose`
   double tol_um = 1.0;
   bool check = false;
   compensate::VerifyOptions v;
@@ -37,20 +40,31 @@ std::ifstream open_input(const std::string& path) {
   return in;
 }
 
-int run_verify(const VerifyCliOptions& o) {
+int run_verify(const VerifyCliOptions& o, const GlobalOptions& g) {
   const machine::Machine machine = machine::Machine::load(o.machine);
   const auto kind = model::parse_model_kind(o.model);
   if (!kind)
     throw InputError({"<command line>", 0, 0, "--model", ""},
                      fmt::format("unknown model \"{}\" (htm, ae-arm or dual)", o.model));
-  const model::ErrorModel model(machine, *kind);
+  model::ErrorModel model(machine, *kind);
+  if (!o.extend.empty()) model = diagnose::extend_model(model, machine, o.extend);
   const gcode::InterpreterConfig config = machine::interpreter_config(machine);
   compensate::VerifyOptions vo = o.v;
   vo.tol_um = o.tol_um;
-  std::ifstream comp = open_input(o.input);
-  std::ifstream orig = open_input(o.against);
+  std::ifstream comp_file = open_input(o.input);
+  std::ifstream orig_file = open_input(o.against);
+  // Progress on a terminal: bytes read of both programs, each read twice
+  // (the forward and the backward pass).
+  io::Progress progress("verify",
+                        2 * (io::Progress::file_size(o.input) + io::Progress::file_size(o.against)),
+                        !g.quiet);
+  std::uint64_t bytes_read = 0;
+  io::ProgressStreambuf comp_counted(comp_file.rdbuf(), progress, bytes_read);
+  io::ProgressStreambuf orig_counted(orig_file.rdbuf(), progress, bytes_read);
+  std::istream comp(&comp_counted), orig(&orig_counted);
   const compensate::VerifyStats s =
       compensate::verify_program(comp, o.input, orig, o.against, config, model, vo);
+  progress.finish();
   const double max = std::max(s.max_um, s.backward_max_um);
   std::fputs(fmt::format("{} against {} (model {}):\n"
                          "  predicted compensated -> nominal: {} points, max {:.4f} µm (line {}), "
@@ -58,10 +72,11 @@ int run_verify(const VerifyCliOptions& o) {
                          "  nominal -> predicted compensated: {} points, max {:.4f} µm (line {}), "
                          "rms {:.4f} µm, {} beyond tol\n"
                          "  max {:.4f} µm, tol {} µm: {}\n",
-                         o.input, o.against, model::to_string(*kind), s.points, s.max_um,
-                         s.max_line, s.rms_um, s.over_tol, s.backward_points, s.backward_max_um,
-                         s.backward_max_line, s.backward_rms_um, s.backward_over_tol, max, o.tol_um,
-                         max <= o.tol_um ? "pass" : "FAIL")
+                         o.input, o.against,
+                         model::to_string(*kind) + (o.extend.empty() ? "" : " + " + o.extend),
+                         s.points, s.max_um, s.max_line, s.rms_um, s.over_tol, s.backward_points,
+                         s.backward_max_um, s.backward_max_line, s.backward_rms_um,
+                         s.backward_over_tol, max, o.tol_um, max <= o.tol_um ? "pass" : "FAIL")
                  .c_str(),
              stdout);
   if (o.check && max > o.tol_um) return kBadInput;
@@ -70,7 +85,7 @@ int run_verify(const VerifyCliOptions& o) {
 
 const CommandRegistrar registrar(
     "verify", "Measure the predicted path of a compensated program against the nominal path", 41,
-    [](CLI::App& sub, const GlobalOptions&) -> CommandAction {
+    [](CLI::App& sub, const GlobalOptions& g) -> CommandAction {
       auto o = std::make_shared<VerifyCliOptions>();
       sub.add_option("input", o->input, "Compensated NC program")->required();
       sub.add_option("--against", o->against, "The original NC program")->required();
@@ -78,6 +93,9 @@ const CommandRegistrar registrar(
       sub.add_option("--model", o->model, "Error model: htm, ae-arm or dual")
           ->check(CLI::IsMember({"htm", "ae-arm", "dual"}))
           ->capture_default_str();
+      sub.add_option("--extend", o->extend,
+                     "Predict with the extended model: add the effects of an overlay written by "
+                     "`abbe diagnose --overlay`");
       sub.add_option("--tol", o->tol_um, "Tolerance, µm")
           ->check(CLI::PositiveNumber)
           ->capture_default_str();
@@ -85,7 +103,8 @@ const CommandRegistrar registrar(
           ->check(CLI::PositiveNumber)
           ->capture_default_str();
       sub.add_flag("--check", o->check, "Exit 1 if the max distance exceeds --tol");
-      return [o] { return run_verify(*o); };
+      const GlobalOptions* gp = &g;
+      return [o, gp] { return run_verify(*o, *gp); };
     });
 
 }  // namespace

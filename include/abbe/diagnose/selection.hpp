@@ -11,6 +11,7 @@
 // as ambiguous.
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,9 @@ struct SelectionOptions {
   double name_ratio = 0.7;  // a named kind must explain this share of the best smooth fit
   double ambiguous_corr = 0.98;
   std::size_t scan_points = 20000;  // points used to locate a period peak
+  // Optional: called at the start of each selection step (0-based), e.g. for
+  // a progress bar.
+  std::function<void(int step)> on_step;
 };
 
 struct SelectedTerm {

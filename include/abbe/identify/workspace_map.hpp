@@ -4,6 +4,8 @@
 // statistics of the AE-arm paper's comparison (mean |d| of htm against
 // ae-arm, and the difference in percent of htm).
 #include <Eigen/Core>
+#include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -19,6 +21,9 @@ struct MapOptions {
   double tool_length = 0.0;  // mm
   std::vector<model::ModelKind> models{model::ModelKind::htm, model::ModelKind::ae_arm,
                                        model::ModelKind::dual};
+  // Optional: called now and then with the evaluations done so far (of
+  // points × models), e.g. for a progress bar.
+  std::function<void(std::size_t evaluations)> progress;
 };
 
 // The box of tool-tip positions the whole travel allows for a tool length:

@@ -4,9 +4,11 @@
 // silent), at most every 100 ms, and clears its line when finished. The
 // amount is whatever the job can count: bytes of the input read so far
 // (total = file size) or points processed (total = 0: a count, no bar).
+#include <array>
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
+#include <streambuf>
 #include <string>
 
 namespace abbe::io {
@@ -41,6 +43,29 @@ class Progress {
   std::string unit_;
   bool drawn_ = false;
   std::chrono::steady_clock::time_point last_;
+};
+
+// ProgressStreambuf: reads through another stream buffer and reports the
+// bytes read so far to a Progress, so that a library loop consuming an
+// std::istream shows progress without knowing about it. Repositioning
+// (verify reads its inputs twice) is passed on; the amount keeps growing
+// (bytes read in total). Several buffers may share one counter (several
+// inputs, one bar).
+class ProgressStreambuf : public std::streambuf {
+ public:
+  ProgressStreambuf(std::streambuf* source, Progress& progress, std::uint64_t& counter);
+
+ protected:
+  int_type underflow() override;
+  pos_type seekoff(off_type off, std::ios_base::seekdir dir,
+                   std::ios_base::openmode which) override;
+  pos_type seekpos(pos_type pos, std::ios_base::openmode which) override;
+
+ private:
+  std::streambuf* source_;
+  Progress& progress_;
+  std::uint64_t& counter_;
+  std::array<char, 1 << 16> buf_{};
 };
 
 }  // namespace abbe::io

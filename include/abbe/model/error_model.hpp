@@ -17,6 +17,8 @@
 
 namespace abbe::model {
 
+class ErrorExtension;  // error_extension.hpp
+
 // What the models evaluate: a PathPoint or a row of measured data.
 struct EvalPoint {
   Eigen::Vector3d p = Eigen::Vector3d::Zero();  // nominal tool tip P, machine coordinates, mm
@@ -52,7 +54,13 @@ class ErrorModel {
 
   // Throws abbe::InputError (field "X", "Y" or "Z") when the policy is
   // `error` and an axis position lies outside its measured range.
+  // With an extension, its extra deviation is included in e_um.
   Deviation evaluate(const EvalPoint& point, ModelData& data) const;
+
+  // A copy of this model whose evaluate() adds the extension's terms
+  // (the extended model); nullptr removes it.
+  ErrorModel with_extension(std::shared_ptr<const ErrorExtension> extension) const;
+  const ErrorExtension* extension() const { return extension_.get(); }
 
   // The component errors of every axis at the point (also left in data.errors).
   void lookup(const EvalPoint& point, ModelData& data) const;
@@ -86,6 +94,7 @@ class ErrorModel {
   std::array<AxisGeometry, 3> geometry_;
   machine::Squareness squareness_;
   std::shared_ptr<const Tables> tables_;
+  std::shared_ptr<const ErrorExtension> extension_;  // null: the plain model
 };
 
 }  // namespace abbe::model

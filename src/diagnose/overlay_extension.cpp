@@ -1,0 +1,56 @@
+#include "abbe/diagnose/overlay_extension.hpp"
+
+#include <algorithm>
+
+namespace abbe::diagnose {
+namespace {
+
+model::ModelKind kind_of(const Overlay& overlay) {
+  // Overlay::parse accepts only htm, ae-arm and dual.
+  return model::parse_model_kind(overlay.base_model).value_or(model::ModelKind::ae_arm);
+}
+
+// model_choice compares htm with the Abbe-consistent ae-arm model (as ContextBuilder).
+model::ModelKind other_of(model::ModelKind k) {
+  return k == model::ModelKind::htm ? model::ModelKind::ae_arm : model::ModelKind::htm;
+}
+
+}  // namespace
+
+OverlayExtension::OverlayExtension(Overlay overlay, const machine::Machine& machine)
+    : overlay_(std::move(overlay)),
+      base_(machine, kind_of(overlay_)),
+      other_(machine, other_of(kind_of(overlay_))) {
+  needs_models_ = std::any_of(overlay_.terms.begin(), overlay_.terms.end(),
+                              [](const Term& t) { return t.kind == TermKind::model_choice; });
+}
+
+PointContext OverlayExtension::context(const model::EvalPoint& point,
+                                       const model::ModelData& data) const {
+  PointContext pc;
+  pc.p = point.p;
+  pc.s = point.p + Eigen::Vector3d(0.0, 0.0, point.tool_length);
+  pc.t = point.time;
+  for (std::size_t k = 0; k < 3; ++k) pc.dir[k] = point.dir[k];
+  // The component tables are the same for every model kind: ε_j is the
+  // lookup the extended model has just made.
+  for (std::size_t j = 0; j < 3; ++j) pc.eps_urad[j] = data.errors[j].theta_urad;
+  if (needs_models_) {
+    model::ModelData a, b;  // fresh workspaces keep this const and thread-safe
+    pc.model_delta_um = other_.evaluate(point, b).e_um - base_.evaluate(point, a).e_um;
+  }
+  return pc;
+}
+
+Eigen::Vector3d OverlayExtension::extra_um(const model::EvalPoint& point, const model::Deviation&,
+                                           const model::ModelData& data) const {
+  return overlay_.evaluate(context(point, data));
+}
+
+model::ErrorModel extend_model(const model::ErrorModel& model, const machine::Machine& machine,
+                               const std::string& overlay_file) {
+  return model.with_extension(
+      std::make_shared<const OverlayExtension>(Overlay::load(overlay_file), machine));
+}
+
+}  // namespace abbe::diagnose
