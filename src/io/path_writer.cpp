@@ -99,21 +99,16 @@ char* write_fixed6_fast(char* p, double value) {
 // computed without branches (the digit counts of a column vary from row to
 // row, which a branch predictor cannot follow).
 
-// The two characters of v < 100 as a 16-bit word.
-std::uint64_t digit_pair(std::uint32_t v) {
-  std::uint16_t w;
-  std::memcpy(&w, kDigitPairs + v * 2, 2);
-  return w;
-}
-
-// v < 10⁴ without leading zeros: stores 4 bytes, returns one past the digits.
-char* write_int_part4(char* p, std::uint32_t v) {
-  const auto n = 1u + (v >= 10) + (v >= 100) + (v >= 1000);
-  auto w = static_cast<std::uint32_t>(digit_pair(v / 100) | digit_pair(v % 100) << 16);
-  w >>= 8 * (4 - n);  // drop the leading zeros
-  std::memcpy(p, &w, 4);
-  return p + n;
-}
+// "000" … "999" as 32-bit words (the first character in the lowest byte, the
+// fourth byte zero): three digits per table lookup.
+struct DigitTriples {
+  std::uint32_t word[1000];
+  constexpr DigitTriples() : word() {
+    for (std::uint32_t i = 0; i < 1000; ++i)
+      word[i] = (48 + i / 100) | (48 + i / 10 % 10) << 8 | (48 + i % 10) << 16;
+  }
+};
+constexpr DigitTriples kDigitTriples;
 
 // The format of append_fixed6 for fixed6_fits(value) (|value| < 9e12, so that
 // value · 1e6 fits an int64): at most 21 characters at p (up to 24 bytes
@@ -128,13 +123,21 @@ char* write_fixed6_fast(char* p, double value) {
       r < 0 ? 0ULL - static_cast<unsigned long long>(r) : static_cast<unsigned long long>(r);
   const unsigned long long int_part = u / 1000000ULL;
   const auto frac = static_cast<std::uint32_t>(u - int_part * 1000000ULL);
-  p = int_part < 10000 ? write_int_part4(p, static_cast<std::uint32_t>(int_part))
-                       : write_uint(p, int_part);
+  if (int_part < 1000) {
+    // Up to three digits: one lookup, the leading zeros shifted out.
+    const auto v = static_cast<std::uint32_t>(int_part);
+    const std::uint32_t n = 1u + (v >= 10) + (v >= 100);
+    const std::uint32_t w = kDigitTriples.word[v] >> (8 * (3 - n));
+    std::memcpy(p, &w, 4);
+    p += n;
+  } else {
+    p = write_uint(p, int_part);
+  }
   if (frac == 0) return p;
   // ".dddddd" and a zero byte in one store; keep the digits up to the last
   // nonzero one (trailing zeros dropped).
-  const std::uint64_t digits =
-      digit_pair(frac / 10000) | digit_pair(frac / 100 % 100) << 16 | digit_pair(frac % 100) << 32;
+  const std::uint64_t digits = std::uint64_t{kDigitTriples.word[frac / 1000]} |
+                               std::uint64_t{kDigitTriples.word[frac % 1000]} << 24;
   const std::uint64_t w = '.' | digits << 8;
   std::memcpy(p, &w, 8);
   const std::uint64_t values = digits ^ 0x303030303030ULL;  // digit values, nonzero: frac > 0

@@ -75,9 +75,6 @@ AxisErrorTable AxisErrorTable::build(const machine::ComponentTable& table, machi
               : 0.0;
   // Extrapolation past the last knot continues the last segment.
   if (grid.size() >= 2) out.knots_.back().slope = out.knots_[grid.size() - 2].slope;
-  constexpr double kInf = std::numeric_limits<double>::infinity();
-  out.open_lo_ = out.extrapolate_ ? -kInf : grid.front();
-  out.open_hi_ = out.extrapolate_ ? kInf : grid.back();
   return out;
 }
 

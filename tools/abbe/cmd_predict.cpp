@@ -185,6 +185,7 @@ class PredictionWriter {
       json_keys_.push_back(fmt::format(", \"{}\": {{\"px\": ", model::to_string(k)));
       row_max_ += 16 * (io::kFixed6MaxChars + 8) + json_keys_.back().size();
     }
+    pred_.resize(kinds_.size());
     buf_.reserve(kChunk + row_max_);
     const bool all = kinds_.size() > 1;
     if (format_ == io::PathFormat::csv) {
@@ -210,13 +211,16 @@ class PredictionWriter {
           io::write_decimal(line_text_.data(), static_cast<unsigned long long>(line)) -
           line_text_.data());
     }
-    bool fits = io::fixed6_fits(p.p.x()) && io::fixed6_fits(p.p.y()) && io::fixed6_fits(p.p.z());
-    for (std::size_t i = 0; i < kinds_.size() && fits; ++i) {
+    // The in-place formatter takes the row when every number fits; the sum of
+    // the magnitudes is a cheap sufficient test (NaN and infinity fail it, and
+    // a row that fails takes the appending path, which writes the same text).
+    double magnitude = l1(p.p);
+    for (std::size_t i = 0; i < kinds_.size(); ++i) {
       const model::Deviation& d = devs[i];
-      fits = io::fixed6_fits(d.e_um.x()) && io::fixed6_fits(d.e_um.y()) &&
-             io::fixed6_fits(d.e_um.z()) && io::fixed6_fits(d.second_order_um.x()) &&
-             io::fixed6_fits(d.second_order_um.y()) && io::fixed6_fits(d.second_order_um.z());
+      pred_[i] = p.p + 1e-3 * d.e_um;
+      magnitude += l1(pred_[i]) + l1(d.e_um) + l1(d.second_order_um) + std::abs(norms[i]);
     }
+    const bool fits = io::fixed6_fits(magnitude);
     if (fits) {
       const std::size_t old_size = buf_.size();
       buf_.resize(old_size + row_max_);
@@ -237,7 +241,7 @@ class PredictionWriter {
   }
 
  private:
-  static constexpr std::size_t kChunk = std::size_t{1} << 20;
+  static constexpr std::size_t kChunk = std::size_t{1} << 16;
 
   // Text into memory reserved for a whole row (every number fits).
   struct InPlace {
@@ -247,7 +251,17 @@ class PredictionWriter {
       std::memcpy(p, s.data(), s.size());
       p += s.size();
     }
+    template <std::size_t N>
+    void text(const char (&s)[N]) {  // a literal: fixed-size copy, no call
+      std::memcpy(p, s, N - 1);
+      p += N - 1;
+    }
     void ch(char c) { *p++ = c; }
+    // The first n characters of a 24-byte block, copied whole (fixed size: no call).
+    void block(const std::array<char, 24>& b, std::size_t n) {
+      std::memcpy(p, b.data(), b.size());
+      p += n;
+    }
   };
   // Text appended to the buffer (any number).
   struct Appended {
@@ -255,23 +269,23 @@ class PredictionWriter {
     void num(double v) { io::append_fixed6(b, v); }
     void text(std::string_view s) { b.append(s.data(), s.data() + s.size()); }
     void ch(char c) { b.push_back(c); }
+    void block(const std::array<char, 24>& s, std::size_t n) { b.append(s.data(), s.data() + n); }
   };
 
   template <class Out>
   void row(Out& out, const model::EvalPoint& p, const std::vector<model::Deviation>& devs,
            const std::vector<double>& norms) const {
-    const std::string_view line(line_text_.data(), line_size_);
     const bool all = kinds_.size() > 1;
     if (format_ == io::PathFormat::csv) {
       num3(out, p.p, "", ",", ",");
       if (all) {
         out.ch(',');
-        out.text(line);
+        out.block(line_text_, line_size_);
       }
       for (std::size_t i = 0; i < kinds_.size(); ++i) {
         const model::Deviation& d = devs[i];
         const Eigen::Vector3d& e = d.e_um;
-        num3(out, p.p + 1e-3 * e, ",", ",", ",");
+        num3(out, pred_[i], ",", ",", ",");
         num3(out, e, ",", ",", ",");
         out.ch(',');
         out.num(norms[i]);
@@ -279,19 +293,19 @@ class PredictionWriter {
       }
       if (!all) {
         out.ch(',');
-        out.text(line);
+        out.block(line_text_, line_size_);
       }
       out.ch('\n');
     } else {
       out.text(points_ ? ",\n{\"x\": " : "{\"x\": ");
       num3(out, p.p, "", ", \"y\": ", ", \"z\": ");
       out.text(", \"line\": ");
-      out.text(line);
+      out.block(line_text_, line_size_);
       for (std::size_t i = 0; i < kinds_.size(); ++i) {
         const model::Deviation& d = devs[i];
         const Eigen::Vector3d& e = d.e_um;
         out.text(json_keys_[i]);
-        num3(out, p.p + 1e-3 * e, "", ", \"py\": ", ", \"pz\": ");
+        num3(out, pred_[i], "", ", \"py\": ", ", \"pz\": ");
         num3(out, e, ", \"dx\": ", ", \"dy\": ", ", \"dz\": ");
         out.text(", \"d\": ");
         out.num(norms[i]);
@@ -302,10 +316,13 @@ class PredictionWriter {
       out.ch('}');
     }
   }
+  static double l1(const Eigen::Vector3d& v) {
+    return std::abs(v.x()) + std::abs(v.y()) + std::abs(v.z());
+  }
   // Three numbers, each after its separator.
-  template <class Out>
-  static void num3(Out& out, const Eigen::Vector3d& v, std::string_view s0, std::string_view s1,
-                   std::string_view s2) {
+  template <class Out, std::size_t N0, std::size_t N1, std::size_t N2>
+  static void num3(Out& out, const Eigen::Vector3d& v, const char (&s0)[N0], const char (&s1)[N1],
+                   const char (&s2)[N2]) {
     out.text(s0);
     out.num(v.x());
     out.text(s1);
@@ -324,7 +341,8 @@ class PredictionWriter {
   std::vector<model::ModelKind> kinds_;
   io::ByteSink sink_;
   std::vector<std::string> json_keys_;  // `, "<model>": {"px": ` per model
-  std::size_t row_max_ = 128;           // bytes an in-place row may take
+  std::size_t row_max_ = 192;           // bytes an in-place row may take
+  std::vector<Eigen::Vector3d> pred_;   // predicted tool tip per model, mm
   fmt::memory_buffer buf_;
   std::size_t points_ = 0;
   std::array<char, 24> line_text_{};

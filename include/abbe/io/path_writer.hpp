@@ -38,7 +38,9 @@ void append_fixed6(fmt::memory_buffer& out, double value);
 // character. It may store up to kFixed6MaxChars bytes from `out` (the bytes
 // past the text are scratch). Other values go through append_fixed6.
 inline constexpr std::size_t kFixed6MaxChars = 24;
-inline bool fixed6_fits(double value) { return value < 9e12 && value > -9e12; }  // NaN: false
+inline bool fixed6_fits(double value) {  // NaN: false; no branch
+  return (value < 9e12) & (value > -9e12);
+}
 char* write_fixed6(char* out, double value);
 // Writes the decimal digits of v (at most 20) from `out`; returns one past the last.
 char* write_decimal(char* out, unsigned long long v);

@@ -48,7 +48,9 @@ class AxisErrorTable {
   // one-knot tables) goes through eval_general.
   bool eval(double s, TableCursor& cursor, AxisErrors& out) const {
     const std::size_t i = cursor.segment;
-    if (i + 1 < s_.size() && s > open_lo_ && s < open_hi_ && s >= s_[i] && s <= s_[i + 1]) {
+    // s in [s_i, s_{i+1}): never a clamped end (below s_0 or at/after the last
+    // knot), and at s_0 clamping gives the same value.
+    if (i + 1 < s_.size() && s >= s_[i] && s < s_[i + 1]) {
       const Knot& k = knots_[i];
       const double t = s - s_[i];
       for (int d = 0; d < 3; ++d) {
@@ -73,9 +75,6 @@ class AxisErrorTable {
   std::vector<Knot> knots_;
   double lo_ = 0.0, hi_ = 0.0;
   bool extrapolate_ = false;
-  // Where a lookup interpolates inside a segment rather than clamping to an
-  // end knot: (s_front, s_back), or everything when extrapolating.
-  double open_lo_ = 0.0, open_hi_ = 0.0;
 };
 
 }  // namespace abbe::model
