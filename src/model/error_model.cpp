@@ -32,19 +32,27 @@ ErrorModel::ErrorModel(const machine::Machine& machine, ModelKind kind)
   tables_ = std::move(tables);
 }
 
+namespace {
+// Out of line, so that lookup() stays small enough to be inlined into evaluate().
+[[noreturn]] [[gnu::cold]] [[gnu::noinline]] void throw_out_of_range(const std::string& file, int j,
+                                                                     double s, double lo,
+                                                                     double hi) {
+  throw InputError({file, 0, 0, std::string(1, "XYZ"[j]), ""},
+                   fmt::format("axis {} position s = {:.4f} mm is outside the measured range "
+                               "[{}, {}] mm of the component table (out_of_range: error)",
+                               "XYZ"[j], s, lo, hi));
+}
+}  // namespace
+
 void ErrorModel::lookup(const EvalPoint& point, ModelData& data) const {
   const Eigen::Vector3d s = point.p + Eigen::Vector3d(0.0, 0.0, point.tool_length);
   for (std::size_t j = 0; j < 3; ++j) {
     int dir = point.dir[j] > 0 ? 2 : point.dir[j] < 0 ? 0 : 1;
     const AxisErrorTable& t = tables_->by_axis_dir[j][static_cast<std::size_t>(dir)];
-    if (!t.eval(s[static_cast<Eigen::Index>(j)], data.cursor_[j][static_cast<std::size_t>(dir)],
-                data.errors[j])) {
+    const double s_j = s[static_cast<Eigen::Index>(j)];
+    if (!t.eval(s_j, data.cursor_[j][static_cast<std::size_t>(dir)], data.errors[j])) {
       if (policy_ == machine::OutOfRangePolicy::error)
-        throw InputError(
-            {tables_->file, 0, 0, std::string(1, "XYZ"[j]), ""},
-            fmt::format("axis {} position s = {:.4f} mm is outside the measured range [{}, {}] "
-                        "mm of the component table (out_of_range: error)",
-                        "XYZ"[j], s[static_cast<Eigen::Index>(j)], t.lo(), t.hi()));
+        throw_out_of_range(tables_->file, static_cast<int>(j), s_j, t.lo(), t.hi());
       ++data.out_of_range_lookups;
     }
   }
