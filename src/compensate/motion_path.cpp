@@ -59,6 +59,19 @@ Eigen::Vector3d MotionPath::at(double t) const {
   return p;
 }
 
+std::int8_t MotionPath::in_plane_direction(int k, double t) const {
+  // Tangent of the ideal circle: (−sin θ, cos θ)·sweep.
+  auto component = [&](double th) { return (k == 0 ? -std::sin(th) : std::cos(th)) * sweep_; };
+  const double th = theta0_ + t * sweep_;
+  double v = component(th);
+  if (std::abs(v) <= 1e-9 * std::abs(sweep_)) v = component(th - 1e-6 * sweep_);
+  return v > 0.0 ? 1 : -1;
+}
+
+double MotionPath::near_lo(double near) const {
+  return length_ > 0.0 ? std::min(0.5, near / length_) : 0.5;
+}
+
 double MotionPath::distance(const Eigen::Vector3d& q) const { return (at(closest(q)) - q).norm(); }
 
 double MotionPath::closest(const Eigen::Vector3d& q) const {
@@ -67,39 +80,61 @@ double MotionPath::closest(const Eigen::Vector3d& q) const {
     const double l2 = d.squaredNorm();
     return l2 > 0.0 ? std::clamp((q - start_).dot(d) / l2, 0.0, 1.0) : 0.0;
   }
-  // Coarse search, then golden-section refinement around the best sample.
-  const int n = std::max(16, static_cast<int>(std::ceil(std::abs(sweep_) * 8.0)));
-  int best = 0;
-  double best_d = (at(0.0) - q).norm();
-  for (int i = 1; i <= n; ++i) {
-    const double di = (at(static_cast<double>(i) / n) - q).norm();
-    if (di < best_d) {
-      best_d = di;
-      best = i;
+  // The angle of q about the centre gives the parameter on each turn where
+  // the planar distance is least; a few Newton steps on (p(t) − q)·p'(t)
+  // take the radius blend and the helix travel into account. The ends are
+  // candidates too.
+  const int a = ax_[0], b = ax_[1], n = ax_[2];
+  const double two_pi = 2.0 * M_PI;
+  const double h = end_[n] - start_[n];
+  const double dr = r1_ - r0_;
+  const double alpha = std::atan2(q[b] - center_[b], q[a] - center_[a]);
+  // t_k = (alpha + 2πk − θ0) / sweep for the k that fall in [0, 1].
+  const double base = (alpha - theta0_) / sweep_;
+  const double period = two_pi / std::abs(sweep_);  // t per turn
+  double k_lo = std::ceil((0.0 - base) / period - 1.0);
+  double k_hi = std::floor((1.0 - base) / period + 1.0);
+  if (k_hi - k_lo > 4.0 && h != 0.0) {  // many turns: those nearest the helix height
+    const double th = std::clamp((q[n] - start_[n]) / h, 0.0, 1.0);
+    const double kc = std::round((th - base) / period);
+    k_lo = std::max(k_lo, kc - 1.0);
+    k_hi = std::min(k_hi, kc + 1.0);
+  }
+  auto dist2 = [&](double t) { return (at(t) - q).squaredNorm(); };
+  double best_t = 0.0, best = dist2(0.0);
+  const double d1 = dist2(1.0);
+  if (d1 < best) {
+    best = d1;
+    best_t = 1.0;
+  }
+  for (double k = k_lo; k <= k_hi; k += 1.0) {
+    double t = base + k * period;
+    if (t < -0.5 * period || t > 1.0 + 0.5 * period) continue;
+    t = std::clamp(t, 0.0, 1.0);
+    for (int it = 0; it < 3; ++it) {
+      const double th = theta0_ + t * sweep_;
+      const double c = std::cos(th), s = std::sin(th);
+      const double r = r0_ + t * dr;
+      const double ua = center_[a] + r * c - q[a], ub = center_[b] + r * s - q[b];
+      const double un = start_[n] + t * h - q[n];
+      // p' and p'' in the (a, b, n) frame.
+      const double da = dr * c - r * sweep_ * s, db = dr * s + r * sweep_ * c;
+      const double dda = -2.0 * dr * sweep_ * s - r * sweep_ * sweep_ * c;
+      const double ddb = 2.0 * dr * sweep_ * c - r * sweep_ * sweep_ * s;
+      const double g = ua * da + ub * db + un * h;
+      const double gp = da * da + db * db + h * h + ua * dda + ub * ddb;
+      if (!(gp > 0.0)) break;
+      const double next = std::clamp(t - g / gp, 0.0, 1.0);
+      if (next == t) break;
+      t = next;
+    }
+    const double dt = dist2(t);
+    if (dt < best) {
+      best = dt;
+      best_t = t;
     }
   }
-  double lo = std::max(0, best - 1) / static_cast<double>(n);
-  double hi = std::min(n, best + 1) / static_cast<double>(n);
-  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-  double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
-  double f1 = (at(x1) - q).norm(), f2 = (at(x2) - q).norm();
-  for (int it = 0; it < 60; ++it) {
-    if (f1 < f2) {
-      hi = x2;
-      x2 = x1;
-      f2 = f1;
-      x1 = hi - g * (hi - lo);
-      f1 = (at(x1) - q).norm();
-    } else {
-      lo = x1;
-      x1 = x2;
-      f1 = f2;
-      x2 = lo + g * (hi - lo);
-      f2 = (at(x2) - q).norm();
-    }
-  }
-  if (best_d <= std::min(f1, f2)) return static_cast<double>(best) / n;
-  return f1 < f2 ? x1 : x2;
+  return best_t;
 }
 
 }  // namespace abbe::compensate

@@ -1,9 +1,9 @@
 #include "abbe/compensate/path_verifier.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <deque>
-#include <functional>
 #include <limits>
 #include <optional>
 #include <vector>
@@ -16,6 +16,7 @@ namespace abbe::compensate {
 namespace {
 
 using Eigen::Vector3d;
+using Dir = std::array<std::int8_t, 3>;
 
 // Pulls the motions of a program one at a time. In a canned cycle (a block
 // with several motions) only the hole bottoms are compared — compensate
@@ -25,29 +26,45 @@ class MotionStream {
  public:
   MotionStream(std::istream& in, const std::string& file, const gcode::InterpreterConfig& config)
       : reader_(in, file), interp_(config, file) {}
-  // `bottom_only`: measure only the end point (a hole bottom), or nothing.
+  // `skip`: a motion of a canned cycle that is not a hole bottom.
   bool next(gcode::Motion& m, bool& skip) {
-    while (pending_.empty()) {
+    while (head_ == pending_.size()) {
       if (interp_.program_ended() || !reader_.next(block_)) return false;
       block_motions_.clear();
+      head_ = 0;
       interp_.execute(block_, reader_.raw_line(), [&](const gcode::Motion& x) {
         if (x.kind != gcode::MotionKind::dwell) block_motions_.push_back(x);
       });
+      // A hole: the motions at one position of the plane; its bottom is the
+      // feed end deepest along the drill axis (pecks stop short of it).
       const bool cycle = block_motions_.size() > 1;
-      for (std::size_t i = 0; i < block_motions_.size(); ++i) {
-        const gcode::Motion& x = block_motions_[i];
-        bool bottom = false;
-        if (cycle && x.kind == gcode::MotionKind::linear) {
-          const Eigen::Vector3d d = x.end - x.start;
-          bottom = i + 1 < block_motions_.size() &&
-                   (block_motions_[i + 1].end - block_motions_[i + 1].start).dot(d) < 0.0;
+      pending_.assign(block_motions_.size(), cycle);
+      if (cycle) {
+        const auto ax = plane_axes(interp_.plane());
+        const auto same_place = [&](const Eigen::Vector3d& p, const Eigen::Vector3d& q) {
+          return p[ax[0]] == q[ax[0]] && p[ax[1]] == q[ax[1]];
+        };
+        for (std::size_t i = 0; i < block_motions_.size();) {
+          std::size_t j = i;
+          while (j < block_motions_.size() &&
+                 same_place(block_motions_[j].end, block_motions_[i].end))
+            ++j;
+          const double top = block_motions_[i].start[ax[2]];
+          std::optional<std::size_t> bottom;
+          for (std::size_t k = i; k < j; ++k) {
+            if (block_motions_[k].kind != gcode::MotionKind::linear) continue;
+            if (!bottom || std::abs(block_motions_[k].end[ax[2]] - top) >
+                               std::abs(block_motions_[*bottom].end[ax[2]] - top))
+              bottom = k;
+          }
+          if (bottom) pending_[*bottom] = false;
+          i = j;
         }
-        pending_.push_back({x, cycle && !bottom});
       }
     }
-    m = pending_.front().first;
-    skip = pending_.front().second;
-    pending_.pop_front();
+    m = block_motions_[head_];
+    skip = pending_[head_];
+    ++head_;
     return true;
   }
 
@@ -56,7 +73,8 @@ class MotionStream {
   gcode::Interpreter interp_;
   gcode::Block block_;
   std::vector<gcode::Motion> block_motions_;
-  std::deque<std::pair<gcode::Motion, bool>> pending_;
+  std::vector<bool> pending_;
+  std::size_t head_ = 0;
 };
 
 bool is_feed(const gcode::Motion& m) {
@@ -66,8 +84,8 @@ bool is_feed(const gcode::Motion& m) {
 struct Curve {
   gcode::Motion motion;
   MotionPath path;
-  std::array<std::int8_t, 3> dir;  // at the end of the motion (its own program's directions)
-  Eigen::AlignedBox3d box;         // bounds the curve
+  Dir dir;                  // at the end of the motion (its own program's directions)
+  Eigen::AlignedBox3d box;  // bounds the curve
 };
 
 Eigen::AlignedBox3d bounds(const gcode::Motion& m) {
@@ -81,20 +99,15 @@ Eigen::AlignedBox3d bounds(const gcode::Motion& m) {
   return b;
 }
 
-// Direction signs on a curve at parameter t: the curve's own; for the
-// in-plane axes of an arc, the chord from one fragment step back (what the
-// fragmenter gives the solver: the sign of the last motion before the point).
-std::array<std::int8_t, 3> direction_at(const Curve& c, double t, double step) {
-  std::array<std::int8_t, 3> dir = c.dir;
-  if (c.path.is_arc()) {
-    const double h = c.path.length() > 0.0 ? std::min(0.5, 0.02 * step / c.path.length()) : 1e-4;
-    const Vector3d v = c.path.at(t) - c.path.at(std::max(0.0, t - h));
-    const auto plane = plane_axes(c.motion.plane);
-    for (int k = 0; k < 2; ++k) {
-      const int i = plane[static_cast<std::size_t>(k)];
-      if (std::abs(v[i]) > 1e-9) dir[static_cast<std::size_t>(i)] = v[i] > 0 ? 1 : -1;
-    }
-  }
+// Direction signs on a nominal curve at parameter t, as the fragmenter gives
+// them: the curve's own; for the in-plane axes of an arc the sign of the
+// tangent (at a reversal itself, the sign before it).
+Dir direction_at(const Curve& c, double t) {
+  Dir dir = c.dir;
+  if (!c.path.is_arc()) return dir;
+  for (int k = 0; k < 2; ++k)
+    dir[static_cast<std::size_t>(c.path.axes()[static_cast<std::size_t>(k)])] =
+        c.path.in_plane_direction(k, t);
   return dir;
 }
 
@@ -105,16 +118,19 @@ struct PassStats {
   std::size_t over = 0;
 };
 
-using CurveMetric = std::function<double(const Curve&, const path::PathPoint&)>;
-
 // Streams the feed points of `a`; each is matched to the nearest (by
 // `match`) of a window of `b`'s feed curves and measured (by `measure`).
+// `arc_dirs`: the points of `a`'s arcs get the in-plane directions of the
+// shared convention (MotionPath::near_lo): a reversal within kNearReversal of
+// an end counts as at that end.
+template <class Match, class Measure>
 PassStats run_pass(MotionStream& a, MotionStream& b, double step, std::size_t window, double slack,
-                   double tol_um, const CurveMetric& match, const CurveMetric& measure) {
+                   double tol_um, bool arc_dirs, const Match& match, const Measure& measure) {
   PassStats st;
   path::Fragmenter fa(path::FragmentOptions{step, 10000.0});
   path::Fragmenter fb(path::FragmentOptions{step, 10000.0});
   std::deque<Curve> curves;
+  std::vector<double> d;
   std::size_t cursor = 0;
   bool b_done = false;
   auto pull = [&]() {
@@ -125,13 +141,13 @@ PassStats run_pass(MotionStream& a, MotionStream& b, double step, std::size_t wi
         b_done = true;
         return;
       }
-      std::array<std::int8_t, 3> dir{0, 0, 0};
+      Dir dir{0, 0, 0};
       bool any = false;
       fb.add(m, [&](const path::PathPoint& pp) {
         dir = pp.dir;
         any = true;
       });
-      if (is_feed(m) && any) {
+      if (is_feed(m) && any && !skip_b) {
         curves.push_back({m, MotionPath(m), dir, bounds(m)});
         return;
       }
@@ -142,9 +158,19 @@ PassStats run_pass(MotionStream& a, MotionStream& b, double step, std::size_t wi
   while (a.next(m, skip)) {
     const bool feed = is_feed(m) && !skip;
     const bool cycle = m.sub > 0 || skip;
-    fa.add(m, [&](const path::PathPoint& pp) {
-      if (!feed || (pp.p - m.start).norm() == 0.0) return;
-      if (cycle && pp.p != m.end) return;  // a hole: its bottom only
+    std::optional<MotionPath> arc;
+    if (arc_dirs && feed && m.kind == gcode::MotionKind::arc) arc.emplace(m);
+    fa.add(m, [&](const path::PathPoint& point) {
+      if (!feed || (point.p - m.start).norm() == 0.0) return;
+      if (cycle && point.p != m.end) return;  // a hole: its bottom only
+      path::PathPoint pp = point;
+      if (arc) {
+        const double t = std::clamp(arc->closest(pp.p), arc->near_lo(kNearReversal),
+                                    arc->near_hi(kNearReversal));
+        for (int k = 0; k < 2; ++k)
+          pp.dir[static_cast<std::size_t>(arc->axes()[static_cast<std::size_t>(k)])] =
+              arc->in_plane_direction(k, t);
+      }
       while (!b_done && curves.size() < cursor + window + 1) pull();
       if (curves.empty()) return;
       // Candidates: the curves within `slack` of the best match (a point at
@@ -153,14 +179,14 @@ PassStats run_pass(MotionStream& a, MotionStream& b, double step, std::size_t wi
       // curve; the point is measured to the nearest of them.
       const std::size_t lo = cursor > 0 ? cursor - 1 : 0;
       const std::size_t hi = std::min(curves.size(), cursor + window + 1);
-      std::vector<double> d(hi - lo);
+      d.assign(hi - lo, std::numeric_limits<double>::infinity());
       double best = std::numeric_limits<double>::infinity();
       // The box distance bounds the match from below (less the largest
       // correction, 0.5 mm, for the predicted metric): far curves are skipped.
       for (std::size_t i = lo; i < hi; ++i) {
         const double lb = curves[i].box.exteriorDistance(pp.p) - 0.5;
-        d[i - lo] =
-            lb > best + slack ? std::numeric_limits<double>::infinity() : match(curves[i], pp);
+        if (lb > best + slack) continue;
+        d[i - lo] = match(curves[i], pp);
         best = std::min(best, d[i - lo]);
       }
       std::optional<std::size_t> next;
@@ -195,26 +221,54 @@ VerifyStats verify_program(std::istream& compensated, const std::string& compens
                            const VerifyOptions& options) {
   VerifyStats out;
   model::ModelData data;
-  auto error_mm = [&](const Vector3d& p, double l, const std::array<std::int8_t, 3>& dir) {
+  auto error_mm = [&](const Vector3d& p, double l, const Dir& dir) {
     model::EvalPoint ep;
     ep.p = p;
     ep.tool_length = l;
     ep.dir = dir;
     return Vector3d(1e-3 * model.evaluate(ep, data).e_um);
   };
-  // Forward: each commanded point c of the compensated program is matched to
-  // the nearest nominal curve, predicted with that curve's (nominal)
-  // direction signs — those the solver used — and measured to the curve.
+  // Forward: each commanded point c of the compensated program is predicted
+  // with the direction signs of the nominal curve where it belongs — those
+  // the solver used — and measured to that curve: the least over t of
+  // |c + e(c, D(t)) − n(t)|, D(t) the nominal directions at t. D changes
+  // only at the reversal points of an arc; near one (within the largest
+  // correction) both sides are measured, each on its own side: a point at
+  // the reversal belongs to the side whose tables it was solved with.
   {
     MotionStream a(compensated, compensated_file, config);
     MotionStream b(original, original_file, config);
-    const PassStats st = run_pass(
-        a, b, options.step, options.window, options.slack, options.tol_um,
-        [](const Curve& c, const path::PathPoint& pp) { return c.path.distance(pp.p); },
-        [&](const Curve& c, const path::PathPoint& pp) {
-          const auto dir = direction_at(c, c.path.closest(pp.p), options.step);
-          return c.path.distance(pp.p + error_mm(pp.p, pp.tool_length, dir));
-        });
+    const auto match = [](const Curve& c, const path::PathPoint& pp) {
+      return c.path.distance(pp.p);
+    };
+    const auto measure = [&](const Curve& c, const path::PathPoint& pp) {
+      const double t0 = c.path.closest(pp.p);
+      if (!c.path.is_arc()) {
+        const Vector3d q = pp.p + error_mm(pp.p, pp.tool_length, c.dir);
+        return (c.path.at(c.path.closest(q)) - q).norm();
+      }
+      const double w = c.path.length() > 0.0 ? 0.5 / c.path.length() : 1.0;
+      const double t_lo = std::max(0.0, t0 - w), t_hi = std::min(1.0, t0 + w);
+      const double lo = c.path.near_lo(kNearReversal), hi = c.path.near_hi(kNearReversal);
+      double bounds_t[8];
+      int nb = 0;
+      bounds_t[nb++] = t_lo;
+      c.path.for_each_reversal(std::max(t_lo, lo), std::min(t_hi, hi), [&](double t) {
+        if (nb < 7) bounds_t[nb++] = t;
+      });
+      bounds_t[nb++] = t_hi;
+      double best = std::numeric_limits<double>::infinity();
+      for (int s = 0; s + 1 < nb; ++s) {
+        const double sa = bounds_t[s], sb = bounds_t[s + 1];
+        const double mid = std::clamp(0.5 * (sa + sb), lo, hi);
+        const Vector3d q = pp.p + error_mm(pp.p, pp.tool_length, direction_at(c, mid));
+        const double t = std::clamp(c.path.closest(q), sa, sb);
+        best = std::min(best, (c.path.at(t) - q).norm());
+      }
+      return best;
+    };
+    const PassStats st = run_pass(a, b, options.step, options.window, options.slack, options.tol_um,
+                                  false, match, measure);
     out.points = st.n;
     out.max_um = st.max;
     out.rms_um = st.n ? std::sqrt(st.sum2 / static_cast<double>(st.n)) : 0.0;
@@ -231,7 +285,7 @@ VerifyStats verify_program(std::istream& compensated, const std::string& compens
   {
     MotionStream a(original, original_file, config);
     MotionStream b(compensated, compensated_file, config);
-    const CurveMetric predicted = [&](const Curve& c, const path::PathPoint& pp) {
+    const auto predicted = [&](const Curve& c, const path::PathPoint& pp) {
       Vector3d e = Vector3d::Zero();
       Vector3d p = Vector3d::Zero();
       for (int it = 0; it < 3; ++it) {
@@ -241,7 +295,7 @@ VerifyStats verify_program(std::istream& compensated, const std::string& compens
       return (p + e - pp.p).norm();
     };
     const PassStats st = run_pass(a, b, options.step, options.window, options.slack, options.tol_um,
-                                  predicted, predicted);
+                                  true, predicted, predicted);
     out.backward_points = st.n;
     out.backward_max_um = st.max;
     out.backward_rms_um = st.n ? std::sqrt(st.sum2 / static_cast<double>(st.n)) : 0.0;

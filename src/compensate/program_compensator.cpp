@@ -81,6 +81,17 @@ class BlockEditor {
     edits_.push_back({b, w->end, ""});
   }
 
+  // Inserts `text` (a word) before the first axis/centre/radius word.
+  void insert_before_axes(const std::string& text) {
+    std::uint32_t at = anchor_any_;
+    for (const auto& w : block_.words)
+      if (std::string_view("XYZIJKR").find(w.letter) != std::string_view::npos) {
+        at = w.begin;
+        break;
+      }
+    edits_.push_back({at, at, spaced_ ? text + " " : text});
+  }
+
   bool changed() const { return !edits_.empty(); }
   bool spaced() const { return spaced_; }
 
@@ -110,9 +121,13 @@ class BlockEditor {
 
 struct SolvedPoint {
   Vector3d n;             // nominal, mm
-  Vector3d delta;         // c − n, mm
+  Vector3d delta;         // c − n, mm (arriving here)
   double t = 0.0;         // parameter along the motion
   bool reversal = false;  // an in-plane axis of an arc reverses here: a piece ends here
+  // Leaving the point: differs from `delta` at a reversal whose correction
+  // jump is taken by a micro move (a G1 from n + delta to n + delta_out).
+  Vector3d delta_out = Vector3d::Zero();
+  bool micro = false;
 };
 
 class Compensator {
@@ -185,6 +200,9 @@ class Compensator {
   }
 
   void process(const gcode::Block& block, const std::string& raw) {
+    if (has_g(block, 98)) retract_to_r_ = false;
+    if (has_g(block, 99)) retract_to_r_ = true;
+    if (has_g(block, 80)) in_cycle_ = false;
     motions_.clear();
     interp_.execute(block, raw, [&](const gcode::Motion& m) {
       if (m.kind != gcode::MotionKind::dwell) motions_.push_back(m);
@@ -215,16 +233,24 @@ class Compensator {
     cmd_ = prog(motions_.front().start) + delta_ / unit_;
     BlockEditor editor(block, raw, decimals_);
     std::vector<std::string> pieces;
+    std::string before;  // a micro move written before the block
     const bool g53 = has_g(block, 53);
+    bool feed_block = false;
+    if (motions_.size() == 1) in_cycle_ = false;
     if (motions_.size() > 1)
-      cycle(block, editor);
+      cycle(block, editor, pieces);
     else if (motions_[0].kind == gcode::MotionKind::rapid || g53)
       rapid(block, editor, g53);
     else
-      feed(block, editor, pieces);
-    if (editor.changed() || !pieces.empty()) ++s_.blocks_changed;
-    put(editor.changed() ? editor.apply() : raw);
+      feed_block = feed(block, raw, editor, pieces, before);
+    if (editor.changed() || !pieces.empty() || !before.empty()) ++s_.blocks_changed;
     const char* between = *ending_ ? ending_ : "\n";
+    if (!before.empty()) {
+      put(before);
+      put(between);
+      ++s_.pieces_inserted;
+    }
+    put(editor.changed() ? editor.apply() : raw);
     long n = block.n ? static_cast<long>(block.n->value) : 0;
     for (std::size_t k = 0; k < pieces.size(); ++k) {
       put(between);
@@ -235,6 +261,8 @@ class Compensator {
     put(ending_);
     s_.pieces_inserted += pieces.size();
     delta_ = (cmd_ - pos_after_) * unit_;
+    if (!feed_block) last_dir_.reset();
+    if (find_word(block, 'F')) feed_set_ = true;
   }
 
   // Program-frame coordinates (program units) of a tool-tip point of this block.
@@ -265,13 +293,23 @@ class Compensator {
     }
   }
 
-  void cycle(const gcode::Block& block, BlockEditor& ed) {
+  void cycle(const gcode::Block& block, BlockEditor& ed, std::vector<std::string>& pieces) {
     const auto ax = plane_axes(interp_.plane());
     const int n = ax[2];
+    struct OrigDepth {  // the written depth word is the modal one afterwards
+      const gcode::Word* w;
+      double& cc;
+      ~OrigDepth() {
+        if (w) cc = w->value;
+      }
+    } orig_depth{find_word(block, kAxis[n]), orig_cc_};
+    if (!in_cycle_) initial_level_delta_ = delta_[n];
+    in_cycle_ = true;
+    const double level = incremental_ ? initial_level_delta_ : 0.0;
     if (incremental_) {
       const gcode::Word* l = find_word(block, 'L');
       if (l && l->value > 1.0) {
-        repeated_cycle(block, ed, static_cast<int>(std::lround(l->value)));
+        repeated_cycle(block, ed, pieces, static_cast<int>(std::lround(l->value)), level);
         return;
       }
     }
@@ -293,20 +331,29 @@ class Compensator {
       const int a = ax[static_cast<std::size_t>(k)];
       cmd_[a] = set_abs(ed, kAxis[a], h[a] + d[a] / unit_, cmd_[a], cmd_[a], incremental_, true);
     }
-    if (!incremental_) {  // the depth word (absolute in G90)
-      const double v = ed.set(kAxis[n], h[n] + d[n] / unit_, h[n] + depth_delta_ / unit_, true);
-      depth_delta_ = (v - h[n]) * unit_;
-    }
+    // The depth word: absolute in G90; in G91 relative to the R plane, which
+    // does not move, so it moves by the correction along the drill axis.
+    const gcode::Word* zw = find_word(block, kAxis[n]);
+    const double cc = incremental_ ? (zw ? zw->value : orig_cc_) : h[n];
+    const double v = ed.set(kAxis[n], cc + (d[n] - level) / unit_, cc + depth_delta_ / unit_, true);
+    depth_delta_ = (v - cc) * unit_;
   }
 
-  // G91 canned cycle with L repeats: one increment serves every hole, so the
-  // holes get the correction δ_before + k·g (k = 1..L) with g the least-
-  // squares fit to the corrections δ_k at the hole bottoms; the depth (Z
-  // relative to R) moves by the mean of δ_k − δ_before along the drill axis.
-  void repeated_cycle(const gcode::Block& block, BlockEditor& ed, int repeats) {
+  // G91 canned cycle with L repeats. One increment serves every hole, so
+  // the holes cannot all be corrected as written. With G98 (retract to the
+  // initial level) the block is expanded: the L word goes, the block drills
+  // the first hole and inserted lines (X, Y increments and, where it
+  // changes, the depth Z) drill the others — a modal cycle repeats at each
+  // new position exactly as its L repeats would, so every hole gets its own
+  // correction. With G99 a continued block would take R from the R plane in
+  // rs274ngc, not from the initial level; there the holes get the
+  // correction δ_before + k·g (k = 1..L), g the least-squares fit to the
+  // corrections δ_k at the bottoms, and the depth the mean of δ_k − δ_before.
+  void repeated_cycle(const gcode::Block& block, BlockEditor& ed, std::vector<std::string>& pieces,
+                      int repeats, double level) {
     const auto ax = plane_axes(interp_.plane());
     const int n = ax[2];
-    std::vector<Vector3d> holes;  // corrections at the bottoms, in order
+    std::vector<Vector3d> holes, bottoms;  // corrections and nominal points at the bottoms
     for (std::size_t i = 0; i < motions_.size(); ++i) {
       if (motions_[i].kind != gcode::MotionKind::linear || points_[i].empty()) continue;
       // The feed into a hole: the drill axis moves; its end is the bottom
@@ -315,13 +362,60 @@ class Compensator {
       if (std::abs(d[n]) <= 0.0) continue;
       const bool bottom = i + 1 == motions_.size() ||
                           (motions_[i + 1].end[n] - motions_[i + 1].start[n]) * d[n] < 0.0;
-      if (bottom) holes.push_back(solve(points_[i].back()));
+      if (bottom) {
+        holes.push_back(solve(points_[i].back()));
+        bottoms.push_back(motions_[i].end);
+      }
     }
     if (holes.size() != static_cast<std::size_t>(repeats)) {
       ++s_.uncompensated_blocks;
       warn(block.line, "canned cycle with L repeats in G91: holes left uncompensated");
       return;
     }
+    const gcode::Word* zw = find_word(block, kAxis[n]);
+    const double cc = zw ? zw->value : orig_cc_;
+    bool exact = true;  // as written, every hole is where it must be
+    for (const auto& h : holes)
+      for (int k = 0; k < 3; ++k)
+        exact = exact && round_to((h[k] - (k == n ? level : delta_[k])) / unit_, decimals_) == 0.0;
+    if (exact) return;
+    if (!retract_to_r_) {
+      ed.remove('L');
+      const char* sep = ed.spaced() ? " " : "";
+      double cc_written = cc + depth_delta_ / unit_;
+      for (std::size_t k = 0; k < holes.size(); ++k) {
+        const Vector3d h = prog(bottoms[k]) + holes[k] / unit_;
+        const double cc_k = cc + (holes[k][n] - level) / unit_;
+        if (k == 0) {
+          for (int i = 0; i < 2; ++i) {
+            const int a = ax[static_cast<std::size_t>(i)];
+            cmd_[a] = set_abs(ed, kAxis[a], h[a], cmd_[a], cmd_[a], true, true);
+          }
+          cc_written = ed.set(kAxis[n], cc_k, cc_written, true);
+          continue;
+        }
+        std::string line;
+        for (int i = 0; i < 2; ++i) {
+          const int a = ax[static_cast<std::size_t>(i)];
+          const double v = round_to(h[a] - cmd_[a], decimals_);
+          line += fmt::format("{}{}{}", line.empty() ? "" : sep, kAxis[a],
+                              format_number(v, NumberStyle{}, decimals_));
+          cmd_[a] += v;
+        }
+        const double z = round_to(cc_k, decimals_);
+        if (z != round_to(cc_written, decimals_)) {
+          line += fmt::format("{}{}{}", sep, kAxis[n], format_number(z, NumberStyle{}, decimals_));
+          cc_written = z;
+        }
+        pieces.push_back(line);
+      }
+      depth_delta_ = (cc_written - cc) * unit_;
+      return;
+    }
+    ++s_.shared_increment_blocks;
+    warn(block.line,
+         "canned cycle with L repeats in G91 G99: one increment serves every hole "
+         "(least-squares correction)");
     Vector3d num = Vector3d::Zero();
     double den = 0.0;
     double mean_n = 0.0;
@@ -329,7 +423,7 @@ class Compensator {
       const double kk = static_cast<double>(k + 1);
       num += kk * (holes[k] - delta_);
       den += kk * kk;
-      mean_n += (holes[k] - delta_)[n] / static_cast<double>(holes.size());
+      mean_n += (holes[k][n] - level) / static_cast<double>(holes.size());
     }
     const Vector3d g = num / den;
     for (int k = 0; k < 2; ++k) {
@@ -339,8 +433,7 @@ class Compensator {
       const double v = ed.set(kAxis[a], inc, w ? w->value : 0.0, true);
       cmd_[a] += static_cast<double>(repeats) * (v - (w ? w->value : 0.0));
     }
-    if (const gcode::Word* z = find_word(block, kAxis[n]))
-      ed.set(kAxis[n], z->value + mean_n / unit_, z->value, false);
+    if (zw) ed.set(kAxis[n], zw->value + mean_n / unit_, zw->value, false);
   }
 
   // True if a single piece from point a to point b (a line, or an arc about
@@ -350,111 +443,146 @@ class Compensator {
                 std::size_t b) const {
     if (b <= a + 1) return true;
     const double tol = 0.5e-3 * o_.tol_um;
-    gcode::Motion piece = m;
-    piece.start = sp[a].n + sp[a].delta;
-    piece.end = sp[b].n + sp[b].delta;
-    if (m.kind == gcode::MotionKind::arc) {
-      piece.center = m.center + 0.5 * (sp[a].delta + sp[b].delta);
-      const int normal = plane_axes(m.plane)[2];
-      piece.center[normal] = piece.start[normal];
-      if (a != 0 || b + 1 != sp.size()) piece.rotation = m.rotation > 0 ? 1 : -1;
+    const Vector3d ca = sp[a].n + sp[a].delta_out, cb = sp[b].n + sp[b].delta;
+    if (m.kind != gcode::MotionKind::arc) {
+      // A segment: distances to the line through its ends (all points lie
+      // near the segment, so the infinite line is the same here).
+      const Vector3d u = cb - ca;
+      const double l2 = u.squaredNorm();
+      for (std::size_t k = a + 1; k < b; ++k) {
+        const Vector3d w = sp[k].n + sp[k].delta - ca;
+        const double s = l2 > 0.0 ? std::clamp(w.dot(u) / l2, 0.0, 1.0) : 0.0;
+        if ((w - s * u).squaredNorm() > tol * tol) return false;
+      }
+      return true;
     }
+    gcode::Motion piece = m;
+    piece.start = ca;
+    piece.end = cb;
+    piece.center = m.center + 0.5 * (sp[a].delta_out + sp[b].delta);
+    const int normal = plane_axes(m.plane)[2];
+    piece.center[normal] = piece.start[normal];
+    if (a != 0 || b + 1 != sp.size()) piece.rotation = m.rotation > 0 ? 1 : -1;
     const MotionPath path(piece);
     for (std::size_t k = a + 1; k < b; ++k)
       if (path.distance(sp[k].n + sp[k].delta) > tol) return false;
     return true;
   }
 
-  // The points of an arc where an in-plane axis reverses (its tangent
-  // component changes sign, every quarter turn): the bidirectional tables
-  // switch there, so the correction jumps and a piece must end exactly
-  // there. Solved with the directions of the motion before the point.
-  void add_reversals(const gcode::Motion& m, const MotionPath& path, std::vector<SolvedPoint>& sp) {
-    const auto ax = plane_axes(m.plane);
-    const double theta0 =
-        std::atan2(m.start[ax[1]] - m.center[ax[1]], m.start[ax[0]] - m.center[ax[0]]);
-    const double sweep = path.sweep();
-    if (sweep == 0.0) return;
-    const double half_pi = 0.5 * M_PI;
-    const double k0 = std::ceil(std::min(theta0, theta0 + sweep) / half_pi);
-    const double k1 = std::floor(std::max(theta0, theta0 + sweep) / half_pi);
-    for (double k = k0; k <= k1; k += 1.0) {
-      const double t = (k * half_pi - theta0) / sweep;
-      if (t <= 1e-6 || t >= 1.0 - 1e-6) continue;
-      auto it = std::lower_bound(sp.begin(), sp.end(), t,
-                                 [](const SolvedPoint& x, double v) { return x.t < v; });
-      // A reversal within 0.1 mm of a sample is put on the sample: a piece
-      // shorter than the corrections could reverse (a full circle).
-      const double near = 0.1 / std::max(path.length(), 1e-9);
-      if (it != sp.end() && it != sp.begin() && std::prev(it)->t > t - near &&
-          (it->t - t > t - std::prev(it)->t))
-        --it;
-      const bool existing = it != sp.end() && std::abs(it->t - t) < near;
-      if (existing && (it == sp.begin() || std::next(it) == sp.end())) continue;
-      path::PathPoint pp;
-      pp.p = path.at(t);
-      pp.tool_length = m.tool_length;
-      pp.line = m.line;
-      pp.kind = m.kind;
-      // Directions just before the point: the normal axis as along the
-      // whole arc, the in-plane axes from the tangent.
-      pp.dir = points_[0].front().dir;
-      const Vector3d v = path.at(t) - path.at(std::max(0.0, t - 1e-4));
-      for (int i = 0; i < 2; ++i) {
-        const int a = ax[static_cast<std::size_t>(i)];
-        if (std::abs(v[a]) > 1e-9) pp.dir[static_cast<std::size_t>(a)] = v[a] > 0 ? 1 : -1;
-      }
-      const Vector3d d = solve(pp);
-      // Only a jump of the correction (different tables on either side)
-      // needs a piece end here.
-      path::PathPoint after = pp;
-      const Vector3d v2 = path.at(std::min(1.0, t + 1e-4)) - path.at(t);
-      for (int i = 0; i < 2; ++i) {
-        const int a = ax[static_cast<std::size_t>(i)];
-        if (std::abs(v2[a]) > 1e-9) after.dir[static_cast<std::size_t>(a)] = v2[a] > 0 ? 1 : -1;
-      }
-      if (after.dir == pp.dir) continue;
-      model::EvalPoint ea;
-      ea.p = after.p;
-      ea.tool_length = after.tool_length;
-      ea.dir = after.dir;
-      const Vector3d d2 = solver_.solve(ea, data_).c - after.p;
-      if ((d2 - d).norm() <= 0.5e-3 * o_.tol_um) continue;
-      if (existing)
-        it->reversal = true;
-      else
-        sp.insert(it, SolvedPoint{pp.p, d, t, true});
-    }
+  // Direction signs at parameter t of an arc: `base` for the normal axis,
+  // the tangent's for the in-plane axes (before a reversal at t itself).
+  static std::array<std::int8_t, 3> arc_dir(const MotionPath& path, std::array<std::int8_t, 3> base,
+                                            double t) {
+    for (int k = 0; k < 2; ++k)
+      base[static_cast<std::size_t>(path.axes()[static_cast<std::size_t>(k)])] =
+          path.in_plane_direction(k, t);
+    return base;
   }
 
-  void feed(const gcode::Block& block, BlockEditor& ed, std::vector<std::string>& pieces) {
+  Vector3d solve_at(const gcode::Motion& m, const Vector3d& p,
+                    const std::array<std::int8_t, 3>& dir) {
+    path::PathPoint pp;
+    pp.p = p;
+    pp.tool_length = m.tool_length;
+    pp.line = m.line;
+    pp.kind = m.kind;
+    pp.dir = dir;
+    return solve(pp);
+  }
+
+  // A feed move: solved fragment points, then the longest pieces that stay
+  // within tol/2. Returns true (a feed block).
+  bool feed(const gcode::Block& block, const std::string& raw, BlockEditor& ed,
+            std::vector<std::string>& pieces, std::string& before) {
     const gcode::Motion& m = motions_[0];
-    const auto& pts = points_[0];
-    if (pts.empty()) return;  // zero-length: the commanded point does not move
+    auto& pts = points_[0];
+    if (pts.empty()) return false;  // zero-length: the commanded point does not move
+    const bool arc = m.kind == gcode::MotionKind::arc;
     const MotionPath path(m);
-    std::vector<SolvedPoint> sp;
-    sp.reserve(pts.size() + 1);
-    sp.push_back({m.start, delta_, 0.0});
     const double len = path.length();
+    const double near = len > 0.0 ? kNearReversal / len : 1.0;
+    // Reversal points of an arc (an in-plane axis changes direction): the
+    // tables switch there. Those within kNearReversal of an end count as at
+    // that end: directions are taken at t clamped into [lo, hi].
+    const double lo = path.near_lo(kNearReversal), hi = path.near_hi(kNearReversal);
+    std::vector<double> reversals;
+    if (arc) path.for_each_reversal(lo, hi, [&](double t) { reversals.push_back(t); });
+    const auto dir0 = pts.front().dir;
+    if (arc) {
+      for (std::size_t k = 0; k < pts.size(); ++k) {
+        const double t = static_cast<double>(k + 1) / static_cast<double>(pts.size());
+        if (t < lo || t > hi) pts[k].dir = arc_dir(path, dir0, std::clamp(t, lo, hi));
+      }
+    }
+    // The start: solved with this motion's directions; a jump from the
+    // correction the previous motion ended with (an axis reverses at the
+    // corner) is taken by a micro move before the block.
+    std::array<std::int8_t, 3> start_dir = arc ? arc_dir(path, dir0, lo) : dir0;
+    Vector3d d_start = delta_;
+    if (!(last_dir_ && *last_dir_ == start_dir && last_end_ == m.start))
+      d_start = solve_at(m, m.start, start_dir);
+    const bool micro_start = 1e3 * (d_start - delta_).norm() > 0.25 * o_.tol_um;
+    if (!micro_start) d_start = delta_;
+    std::vector<SolvedPoint> sp;
+    sp.reserve(pts.size() + 2 * reversals.size() + 1);
+    sp.push_back({m.start, d_start, 0.0, false, d_start, false});
+    std::size_t r = 0;
+    const double jump_tol = 0.25e-3 * o_.tol_um;
     for (std::size_t k = 0; k < pts.size(); ++k) {
       double t = static_cast<double>(k + 1) / static_cast<double>(pts.size());
-      if (!path.is_arc() && len > 0.0) t = (pts[k].p - m.start).norm() / len;
-      sp.push_back({pts[k].p, solve(pts[k]), t});
+      if (!arc && len > 0.0) t = (pts[k].p - m.start).norm() / len;
+      const bool last = k + 1 == pts.size();
+      // Reversals before this point: a piece ends exactly there.
+      while (r < reversals.size() && reversals[r] <= t + near && (!last || reversals[r] < t)) {
+        const double tr = reversals[r++];
+        const Vector3d nr = path.at(tr);
+        const Vector3d d_before = solve_at(m, nr, arc_dir(path, dir0, tr));
+        const Vector3d d_after = solve_at(m, nr, arc_dir(path, dir0, std::min(hi, tr + 1e-6)));
+        if ((d_after - d_before).norm() <= jump_tol) continue;
+        // No fragment point closer than kNearReversal before it.
+        while (sp.size() > 1 && sp.back().t > tr - near && !sp.back().reversal) sp.pop_back();
+        sp.push_back({nr, d_before, tr, true, d_after, true});
+      }
+      if (!last && !sp.empty() && sp.back().reversal && t - sp.back().t < near) continue;
+      const Vector3d d = solve(pts[k]);
+      sp.push_back({pts[k].p, d, t, false, d, false});
     }
-    if (m.kind == gcode::MotionKind::arc) add_reversals(m, path, sp);
-    // Greedy pieces: each as long as the correction stays linear along it.
+    // Greedy pieces: each as long as it stays within tol/2; a piece ends at
+    // every reversal point that needs one.
     std::vector<std::size_t> breaks;
     bool reversal = false;
     for (const auto& x : sp) reversal = reversal || x.reversal;
     if (!reversal && piece_ok(m, sp, 0, sp.size() - 1)) breaks.push_back(sp.size() - 1);
-    // Otherwise greedy pieces, each as long as it stays within tol/2.
     for (std::size_t a = 0; breaks.empty() || breaks.back() + 1 < sp.size();) {
+      // Longest b from a: grow while the piece stays within tol (the check
+      // of a piece costs its length, so grow by doubling, then bisect).
       std::size_t b = a + 1;
-      while (b + 1 < sp.size() && !sp[b].reversal && piece_ok(m, sp, a, b + 1)) ++b;
+      std::size_t limit = sp.size() - 1;
+      for (std::size_t k = a + 1; k < limit; ++k)
+        if (sp[k].reversal) {
+          limit = k;
+          break;
+        }
+      if (b < limit) {
+        std::size_t good = b, step = 1;
+        std::size_t bad = limit + 1;
+        while (good + step <= limit && piece_ok(m, sp, a, good + step)) {
+          good += step;
+          step *= 2;
+        }
+        bad = std::min(limit + 1, good + step);
+        while (bad - good > 1) {
+          const std::size_t mid = good + (bad - good) / 2;
+          if (piece_ok(m, sp, a, mid))
+            good = mid;
+          else
+            bad = mid;
+        }
+        b = good;
+      }
       breaks.push_back(b);
       a = b;
     }
-    const bool arc = m.kind == gcode::MotionKind::arc;
     const bool r_form = arc && find_word(block, 'R') != nullptr;
     // A multi-turn arc in pieces: every piece is at most a quarter turn
     // (pieces end at the reversal points), so the P word (turns) goes.
@@ -464,13 +592,32 @@ class Compensator {
     }
     const auto ax = plane_axes(m.plane);
     const Vector3d centre = prog(m.center);
+    const char* motion_word = m.rotation > 0 ? "G3" : "G2";
+    bool block_written = false;
+    if (micro_start) {
+      const Vector3d target = prog(m.start) + d_start / unit_;
+      if (!arc) {  // the block itself makes the micro move; the pieces follow
+        for (int k = 0; k < 3; ++k)
+          cmd_[k] = set_abs(ed, kAxis[k], target[k], cmd_[k], cmd_[k], incremental_, true);
+        block_written = true;
+      } else {  // a G1 line before the block, which then needs its motion word
+        before = micro_line(target, ed.spaced());
+        if (!before.empty() && !feed_set_) {
+          if (const gcode::Word* f = find_word(block, 'F'))
+            before += (ed.spaced() ? " " : "") + raw.substr(f->begin, f->end - f->begin);
+        }
+        if (!before.empty() && !has_g(block, 2) && !has_g(block, 3))
+          ed.insert_before_axes(motion_word);
+      }
+    }
     std::size_t a = 0;
+    bool after_micro = false;
     for (std::size_t j = 0; j < breaks.size(); ++j) {
       const std::size_t b = breaks[j];
       const bool last = b + 1 == sp.size();
       const Vector3d target = prog(sp[b].n) + sp[b].delta / unit_;
       const Vector3d start_cmd = cmd_;
-      if (j == 0) {
+      if (j == 0 && !block_written) {
         for (int k = 0; k < 3; ++k) {
           const gcode::Word* w = find_word(block, kAxis[k]);
           double t = target[k];
@@ -481,6 +628,7 @@ class Compensator {
       } else {
         std::string line;
         const char* sep = ed.spaced() ? " " : "";
+        if (after_micro) line = fmt::format("{}", motion_word);
         for (int k = 0; k < 3; ++k) {
           const double v = incremental_ ? round_to(target[k] - cmd_[k], decimals_)
                                         : round_to(target[k], decimals_);
@@ -497,8 +645,38 @@ class Compensator {
         if (arc) arc_words(ed, block, m, ax, centre, sp[a], sp[b], start_cmd, r_form, &line);
         pieces.push_back(line);
       }
+      after_micro = false;
+      if (sp[b].micro && !last) {
+        const std::string mline = micro_line(prog(sp[b].n) + sp[b].delta_out / unit_, ed.spaced());
+        if (!mline.empty()) {
+          pieces.push_back(mline);
+          after_micro = arc;
+        }
+      }
       a = b;
     }
+    last_dir_ = pts.back().dir;
+    last_end_ = m.end;
+    return true;
+  }
+
+  // "G1 X.. Y.. Z..": a straight move of the commanded point to `target`
+  // (program frame and units), only the axes whose written value changes;
+  // empty if none does. Updates cmd_.
+  std::string micro_line(const Vector3d& target, bool spaced) {
+    std::string line = "G1";
+    bool any = false;
+    for (int k = 0; k < 3; ++k) {
+      const double v =
+          incremental_ ? round_to(target[k] - cmd_[k], decimals_) : round_to(target[k], decimals_);
+      const bool write = incremental_ ? v != 0.0 : v != round_to(cmd_[k], decimals_);
+      if (!write) continue;
+      any = true;
+      line += fmt::format("{}{}{}", spaced ? " " : "", kAxis[k],
+                          format_number(v, NumberStyle{}, decimals_));
+      cmd_[k] = incremental_ ? cmd_[k] + v : v;
+    }
+    return any ? line : std::string();
   }
 
   // Centre words (IJK or R) of an arc piece from sp_a to sp_b: the centre
@@ -507,7 +685,7 @@ class Compensator {
   void arc_words(BlockEditor& ed, const gcode::Block& block, const gcode::Motion& m,
                  const std::array<int, 3>& ax, const Vector3d& centre, const SolvedPoint& pa,
                  const SolvedPoint& pb, const Vector3d& start_cmd, bool r_form, std::string* line) {
-    const Vector3d c = centre + 0.5 * (pa.delta + pb.delta) / unit_;
+    const Vector3d c = centre + 0.5 * (pa.delta_out + pb.delta) / unit_;
     const char* sep = ed.spaced() ? " " : "";
     if (r_form) {
       const int u = ax[0], v = ax[1];
@@ -552,11 +730,24 @@ class Compensator {
   std::vector<std::vector<path::PathPoint>> points_;
   Vector3d delta_ = Vector3d::Zero();  // commanded − nominal tool tip, mm
   double depth_delta_ = 0.0;           // correction in the modal canned-cycle depth, mm
+  double orig_cc_ = 0.0;               // the modal depth word of the original (program units)
+  bool retract_to_r_ = true;           // G99 (the interpreter's start-up mode)
   Vector3d cmd_ = Vector3d::Zero();    // commanded point, program frame and units
   Vector3d pos_after_ = Vector3d::Zero(), p_after_ = Vector3d::Zero();
   double unit_ = 1.0;
   int decimals_ = 4;
   bool incremental_ = false;
+  // Directions with which delta_ was solved when the previous block was a
+  // feed ending at last_end_ (else empty): a feed starting there with the
+  // same directions needs no new solution of its start.
+  std::optional<std::array<std::int8_t, 3>> last_dir_;
+  bool feed_set_ = false;  // an F word was seen before the block
+  // G91 canned cycles: their R is relative to the initial level, the height
+  // where the cycle sequence began, which carries that point's correction
+  // along the drill axis (mm); the depth word takes it out.
+  bool in_cycle_ = false;
+  double initial_level_delta_ = 0.0;
+  Vector3d last_end_ = Vector3d::Zero();
 };
 
 }  // namespace

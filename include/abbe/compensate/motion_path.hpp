@@ -6,6 +6,8 @@
 // place compensation pieces and to measure distances to a nominal path.
 #include <Eigen/Core>
 #include <array>
+#include <cmath>
+#include <cstdint>
 
 #include "abbe/gcode/motion.hpp"
 
@@ -15,6 +17,10 @@ namespace abbe::compensate {
 // (2,0,1), YZ (1,2,0), so that positive angles turn counter-clockwise.
 std::array<int, 3> plane_axes(gcode::Plane plane);
 
+// Distance from an end of an arc within which a reversal counts as at that
+// end, and the least distance of a piece end from a reversal, mm.
+constexpr double kNearReversal = 0.05;
+
 class MotionPath {
  public:
   explicit MotionPath(const gcode::Motion& motion);
@@ -22,7 +28,22 @@ class MotionPath {
   Eigen::Vector3d at(double t) const;
   double length() const { return length_; }
   bool is_arc() const { return arc_; }
-  double sweep() const { return sweep_; }  // signed angle of an arc, rad
+  double sweep() const { return sweep_; }         // signed angle of an arc, rad
+  double start_angle() const { return theta0_; }  // of the start about the centre, rad
+  // Parameters in (t_lo, t_hi), ascending, where an in-plane axis of an arc
+  // reverses (its tangent component vanishes: every quarter turn). Calls
+  // f(t) for each; none for a line.
+  template <class F>
+  void for_each_reversal(double t_lo, double t_hi, F&& f) const;
+  // Direction sign of plane axis k (0: first, 1: second) of an arc at t: the
+  // tangent's; at a reversal itself the sign just before it.
+  std::int8_t in_plane_direction(int k, double t) const;
+  // Reversals closer than `near` (mm) to an end of an arc count as at that
+  // end: the parameter range [lo, hi] inside which directions are taken
+  // (t is clamped into it). Compensation and verification share this.
+  double near_lo(double near) const;
+  double near_hi(double near) const { return 1.0 - near_lo(near); }
+  const std::array<int, 3>& axes() const { return ax_; }
   // Shortest distance from q to the curve, mm.
   double distance(const Eigen::Vector3d& q) const;
   // Parameter of the point of the curve nearest to q.
@@ -34,5 +55,23 @@ class MotionPath {
   bool arc_ = false;
   double theta0_ = 0.0, sweep_ = 0.0, r0_ = 0.0, r1_ = 0.0, length_ = 0.0;
 };
+
+template <class F>
+void MotionPath::for_each_reversal(double t_lo, double t_hi, F&& f) const {
+  if (!arc_ || sweep_ == 0.0) return;
+  const double half_pi = 0.5 * M_PI;
+  const double a0 = theta0_ + t_lo * sweep_, a1 = theta0_ + t_hi * sweep_;
+  if (sweep_ > 0.0) {
+    for (double k = std::floor(a0 / half_pi) + 1.0; k * half_pi < a1; k += 1.0) {
+      const double t = (k * half_pi - theta0_) / sweep_;
+      if (t > t_lo && t < t_hi) f(t);
+    }
+  } else {
+    for (double k = std::ceil(a0 / half_pi) - 1.0; k * half_pi > a1; k -= 1.0) {
+      const double t = (k * half_pi - theta0_) / sweep_;
+      if (t > t_lo && t < t_hi) f(t);
+    }
+  }
+}
 
 }  // namespace abbe::compensate

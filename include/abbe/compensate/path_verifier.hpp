@@ -24,10 +24,10 @@
 namespace abbe::compensate {
 
 struct VerifyOptions {
-  double step = 5.0;       // fragment step, mm
-  std::size_t window = 6;  // original motions searched ahead of the current one
-  double tol_um = 1.0;     // points farther than this are counted
-  double slack = 0.05;     // curves matching within this of the best are candidates, mm
+  double step = 5.0;        // fragment step, mm
+  std::size_t window = 32;  // motions searched ahead of the current one
+  double tol_um = 1.0;      // points farther than this are counted
+  double slack = 0.05;      // curves matching within this of the best are candidates, mm
 };
 
 struct VerifyStats {

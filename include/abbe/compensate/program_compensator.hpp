@@ -39,7 +39,8 @@ struct CompensateSummary {
   std::vector<std::size_t> unconverged_lines;  // first 20
   std::size_t arcs_split_turns = 0;      // multi-turn arcs split into pieces (their P word removed)
   std::size_t uncompensated_blocks = 0;  // G91 canned cycles whose holes could not be found
-  std::vector<std::string> warnings;     // first 20, "file:line: text"
+  std::size_t shared_increment_blocks = 0;  // G91 G99 cycles with L: one increment for all holes
+  std::vector<std::string> warnings;        // first 20, "file:line: text"
 };
 
 using TextSink = std::function<void(const char* data, std::size_t size)>;
