@@ -10,6 +10,8 @@ packages=(
   clang libclang-rt-14-dev            # libFuzzer target and its sanitizers
   libboost-python1.74.0               # runtime of LinuxCNC's rs274 (interop tests)
   time                                # /usr/bin/time for peak-RSS measurements
+  chromium firefox-esr python3        # browser test: headless screenshots, PNG checks
+  bsdutils                            # `script` (pseudo-terminal) for the progress-bar test
 )
 
 missing=()

@@ -1,16 +1,20 @@
 #!/usr/bin/env bash
 # Browser test of the HTML reports (ctest label "browser", docs/report.md):
-# generates a predict and a map report, renders each in headless Chromium,
-# keeps the screenshots (WORK/*.png) as test artifacts, and fails on console
-# errors or when the expected plots are missing from the rendered DOM.
-# Installs Debian's chromium when missing (needs root or password-less sudo,
-# else the test is skipped with exit code 77). ABBE_SKIP_BROWSER=1 skips it.
+# generates the predict, map, diagnose and compensate reports, renders each
+# in headless Chromium and in headless Firefox ESR, keeps the screenshots
+# (WORK/<name>.png, WORK/<name>.firefox.png) as test artifacts, and fails on
+# Chromium console errors, when the expected plots are missing from the
+# rendered DOM, when a screenshot is blank or of the wrong size, or when
+# Firefox lays the page out differently from Chromium
+# (tests/browser/png_compare.py). Installs Debian's chromium and
+# firefox-esr when missing (needs root or password-less sudo, else the test
+# is skipped with exit code 77). ABBE_SKIP_BROWSER=1 skips it.
 #
 # usage: run_browser_test.sh ABBE SOURCE_DIR WORK_DIR
 set -u
-abbe=$1
-src=$2
-work=$3
+abbe=$(realpath "$1")
+src=$(realpath "$2")
+work=$(realpath -m "$3")  # file:// URLs need absolute paths
 
 if [ "${ABBE_SKIP_BROWSER:-0}" = 1 ]; then
   echo "ABBE_SKIP_BROWSER=1: skipped"
@@ -32,6 +36,20 @@ if [ -z "$browser" ]; then
   [ -n "$browser" ] || { echo "chromium still not found: skipped"; exit 77; }
 fi
 echo "browser: $("$browser" --version 2>/dev/null)"
+firefox=$(command -v firefox-esr || command -v firefox || true)
+if [ -z "$firefox" ]; then
+  echo "firefox is not installed: installing Debian's firefox-esr"
+  if [ "$(id -u)" = 0 ]; then
+    apt-get install -y --no-install-recommends firefox-esr >/dev/null
+  elif sudo -n true 2>/dev/null; then
+    sudo apt-get install -y --no-install-recommends firefox-esr >/dev/null
+  fi
+  firefox=$(command -v firefox-esr || command -v firefox || true)
+  [ -n "$firefox" ] || { echo "firefox-esr cannot be installed: skipped"; exit 77; }
+fi
+echo "browser: $("$firefox" --version 2>/dev/null)"
+width=1400
+height=3000
 
 rm -rf "$work"
 mkdir -p "$work"
@@ -67,12 +85,29 @@ check_page() {  # check_page NAME ID...
   [ -s "$page" ] || { fail "$name: no report written"; return; }
   local profile
   profile=$(mktemp -d)
-  run_browser "$profile" --enable-logging=stderr --v=0 --window-size=1400,3000 \
+  run_browser "$profile" --enable-logging=stderr --v=0 --window-size=$width,$height \
     --screenshot="$work/$name.png" "file://$page" >"$work/$name.screenshot.log" 2>&1
   local rc=$?
   [ $rc = 0 ] || fail "$name: chromium --screenshot exited with $rc (see $work/$name.screenshot.log)"
   if [ ! -s "$work/$name.png" ] || [ "$(stat -c %s "$work/$name.png")" -lt 20000 ]; then
     fail "$name: the screenshot is missing or nearly empty"
+  fi
+  python3 "$src/tests/browser/png_compare.py" size "$work/$name.png" $width $height ||
+    fail "$name: the Chromium screenshot is blank or of the wrong size"
+  # Firefox ESR: the same page, the same window; a fresh profile and HOME.
+  local ff_home
+  ff_home=$(mktemp -d)
+  HOME=$ff_home timeout 180 "$firefox" --headless --no-remote --profile "$ff_home" \
+    --screenshot "$work/$name.firefox.png" --window-size=$width,$height "file://$page" \
+    >"$work/$name.firefox.log" 2>&1
+  rc=$?
+  rm -rf "$ff_home"
+  [ $rc = 0 ] || fail "$name: firefox --screenshot exited with $rc (see $work/$name.firefox.log)"
+  if python3 "$src/tests/browser/png_compare.py" size "$work/$name.firefox.png" $width $height; then
+    python3 "$src/tests/browser/png_compare.py" same "$work/$name.png" "$work/$name.firefox.png" ||
+      fail "$name: Firefox lays the page out differently from Chromium"
+  else
+    fail "$name: the Firefox screenshot is missing, blank or of the wrong size"
   fi
   if grep -E "Uncaught|ERROR:CONSOLE|CONSOLE\([0-9]+\).*[Ee]rror|Not allowed to load" \
       "$work/$name.screenshot.log"; then
