@@ -72,6 +72,23 @@ double MotionPath::near_lo(double near) const {
   return length_ > 0.0 ? std::min(0.5, near / length_) : 0.5;
 }
 
+double MotionPath::distance_near(const Eigen::Vector3d& q) const {
+  const int a = ax_[0], b = ax_[1], n = ax_[2];
+  // A helix: its tangent has a normal component, the offset at the same
+  // angle is not the distance.
+  if (!arc_ || std::abs(sweep_) > 2.0 * M_PI || end_[n] != start_[n]) return distance(q);
+  const double ua = q[a] - center_[a], ub = q[b] - center_[b];
+  // Angle from the start in the direction of the sweep, in [0, 2π).
+  double phi = std::atan2(ub, ua) - theta0_;
+  if (sweep_ < 0.0) phi = -phi;
+  phi = std::fmod(phi, 2.0 * M_PI);
+  if (phi < 0.0) phi += 2.0 * M_PI;
+  const double t = phi / std::abs(sweep_);
+  if (t > 1.0) return std::min((q - start_).norm(), (q - end_).norm());
+  const double r = r0_ + t * (r1_ - r0_);
+  return std::hypot(std::hypot(ua, ub) - r, q[n] - (start_[n] + t * (end_[n] - start_[n])));
+}
+
 double MotionPath::distance(const Eigen::Vector3d& q) const { return (at(closest(q)) - q).norm(); }
 
 double MotionPath::closest(const Eigen::Vector3d& q) const {

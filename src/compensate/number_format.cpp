@@ -27,14 +27,44 @@ NumberStyle number_style(std::string_view text) {
   return s;
 }
 
+namespace {
+double power_of_ten(int decimals) {
+  static const double kPow[] = {1e0, 1e1, 1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
+  return decimals >= 0 && decimals < 16 ? kPow[decimals] : std::pow(10.0, decimals);
+}
+
+// The digits of round(|value|·10^places) with the decimal point placed:
+// what "{:.{places}f}" prints for round_to(value, places), without fmt.
+bool fixed_text(double value, int places, std::string& t) {
+  const double scaled = std::round(std::abs(value) * power_of_ten(places));
+  if (!(scaled < 9e15) || places > 15) return false;
+  auto k = static_cast<unsigned long long>(scaled);
+  char digits[40];
+  int n = 0;
+  do {
+    digits[n++] = static_cast<char>('0' + k % 10);
+    k /= 10;
+  } while (k > 0 || n <= places);
+  t.clear();
+  if (value < 0.0) t.push_back('-');
+  for (int i = n - 1; i >= 0; --i) {
+    t.push_back(digits[i]);
+    if (i == places && places > 0) t.push_back('.');
+  }
+  return true;
+}
+}  // namespace
+
 double round_to(double value, int decimals) {
-  const double f = std::pow(10.0, decimals);
+  const double f = power_of_ten(decimals);
   return std::round(value * f) / f;
 }
 
 std::string format_number(double value, const NumberStyle& style, int max_decimals) {
   const int places = std::max(style.decimals, max_decimals);
-  std::string t = fmt::format("{:.{}f}", round_to(value, places), places);
+  std::string t;
+  if (!fixed_text(value, places, t)) t = fmt::format("{:.{}f}", round_to(value, places), places);
   if (t.find('.') != std::string::npos) {
     std::size_t keep = t.find('.') + static_cast<std::size_t>(style.decimals);
     while (t.size() - 1 > keep && t.back() == '0') t.pop_back();

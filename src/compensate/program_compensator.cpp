@@ -31,6 +31,13 @@ bool has_g(const gcode::Block& b, double code) {
   return false;
 }
 
+// Appends "<sep><letter><number>" to `line`.
+void append_word(std::string& line, const char* sep, char letter, const std::string& number) {
+  line += sep;
+  line += letter;
+  line += number;
+}
+
 const gcode::Word* find_word(const gcode::Block& b, char letter) {
   for (const auto& w : b.words)
     if (w.letter == letter) return &w;
@@ -398,13 +405,13 @@ class Compensator {
         for (int i = 0; i < 2; ++i) {
           const int a = ax[static_cast<std::size_t>(i)];
           const double v = round_to(h[a] - cmd_[a], decimals_);
-          line += fmt::format("{}{}{}", line.empty() ? "" : sep, kAxis[a],
-                              format_number(v, NumberStyle{}, decimals_));
+          append_word(line, line.empty() ? "" : sep, kAxis[a],
+                      format_number(v, NumberStyle{}, decimals_));
           cmd_[a] += v;
         }
         const double z = round_to(cc_k, decimals_);
         if (z != round_to(cc_written, decimals_)) {
-          line += fmt::format("{}{}{}", sep, kAxis[n], format_number(z, NumberStyle{}, decimals_));
+          append_word(line, sep, kAxis[n], format_number(z, NumberStyle{}, decimals_));
           cc_written = z;
         }
         pieces.push_back(line);
@@ -465,7 +472,7 @@ class Compensator {
     if (a != 0 || b + 1 != sp.size()) piece.rotation = m.rotation > 0 ? 1 : -1;
     const MotionPath path(piece);
     for (std::size_t k = a + 1; k < b; ++k)
-      if (path.distance(sp[k].n + sp[k].delta) > tol) return false;
+      if (path.distance_near(sp[k].n + sp[k].delta) > tol) return false;
     return true;
   }
 
@@ -628,7 +635,7 @@ class Compensator {
       } else {
         std::string line;
         const char* sep = ed.spaced() ? " " : "";
-        if (after_micro) line = fmt::format("{}", motion_word);
+        if (after_micro) line = motion_word;
         for (int k = 0; k < 3; ++k) {
           const double v = incremental_ ? round_to(target[k] - cmd_[k], decimals_)
                                         : round_to(target[k], decimals_);
@@ -638,8 +645,8 @@ class Compensator {
           } else if (!write) {
             continue;
           }
-          line += fmt::format("{}{}{}", line.empty() ? "" : sep, kAxis[k],
-                              format_number(v, NumberStyle{}, decimals_));
+          append_word(line, line.empty() ? "" : sep, kAxis[k],
+                      format_number(v, NumberStyle{}, decimals_));
           cmd_[k] = incremental_ ? cmd_[k] + v : v;
         }
         if (arc) arc_words(ed, block, m, ax, centre, sp[a], sp[b], start_cmd, r_form, &line);
@@ -672,8 +679,7 @@ class Compensator {
       const bool write = incremental_ ? v != 0.0 : v != round_to(cmd_[k], decimals_);
       if (!write) continue;
       any = true;
-      line += fmt::format("{}{}{}", spaced ? " " : "", kAxis[k],
-                          format_number(v, NumberStyle{}, decimals_));
+      append_word(line, spaced ? " " : "", kAxis[k], format_number(v, NumberStyle{}, decimals_));
       cmd_[k] = incremental_ ? cmd_[k] + v : v;
     }
     return any ? line : std::string();
@@ -698,7 +704,7 @@ class Compensator {
         const gcode::Word* w = find_word(block, 'R');
         ed.set('R', rv, w->value, false);
       } else {
-        *line += fmt::format("{}R{}", sep, format_number(rv, NumberStyle{}, decimals_));
+        append_word(*line, sep, 'R', format_number(rv, NumberStyle{}, decimals_));
       }
       return;
     }
@@ -709,8 +715,7 @@ class Compensator {
       if (!line) {
         ed.set(kCentre[i], value, 0.0, true);
       } else {
-        *line +=
-            fmt::format("{}{}{}", sep, kCentre[i], format_number(value, NumberStyle{}, decimals_));
+        append_word(*line, sep, kCentre[i], format_number(value, NumberStyle{}, decimals_));
       }
     }
   }

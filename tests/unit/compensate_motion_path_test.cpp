@@ -46,6 +46,20 @@ TEST(MotionPath, ClosestPointOfArcsAndHelicesMatchesADenseSearch) {
   }
 }
 
+// The quick distance of points near an arc of at most one turn agrees with
+// the exact one.
+TEST(MotionPath, DistanceNearAnArc) {
+  std::mt19937 g(9);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), t(0.0, 1.0);
+  for (int i = 0; i < 2000; ++i) {
+    gcode::Motion m = random_arc(g, i);
+    m.rotation = m.rotation > 0 ? 1 : -1;
+    const MotionPath p(m);
+    const Eigen::Vector3d q = p.at(t(g)) + 0.002 * Eigen::Vector3d(u(g), u(g), u(g));
+    EXPECT_NEAR(p.distance_near(q), p.distance(q), 1e-7) << i;
+  }
+}
+
 TEST(MotionPath, ClosestPointOfALine) {
   gcode::Motion m;
   m.kind = gcode::MotionKind::linear;

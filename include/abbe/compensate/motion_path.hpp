@@ -48,6 +48,11 @@ class MotionPath {
   double distance(const Eigen::Vector3d& q) const;
   // Parameter of the point of the curve nearest to q.
   double closest(const Eigen::Vector3d& q) const;
+  // distance() for a point near the curve (within a small fraction of the
+  // radius of a planar arc of at most one turn): the radial and normal
+  // offsets at the point's own angle, one atan2 and no iteration; else
+  // distance().
+  double distance_near(const Eigen::Vector3d& q) const;
 
  private:
   Eigen::Vector3d start_, end_, center_;
