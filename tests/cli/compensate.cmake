@@ -6,6 +6,14 @@ if(NOT CMAKE_SCRIPT_MODE_FILE)
                    -DWORK=${CMAKE_CURRENT_BINARY_DIR}/cli_compensate_work
                    -P ${CMAKE_CURRENT_LIST_FILE})
   set_tests_properties(cli_compensate PROPERTIES LABELS "cli;compensate")
+  # A generated program of 10 000 blocks (arcs in all planes, helices,
+  # corners): compensated within tol at every point, forward and backward.
+  add_test(NAME cli_compensate_generated
+           COMMAND ${CMAKE_COMMAND} -DABBE=$<TARGET_FILE:abbe> -DGEN=$<TARGET_FILE:gen_program>
+                   -DSRC=${PROJECT_SOURCE_DIR}
+                   -DWORK=${CMAKE_CURRENT_BINARY_DIR}/cli_compensate_generated_work
+                   -P ${CMAKE_CURRENT_LIST_FILE})
+  set_tests_properties(cli_compensate_generated PROPERTIES LABELS "cli;compensate")
   return()
 endif()
 
@@ -21,6 +29,16 @@ function(run expect_code)
   endif()
   set(OUT "${out}${err}" PARENT_SCOPE)
 endfunction()
+
+if(GEN)
+  run(0 ${GEN} --blocks 10000 --seed 11 -o ${WORK}/gen.ngc)
+  run(0 ${ABBE} compensate ${WORK}/gen.ngc --machine ${MACHINE} -o ${WORK}/gen-c.ngc)
+  run(0 ${ABBE} verify ${WORK}/gen-c.ngc --against ${WORK}/gen.ngc --machine ${MACHINE} --check)
+  if(NOT OUT MATCHES " 0 beyond tol\n.* 0 beyond tol\n.*: pass")
+    message(FATAL_ERROR "verify of the generated program: ${OUT}")
+  endif()
+  return()
+endif()
 
 # Every sample: compensate, then verify --check at 1 µm.
 foreach(f thesis-toolpath-1 thesis-toolpath-2 spline-slot spline-slot-corner inch-r-arcs

@@ -223,8 +223,9 @@ TEST(CompensateProgram, RefusesABadProgramWithTheFrontEndsMessage) {
   EXPECT_EQ(here, front);
 }
 
-// 2 000 blocks keep the Debug test short; the 10 000-block run is in
-// tests/cli/compensate.cmake (label compensate_large) and docs/compensation.md.
+// 2 000 blocks keep the Debug test short; a 10 000-block run is in
+// tests/cli/compensate.cmake (cli_compensate_generated), 1 M blocks in
+// docs/compensation.md.
 TEST(CompensateProgram, GeneratedProgram) {
   gen::ProgramGenerator g(11);
   fmt::memory_buffer buf;
