@@ -10,7 +10,8 @@ add_test(NAME interop_rs274
          COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/interop/run_interop.sh
                  $<TARGET_FILE:abbe> $<TARGET_FILE:abbe_canon_compare>
                  ${CMAKE_BINARY_DIR}/interop ${PROJECT_SOURCE_DIR}
-                 $<TARGET_FILE:abbe_random_programs>)
+                 $<TARGET_FILE:abbe_random_programs>
+                 $<TARGET_FILE:abbe_compensated_compare> $<TARGET_FILE:gen_program>)
 set_tests_properties(interop_rs274 PROPERTIES LABELS interop SKIP_RETURN_CODE 77 TIMEOUT 1800)
 
 # `abbe interpret` summary mode (the interpret-only mode of the benchmarks).
@@ -23,3 +24,7 @@ add_test(NAME interpret_refuses_bad_input
                  ${CMAKE_CURRENT_SOURCE_DIR}/data/bad/cutter-comp-g41.nc)
 set_tests_properties(interpret_refuses_bad_input PROPERTIES LABELS cli
   PASS_REGULAR_EXPRESSION "cutter-comp-g41.nc:3:1: error: cutter radius compensation \\(G41\\) is not supported.*exit=1")
+
+# Compensated programs in rs274 (tests/interop/run_interop.sh, docs/interop.md).
+add_executable(abbe_compensated_compare ${CMAKE_CURRENT_SOURCE_DIR}/interop/compensated_compare.cpp)
+target_link_libraries(abbe_compensated_compare PRIVATE abbe_core abbe_warnings)

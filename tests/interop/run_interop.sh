@@ -3,11 +3,20 @@
 # rs274 (Debian package linuxcnc-uspace) on every .ngc file of that package's
 # ncfiles directory and every file in nc-samples/.
 #
-# usage: run_interop.sh ABBE CANON_COMPARE WORK_DIR SOURCE_DIR [RANDOM_PROGRAMS]
+# usage: run_interop.sh ABBE CANON_COMPARE WORK_DIR SOURCE_DIR [RANDOM_PROGRAMS
+#                       [COMPENSATED_COMPARE GEN_PROGRAM]]
 #
 # With RANDOM_PROGRAMS (tests/interop/random_programs.cpp), also
 # $ABBE_INTEROP_RANDOM (default 100) generated programs (fixed seeds) are
 # compared, in the configuration of abbe's own programs.
+#
+# With COMPENSATED_COMPARE (tests/interop/compensated_compare.cpp) and
+# GEN_PROGRAM (tools/gen), every nc-samples/ file and a generated program
+# (2000 blocks) are compensated with the sample machine (`abbe compensate`),
+# the compensated file goes through rs274 too, and each of its canonical
+# end points must be the original's plus abbe's compensation vector there;
+# every file abbe refuses must be refused by `abbe compensate` with the
+# message `abbe interpret --machine` gives in the same configuration.
 #
 # Each file is classified (see docs/interop.md): matched, refused (abbe
 # stops with a clear file:line:col error; OK), rs274-refused (rs274 stops
@@ -20,8 +29,8 @@
 # it (exit 77, reported by ctest as skipped).
 set -uo pipefail
 
-if [ $# -ne 4 ] && [ $# -ne 5 ]; then
-  echo "usage: $0 ABBE CANON_COMPARE WORK_DIR SOURCE_DIR [RANDOM_PROGRAMS]" >&2
+if [ $# -ne 4 ] && [ $# -ne 5 ] && [ $# -ne 7 ]; then
+  echo "usage: $0 ABBE CANON_COMPARE WORK_DIR SOURCE_DIR [RANDOM_PROGRAMS [COMPENSATED_COMPARE GEN_PROGRAM]]" >&2
   exit 2
 fi
 abbe=$1
@@ -29,6 +38,9 @@ compare=$2
 work=$3
 src=$4
 random_programs=${5:-}
+comp_compare=${6:-}
+gen_program=${7:-}
+sample_machine="$src/machines/sample/machine.yaml"
 
 if [ "${ABBE_SKIP_INTEROP:-0}" = "1" ]; then
   echo "interop: skipped (ABBE_SKIP_INTEROP=1)"
@@ -135,11 +147,68 @@ if [ -n "$random_programs" ]; then
   "$random_programs" "${ABBE_INTEROP_RANDOM:-100}" "$random_dir" || fail "random_programs failed"
   while IFS= read -r f; do files+=("$f"); done < <(find "$random_dir" -type f -name '*.ngc' | sort)
 fi
+generated_dir="$work/generated"
+if [ -n "$gen_program" ]; then
+  rm -rf "$generated_dir" && mkdir -p "$generated_dir"
+  "$gen_program" --blocks 2000 --seed 3 -o "$generated_dir/gen-2000.ngc" ||
+    fail "gen_program failed"
+  files+=("$generated_dir/gen-2000.ngc")
+fi
 
 out="$work/out"
 rm -rf "$out" && mkdir -p "$out"
+
+# compensated_check FILE NAME CLASS INDEX TABLE VAR: the compensated program
+# in rs274 (see the header). Results into $comp_rows; failures set status.
+compensated_check() {
+  local f=$1 name=$2 class=$3 i=$4 table=$5 var=$6 cclass detail rc
+  # Compensated: nc-samples/ and the generated program; refusals: every file.
+  case "$class:$name" in matched:nc-samples/* | matched:generated/* | refused:*) ;; *) return ;; esac
+  local comp="$out/$i.comp.ngc"
+  timeout 120 "$abbe" compensate "$f" --machine "$sample_machine" -o "$comp" \
+    >"$out/$i.comp.log" 2>"$out/$i.comp.err"
+  rc=$?
+  if [ "$class" = refused ]; then
+    # The same first message line as `abbe interpret` in the same configuration
+    # (the machine's tool table and offsets): file:line:col: error: …
+    timeout 60 "$abbe" interpret --machine "$sample_machine" "$f" >/dev/null 2>"$out/$i.merr"
+    if [ $rc = 1 ] && [ "$(head -1 "$out/$i.comp.err")" = "$(head -1 "$out/$i.merr")" ]; then
+      ccount[still-refused]=$((${ccount[still-refused]} + 1))
+    else
+      ccount[mismatch]=$((${ccount[mismatch]} + 1))
+      status=1
+      detail="compensate exit $rc: $(head -1 "$out/$i.comp.err")"
+      printf '%s\tmismatch\t0\t%s\n' "$name" "${detail//"$f"/$(basename "$f")}" >>"$comp_rows"
+      echo "interop: compensated: $name refused by interpret but not so by compensate: $detail"
+    fi
+    return
+  fi
+  if [ $rc != 0 ]; then
+    detail=$(head -1 "$out/$i.comp.err")
+    detail=${detail//"$f"/$(basename "$f")}
+    ccount[compensate-refused]=$((${ccount[compensate-refused]} + 1))
+    printf '%s\tcompensate-refused\t0\t%s\n' "$name" "$detail" >>"$comp_rows"
+    [ $rc = 1 ] || { status=1; echo "interop: compensated: $name: compensate exit $rc: $detail"; }
+    return
+  fi
+  # (Files abbe matches call no subroutines: rs274 can read the copy in $out.)
+  run_rs274 "$comp" "$out/$i.comp.rs274" "$table" "$var"
+  local result
+  result=$("$comp_compare" "$sample_machine" "$f" "$out/$i.rs274" "$out/$i.comp.rs274")
+  rc=$?
+  cclass=${result%%$'\t'*}
+  ccount[$cclass]=$((${ccount[$cclass]:-0} + 1))
+  printf '%s\t%s\n' "$name" "$result" >>"$comp_rows"
+  if [ $rc -ne 0 ]; then
+    status=1
+    echo "interop: compensated: $cclass: $name: ${result#*$'\t'}"
+  fi
+}
 rows="$work/rows.tsv"
 : >"$rows"
+comp_rows="$work/comp-rows.tsv"
+: >"$comp_rows"
+declare -A ccount=([matched]=0 [still-refused]=0 [compensate-refused]=0 [mismatch]=0)
 declare -A count=([matched]=0 [refused]=0 [rs274-refused]=0 [mismatch]=0 [abbe-failed]=0)
 status=0
 i=0
@@ -159,6 +228,7 @@ for f in "${files[@]}"; do
       var=$own_var
       args=("${own_args[@]}")
       ;;
+    "$generated_dir"/*) name="generated/${f#"$generated_dir"/}" ;;
     *) name="nc-samples/${f#"$src/nc-samples"/}" ;;
   esac
   run_rs274 "$f" "$out/$i.rs274" "$table" "$var"
@@ -179,12 +249,18 @@ for f in "${files[@]}"; do
     status=1
     echo "interop: $class: $name: $detail"
   fi
+  [ -n "$comp_compare" ] && compensated_check "$f" "$name" "$class" "$i" "$table" "$var"
 done
 
 total=${#files[@]}
 summary="files=$total matched=${count[matched]} refused=${count[refused]} rs274-refused=${count[rs274-refused]} mismatched=${count[mismatch]} abbe-failed=${count[abbe-failed]}"
 echo "interop: $summary"
 column -t -s $'\t' "$rows" 2>/dev/null | cut -c1-200 || cat "$rows"
+if [ -n "$comp_compare" ]; then
+  csummary="matched=${ccount[matched]} still-refused=${ccount[still-refused]} compensate-refused=${ccount[compensate-refused]} mismatched=${ccount[mismatch]}"
+  echo "interop: compensated programs: $csummary"
+  column -t -s $'\t' "$comp_rows" 2>/dev/null | cut -c1-220 || cat "$comp_rows"
+fi
 
 # Report: replace the results section of docs/interop.md.
 report=${ABBE_INTEROP_REPORT:-$src/docs/interop.md}
@@ -205,6 +281,22 @@ version=$(cat "$lcnc/VERSION" 2>/dev/null)
     echo "| $name | $class | $motions | $detail |"
   done <"$rows"
   echo
+  if [ -n "$comp_compare" ]; then
+    echo "Compensated programs (sample machine, ae-arm): rs274's end points against the"
+    echo "original's plus abbe's compensation vectors."
+    echo
+    echo "| compensated and checked | refused as before | refused by compensate | mismatched |"
+    echo "|---|---|---|---|"
+    echo "| ${ccount[matched]} | ${ccount[still-refused]} | ${ccount[compensate-refused]} | ${ccount[mismatch]} |"
+    echo
+    echo "| file | result | motions | detail |"
+    echo "|---|---|---|---|"
+    while IFS=$'\t' read -r name class motions detail; do
+      detail=${detail//|/\\|}
+      echo "| $name | $class | $motions | $detail |"
+    done <"$comp_rows"
+    echo
+  fi
   echo "<!-- interop-results-end -->"
 } >"$work/results.md"
 if [ -f "$report" ] && grep -q 'interop-results-begin' "$report" && grep -q 'interop-results-end' "$report"; then
