@@ -242,7 +242,7 @@ const CommandRegistrar registrar(
       auto* program =
           measure->add_option("--program", me->program, "NC program: measure its fragmented path");
       grid->excludes(program);
-      measure->add_option("--box", me->box, std::string("Grid: ") + kBoxHelp)
+      measure->add_option("--box", me->box, std::string("Grid only. ") + kBoxHelp)
           ->delimiter(',')
           ->expected(6);
       measure->add_option("--tool-length", me->tool_length,
