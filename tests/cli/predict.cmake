@@ -91,3 +91,28 @@ endif()
 if(NOT out MATCHES "ae-arm +2\\.2800 +1\\.0000 +5\\.0000")
   message(FATAL_ERROR "good run: the summary (on stdout with -o FILE) is missing:\n${out}")
 endif()
+
+# A row with a number beyond the fast formatter (|v| ≥ 9e12) is written the
+# long way, with the same columns; the rows around it keep the fast format
+# (6 decimals, trailing zeros dropped) — CSV and JSON.
+file(WRITE ${WORK}/huge.csv "x,y,z\n-300,-200,-250\n1e13,-200,-250\n-300.0000004,-199.9999996,-250\n")
+execute_process(COMMAND ${ABBE} predict ${WORK}/huge.csv --machine ${MACHINES}/worked-example.yaml
+                        -o ${WORK}/huge-out.csv
+                RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_VARIABLE out)
+file(READ ${WORK}/huge-out.csv contents)
+set(expected "x,y,z,px,py,pz,dx,dy,dz,d,line
+-300,-200,-250,-299.99772,-200.001,-250.005,2.28,-1,-5,5.585553,2
+10000000000000.000000,-200,-250,10000000000000.001953,-200.001,-100000250.008,2.28,-1,-100000000008,100000000008,3
+-300,-200,-250,-299.99772,-200.001,-250.005,2.28,-1,-5,5.585553,4
+")
+if(NOT rc EQUAL 0 OR NOT contents STREQUAL expected)
+  message(FATAL_ERROR "huge value: rc '${rc}', output:\n${contents}\nexpected:\n${expected}\n${err}")
+endif()
+execute_process(COMMAND ${ABBE} predict ${WORK}/huge.csv --machine ${MACHINES}/worked-example.yaml
+                        --format json -o ${WORK}/huge-out.json
+                RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_VARIABLE out)
+file(READ ${WORK}/huge-out.json contents)
+if(NOT rc EQUAL 0 OR NOT contents MATCHES
+   "\n\\{\"x\": 10000000000000\\.000000, \"y\": -200, \"z\": -250, \"line\": 3, \"ae-arm\": \\{\"px\": 10000000000000\\.001953, [^\n]*\"d\": 100000000008\\}\\},\n\\{\"x\": -300, ")
+  message(FATAL_ERROR "huge value (JSON): rc '${rc}', output:\n${contents}\n${err}")
+endif()

@@ -43,6 +43,21 @@ TEST(SimSampleMachine, LoadsWithTheMachineLoader) {
   EXPECT_DOUBLE_EQ(m.record(machine::Axis::y).measured_tool_length, 220.0);
 }
 
+// The shipped machine file carries the squareness the virtual campaign
+// measured: the thesis' values (truth.yaml) within the expanded uncertainty
+// (k = 2) of the squareness measurement.
+TEST(SimSampleMachine, SquarenessIsTheThesisValueWithinItsUncertainty) {
+  const machine::Machine m = machine::Machine::load(kDir + "machine.yaml");
+  const GeneratedMachine g = sample();
+  EXPECT_DOUBLE_EQ(g.truth.squareness.ec0y, 14.569);
+  EXPECT_DOUBLE_EQ(g.truth.squareness.eb0z, -24.362);
+  EXPECT_DOUBLE_EQ(g.truth.squareness.ea0z, 13.757);
+  const double expanded = 2.0 * g.campaign.squareness_sigma_urad;
+  EXPECT_NEAR(m.squareness().ec0y, 14.569, expanded);
+  EXPECT_NEAR(m.squareness().eb0z, -24.362, expanded);
+  EXPECT_NEAR(m.squareness().ea0z, 13.757, expanded);
+}
+
 // Thesis Tables 4–6 (µm; µrad = µm/mm × 1000): systematic deviation E and
 // mean reversal of the positioning components, E of the angular ones.
 TEST(SimSampleMachine, Iso230ValuesCloseToTheThesis) {
