@@ -73,20 +73,36 @@ double MotionPath::near_lo(double near) const {
 }
 
 double MotionPath::distance_near(const Eigen::Vector3d& q) const {
+  if (!arc_ || std::abs(sweep_) > 2.0 * M_PI) return distance(q);
   const int a = ax_[0], b = ax_[1], n = ax_[2];
-  // A helix: its tangent has a normal component, the offset at the same
-  // angle is not the distance.
-  if (!arc_ || std::abs(sweep_) > 2.0 * M_PI || end_[n] != start_[n]) return distance(q);
   const double ua = q[a] - center_[a], ub = q[b] - center_[b];
   // Angle from the start in the direction of the sweep, in [0, 2π).
   double phi = std::atan2(ub, ua) - theta0_;
   if (sweep_ < 0.0) phi = -phi;
   phi = std::fmod(phi, 2.0 * M_PI);
   if (phi < 0.0) phi += 2.0 * M_PI;
-  const double t = phi / std::abs(sweep_);
+  double t = phi / std::abs(sweep_);
   if (t > 1.0) return std::min((q - start_).norm(), (q - end_).norm());
-  const double r = r0_ + t * (r1_ - r0_);
-  return std::hypot(std::hypot(ua, ub) - r, q[n] - (start_[n] + t * (end_[n] - start_[n])));
+  const double h = end_[n] - start_[n];
+  if (h == 0.0) {
+    const double r = r0_ + t * (r1_ - r0_);
+    return std::hypot(std::hypot(ua, ub) - r, q[n] - start_[n]);
+  }
+  // A helix: its tangent has a normal component; Newton steps on
+  // (p(t) − q)·p'(t) from the angle's parameter.
+  const double dr = r1_ - r0_;
+  for (int it = 0; it < 2; ++it) {
+    const double th = theta0_ + t * sweep_;
+    const double c = std::cos(th), s = std::sin(th);
+    const double r = r0_ + t * dr;
+    const double va = center_[a] + r * c - q[a], vb = center_[b] + r * s - q[b];
+    const double vn = start_[n] + t * h - q[n];
+    const double da = dr * c - r * sweep_ * s, db = dr * s + r * sweep_ * c;
+    const double g = va * da + vb * db + vn * h;
+    const double gp = da * da + db * db + h * h;
+    t = std::clamp(t - g / gp, 0.0, 1.0);
+  }
+  return (at(t) - q).norm();
 }
 
 double MotionPath::distance(const Eigen::Vector3d& q) const { return (at(closest(q)) - q).norm(); }

@@ -6,7 +6,7 @@ if(NOT CMAKE_SCRIPT_MODE_FILE)
                    -DWORK=${CMAKE_CURRENT_BINARY_DIR}/cli_compensate_work
                    -P ${CMAKE_CURRENT_LIST_FILE})
   set_tests_properties(cli_compensate PROPERTIES LABELS "cli;compensate")
-  # A generated program of 10 000 blocks (arcs in all planes, helices,
+  # A generated program of 4 000 blocks (arcs in all planes, helices,
   # corners): compensated within tol at every point, forward and backward.
   add_test(NAME cli_compensate_generated
            COMMAND ${CMAKE_COMMAND} -DABBE=$<TARGET_FILE:abbe> -DGEN=$<TARGET_FILE:gen_program>
@@ -31,7 +31,7 @@ function(run expect_code)
 endfunction()
 
 if(GEN)
-  run(0 ${GEN} --blocks 10000 --seed 11 -o ${WORK}/gen.ngc)
+  run(0 ${GEN} --blocks 4000 --seed 11 -o ${WORK}/gen.ngc)
   run(0 ${ABBE} compensate ${WORK}/gen.ngc --machine ${MACHINE} -o ${WORK}/gen-c.ngc)
   run(0 ${ABBE} verify ${WORK}/gen-c.ngc --against ${WORK}/gen.ngc --machine ${MACHINE} --check)
   if(NOT OUT MATCHES " 0 beyond tol\n.* 0 beyond tol\n.*: pass")

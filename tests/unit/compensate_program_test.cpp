@@ -223,7 +223,7 @@ TEST(CompensateProgram, RefusesABadProgramWithTheFrontEndsMessage) {
   EXPECT_EQ(here, front);
 }
 
-// 2 000 blocks keep the Debug test short; a 10 000-block run is in
+// 2 000 blocks keep the Debug test short; a 4 000-block run is in
 // tests/cli/compensate.cmake (cli_compensate_generated), 1 M blocks in
 // docs/compensation.md.
 TEST(CompensateProgram, GeneratedProgram) {

@@ -49,9 +49,9 @@ class MotionPath {
   // Parameter of the point of the curve nearest to q.
   double closest(const Eigen::Vector3d& q) const;
   // distance() for a point near the curve (within a small fraction of the
-  // radius of a planar arc of at most one turn): the radial and normal
-  // offsets at the point's own angle, one atan2 and no iteration; else
-  // distance().
+  // radius of an arc of at most one turn): a planar arc by the radial and
+  // normal offsets at the point's own angle (one atan2, no iteration), a
+  // helix with two Newton steps from there; else distance().
   double distance_near(const Eigen::Vector3d& q) const;
 
  private:
