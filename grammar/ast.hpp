@@ -1,28 +1,61 @@
 #pragma once
-// AST of one NC line as the X3 grammar produces it (grammar/gcode_def.hpp).
+// What the X3 grammar (grammar/gcode_def.hpp) produces for one NC line.
 //
-// Every construct of a line is an Item made of two spans into the line:
-//   head  the character(s) that introduce it: a word letter, 'N', 'O', '/',
-//         '%', '*' (checksum), '(' or ';' (comments);
-//   body  the text that follows: the number of a word (sign and blanks
-//         included, exactly as written), the digits of N/O/'*', the text
-//         inside a comment; empty for '/' and '%'.
-// src/gcode/parser.cpp turns the items into an abbe::gcode::Block. Spans keep
-// the byte offsets the post-processor needs to rewrite one number in place.
+// The grammar does not build a tree: its semantic actions write every
+// construct straight into an abbe::gcode::Block (grammar/line_actions.hpp),
+// with the byte offsets the post-processor needs to rewrite one number in
+// place. `Line` is the attribute of the line rule: the Block being filled,
+// what the error explanation needs to know about the items stored so far,
+// and the first number that could not be converted.
 #include <boost/range/iterator_range_core.hpp>
-#include <vector>
+#include <cstddef>
+#include <cstdint>
+
+#include "abbe/gcode/block.hpp"
 
 namespace abbe::gcode::ast {
 
 using Iterator = const char*;
 using Span = boost::iterator_range<Iterator>;
 
-struct Item {
-  Span head;
-  Span body;
+// A number scanned once by grammar/number_parser.hpp: its text and what the
+// conversion to double needs.
+struct Number {
+  Iterator begin = nullptr;    // the sign if any, else the first digit or '.'
+  Iterator end = nullptr;      // one past the last digit or '.'
+  std::uint64_t mantissa = 0;  // the first 19 digits as an integer
+  std::uint32_t digits = 0;    // number of digits
+  std::uint32_t fraction = 0;  // number of digits after the '.'
+  bool negative = false;
+  bool point = false;  // a '.' was written
 };
 
-// The items of one line in the order written.
-using Line = std::vector<Item>;
+// Why a number of a well-formed line is refused (found while parsing,
+// reported only once the whole line is known to be well-formed).
+enum class NumberError : std::uint8_t {
+  none,
+  too_long,                  // more than 64 digits and '.'
+  out_of_range,              // not a finite double
+  program_number_too_large,  // O
+  checksum_too_large,        // *
+};
+
+struct Line {
+  Block* block = nullptr;         // filled by the semantic actions
+  Iterator line_begin = nullptr;  // offsets are counted from here
+
+  // Items stored so far (words, comments, N, O, '/', '%', '*'): how many,
+  // how many of them are words and comments, the head character of the last
+  // one ('(' or ';' for comments) and where the O of a program number is.
+  std::size_t items = 0;
+  std::size_t words_and_comments = 0;
+  char last_head = 0;
+  Iterator program_number_head = nullptr;
+
+  std::size_t n_comments = 0;  // comments stored in block->comments (reused strings)
+
+  NumberError error = NumberError::none;
+  Iterator error_at = nullptr;
+};
 
 }  // namespace abbe::gcode::ast

@@ -19,8 +19,9 @@ using line_type = x3::rule<line_class, ast::Line>;
 BOOST_SPIRIT_DECLARE(line_type)
 
 // The rule for one line. It always succeeds and consumes the longest prefix
-// of the line that belongs to the language; the caller checks that the whole
-// line was consumed and otherwise explains why not (src/gcode/parser.cpp).
+// of the line that belongs to the language, storing its items into the
+// attribute's Block as it goes; the caller checks that the whole line was
+// consumed and otherwise explains why not (src/gcode/parser.cpp).
 const line_type& line();
 
 }  // namespace abbe::gcode::grammar

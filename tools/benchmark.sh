@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Front-end benchmark (DESIGN protocol: like with like, same file, best of 3).
 #
-# Builds abbe in Release (build/release), generates programs of 10 k, 100 k
-# and 1 M blocks with gen_program, and on each file runs, best of 3:
+# Builds abbe in Release ($ABBE_BENCH_BUILD, default build/release),
+# generates programs of 10 k, 100 k and 1 M blocks with gen_program, and on
+# each file runs, best of 3:
 #   abbe interpret F                 interpret only, summary output
 #   rs274 -t tbl -v var -g F         LinuxCNC's standalone interpreter (canonical calls to /dev/null)
 #   abbe path F --count              interpret + fragment (5 mm), only a count
@@ -17,7 +18,8 @@
 # build/linuxcnc. Without it the rs274 column says n/a.
 #
 # usage: tools/benchmark.sh [SIZES...]   (default: 10000 100000 1000000)
-# env:   ABBE_BENCH_DIR (default build/bench), ABBE_BENCH_REPEAT (default 3)
+# env:   ABBE_BENCH_DIR (default build/bench), ABBE_BENCH_REPEAT (default 3),
+#        ABBE_BENCH_BUILD (Release build directory, default build/release)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
@@ -27,11 +29,12 @@ work=${ABBE_BENCH_DIR:-$root/build/bench}
 repeat=${ABBE_BENCH_REPEAT:-3}
 mkdir -p "$work"
 
-echo "== building Release (build/release, -j2)"
-cmake -S . -B build/release -G Ninja -DCMAKE_BUILD_TYPE=Release -DABBE_BUILD_TESTS=OFF >/dev/null
-cmake --build build/release -j2 --target abbe gen_program >/dev/null
-abbe=$root/build/release/abbe
-gen=$root/build/release/gen_program
+build=${ABBE_BENCH_BUILD:-$root/build/release}
+echo "== building Release ($build, -j2)"
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DABBE_BUILD_TESTS=OFF >/dev/null
+cmake --build "$build" -j2 --target abbe gen_program >/dev/null
+abbe=$build/abbe
+gen=$build/gen_program
 
 # ---- rs274 ----
 rs274=""
@@ -60,8 +63,9 @@ has_interpret=1
 "$abbe" interpret --help >/dev/null 2>&1 || has_interpret=0
 
 # best_of CMD...: runs the command $repeat times (stdout to /dev/null) and
-# prints "wall cpu maxrss_kb" of the fastest run by wall clock (bash's time,
-# ms resolution; peak RSS from /usr/bin/time -f %M).
+# prints "wall cpu maxrss_kb" of the run with the least CPU time (user + sys;
+# on a shared machine the wall clock mostly measures waiting for a core;
+# bash's time, ms resolution; peak RSS from /usr/bin/time -f %M).
 best_of() {
   local best="" line t
   for _ in $(seq "$repeat"); do
@@ -73,7 +77,7 @@ best_of() {
       return 1
     }
     line=$(echo "$t $(tail -1 "$work/rss.txt")" | awk '{printf "%.3f %.3f %d", $1, $2 + $3, $4}')
-    if [ -z "$best" ] || awk -v a="${line%% *}" -v b="${best%% *}" 'BEGIN{exit !(a < b)}'; then
+    if [ -z "$best" ] || awk -v a="$(echo "$line" | cut -d' ' -f2)" -v b="$(echo "$best" | cut -d' ' -f2)" 'BEGIN{exit !(a < b)}'; then
       best=$line
     fi
   done

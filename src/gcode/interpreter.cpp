@@ -18,7 +18,6 @@ constexpr double kMaxCycleRepeats = 100000;
 constexpr double kMaxArcTurns = 10000;
 constexpr double kMaxPecks = 100000;
 
-
 constexpr double kMmPerInch = 25.4;
 
 // Axis indices (first, second, normal) of the arc / canned-cycle plane, in
@@ -104,9 +103,16 @@ struct Interpreter::State {
   }
   double active_length_mm() const { return g43 ? tool_length_mm : config.default_tool_length; }
 
-  // Tool tip P (machine, mm) of a program-frame point.
+  // Tool tip P (machine, mm) of a program-frame point. In mm the unit
+  // factors are 1 and are left out (the same doubles, no divisions).
   Eigen::Vector3d tip(const Eigen::Vector3d& p) const {
-    Eigen::Vector3d s = (p + g5x() + g92 + Eigen::Vector3d(0, 0, tlo)) * unit();
+    Eigen::Vector3d s;
+    if (inch) {
+      s = (p + g5x() + g92 + Eigen::Vector3d(0, 0, tlo)) * kMmPerInch;
+    } else {
+      s = p + config.work_offsets[static_cast<std::size_t>(coord_index)] + g92 +
+          Eigen::Vector3d(0, 0, tlo);
+    }
     s.z() -= active_length_mm();
     return s;
   }
@@ -133,7 +139,7 @@ Plane Interpreter::plane() const { return state_->plane; }
 Eigen::Vector3d Interpreter::program_position() const { return state_->pos; }
 Eigen::Vector3d Interpreter::position() const { return state_->tip(state_->pos); }
 
-void Interpreter::execute(const Block& block, const std::string& raw_line, const MotionSink& sink) {
+void Interpreter::execute(const Block& block, std::string_view raw_line, const MotionSink& sink) {
   State& st = *state_;
   if (st.ended || block.words.empty()) return;
   const BlockContext ctx{st.file, block.line, raw_line};

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdint>
 
 #include "abbe/io/input_error.hpp"
 
@@ -173,6 +174,9 @@ std::optional<MGroup> m_group(int number) {
   }
 }
 
+// std::round for 0 <= v < 2^52 without a library call.
+double round_half_up(double v) { return static_cast<double>(static_cast<std::int64_t>(v + 0.5)); }
+
 std::string format_number(double v) {
   std::string s = fmt::format("{:.4f}", v);
   while (!s.empty() && s.back() == '0') s.pop_back();
@@ -187,7 +191,7 @@ void BlockContext::fail(const Word* at, const std::string& message) const {
   where.file = file;
   where.line = line;
   where.column = at ? at->begin + 1 : 0;
-  where.source_line = raw_line;
+  where.source_line = std::string(raw_line);
   throw InputError(where, message);
 }
 
@@ -201,9 +205,12 @@ BlockCodes classify_block(const Block& block, const BlockContext& where) {
   for (const Word& w : block.words) {
     const char letter = w.letter;
     if (letter == 'G') {
+      // Rounded half up; values outside [0, 1000.1] are refused before
+      // (they could only round outside [0, 10000]).
       const double tenfold = w.value * 10.0;
-      const double rounded = std::round(tenfold);
-      if (w.value < 0 || std::abs(tenfold - rounded) > 1e-6 || rounded > 10000.0)
+      const bool in_range = w.value >= 0.0 && w.value <= 1000.1;
+      const double rounded = in_range ? round_half_up(tenfold) : 0.0;
+      if (!in_range || std::abs(tenfold - rounded) > 1e-6 || rounded > 10000.0)
         where.fail(&w, fmt::format("unknown G code G{}", format_number(w.value)));
       const int id = static_cast<int>(rounded);
       const GInfo info = g_info(id);
@@ -212,33 +219,38 @@ BlockCodes classify_block(const Block& block, const BlockContext& where) {
           where.fail(&w, fmt::format("{} ({}) is not supported", info.refusal, gcode_name(id)));
         where.fail(&w, fmt::format("unknown G code {}", gcode_name(id)));
       }
-      auto& slot = codes.g[static_cast<std::size_t>(*info.group)];
+      const auto group = static_cast<std::size_t>(*info.group);
+      CodeWord& slot = codes.g[group];
+      const bool taken = (codes.g_mask >> group) & 1U;
+      codes.g_mask |= 1U << group;
       // rs274ngc lets G80 share a block with another motion code, which wins.
-      if (slot && *info.group == GGroup::motion &&
-          (slot->code == gcode_id(80) || id == gcode_id(80))) {
-        if (slot->code == gcode_id(80)) slot = CodeWord{id, &w};
+      if (taken && *info.group == GGroup::motion &&
+          (slot.code == gcode_id(80) || id == gcode_id(80))) {
+        if (slot.code == gcode_id(80)) slot = CodeWord{id, &w};
         continue;
       }
-      if (slot) {
+      if (taken) {
         if (*info.group == GGroup::motion)
           where.fail(&w, fmt::format("two motion codes in one block ({} and {})",
-                                     gcode_name(slot->code), gcode_name(id)));
+                                     gcode_name(slot.code), gcode_name(id)));
         where.fail(&w, fmt::format("two G codes of the same modal group in one block ({} and {})",
-                                   gcode_name(slot->code), gcode_name(id)));
+                                   gcode_name(slot.code), gcode_name(id)));
       }
       slot = CodeWord{id, &w};
     } else if (letter == 'M') {
-      const double rounded = std::round(w.value);
-      if (w.value < 0 || std::abs(w.value - rounded) > 1e-9 || rounded > 1e6)
+      const bool in_range = w.value >= 0.0 && w.value <= 1e6 + 1.0;
+      const double rounded = in_range ? round_half_up(w.value) : 0.0;
+      if (!in_range || std::abs(w.value - rounded) > 1e-9 || rounded > 1e6)
         where.fail(&w, fmt::format("unknown M code M{}", format_number(w.value)));
       const int number = static_cast<int>(rounded);
       const auto group = m_group(number);
       if (!group) where.fail(&w, fmt::format("M code M{} is not supported", number));
-      auto& slot = codes.m[static_cast<std::size_t>(*group)];
-      if (slot)
+      const auto index = static_cast<std::size_t>(*group);
+      if ((codes.m_mask >> index) & 1U)
         where.fail(&w, fmt::format("two M codes of the same modal group in one block (M{} and M{})",
-                                   slot->code, number));
-      slot = CodeWord{number, &w};
+                                   codes.m[index].code, number));
+      codes.m_mask |= 1U << index;
+      codes.m[index] = CodeWord{number, &w};
     } else if (letter >= 'A' && letter <= 'Z') {
       switch (letter) {
         case 'A':
@@ -259,9 +271,11 @@ BlockCodes classify_block(const Block& block, const BlockContext& where) {
         default:
           break;
       }
-      auto& slot = codes.letters[static_cast<std::size_t>(letter - 'A')];
-      if (slot) where.fail(&w, fmt::format("repeated {} word in one block", letter));
-      slot = &w;
+      const auto index = static_cast<std::size_t>(letter - 'A');
+      if ((codes.letter_mask >> index) & 1U)
+        where.fail(&w, fmt::format("repeated {} word in one block", letter));
+      codes.letter_mask |= 1U << index;
+      codes.letters[index] = &w;
     } else {
       where.fail(&w, fmt::format("unexpected word '{}'", letter));
     }

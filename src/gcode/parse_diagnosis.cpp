@@ -49,17 +49,8 @@ bool is_o_word_keyword(std::string_view word) {
   return false;
 }
 
-std::size_t count_words_and_comments(const ast::Line& items) {
-  std::size_t n = 0;
-  for (const auto& item : items) {
-    const char h = upper(*item.head.begin());
-    if (h != 'N' && h != '/' && h != '*' && h != '%' && h != 'O') ++n;
-  }
-  return n;
-}
-
 bool only_block_delete_before(const ast::Line& items) {
-  return items.empty() || (items.size() == 1 && *items[0].head.begin() == '/');
+  return items.items == 0 || (items.items == 1 && items.last_head == '/');
 }
 
 // A word letter at `at` whose number did not parse: say what is wrong with it.
@@ -165,33 +156,31 @@ InputError explain_parse_stop(std::string_view line, std::size_t stop, const ast
   std::string message;
   const char c = line[stop];
   const auto u = static_cast<unsigned char>(c);
-  const char previous = items.empty() ? '\0' : upper(*items.back().head.begin());
-  // The O-number of a program number line, if the line is one.
-  const ast::Item* program_number = nullptr;
-  for (const auto& item : items)
-    if (upper(*item.head.begin()) == 'O') program_number = &item;
+  const char previous = upper(items.last_head);  // '\0' if no item
 
   if (previous == '*') {
     message = "the checksum (*nn) must be the last thing on its line";
   } else if (previous == '%') {
     message = "only a comment may follow '%' (tape delimiter) on its line";
-  } else if (program_number != nullptr) {
+  } else if (items.program_number_head != nullptr) {
     std::size_t end = stop;
     while (end < line.size() && is_alpha(line[end])) ++end;
     if (is_o_word_keyword(line.substr(stop, end - stop)) || c == '<' || c == '[') {
-      column = static_cast<std::size_t>(program_number->head.begin() - line.data());
+      column = static_cast<std::size_t>(items.program_number_head - line.data());
       message = "O-word control flow is not supported";
     } else {
       message = "a program number line (O...) may carry only a comment";
     }
-  } else if (count_words_and_comments(items) >= grammar::kMaxItemsPerBlock) {
+  } else if (items.words_and_comments >= grammar::kMaxItemsPerBlock) {
     message = fmt::format("too many words in one block (more than {})", grammar::kMaxItemsPerBlock);
   } else if (is_alpha(c)) {
     message = explain_letter(line, stop, items, column);
   } else if (is_digit(c) || c == '.' || c == '+' || c == '-') {
-    const bool after_number = !items.empty() && stop > 0 && is_blank(line[stop - 1]);
-    if (after_number && (is_digit(c) || c == '.') && !items.back().body.empty() &&
-        *items.back().head.begin() != '(' && *items.back().head.begin() != ';')
+    // Items that end with a number: all but '/', '%' and comments.
+    const bool after_number = items.items > 0 && stop > 0 && is_blank(line[stop - 1]) &&
+                              previous != '/' && previous != '%' && previous != '(' &&
+                              previous != ';';
+    if (after_number && (is_digit(c) || c == '.'))
       message = "a blank inside a number is not supported";
     else
       message = fmt::format("number {} without a word letter", quoted(line.substr(stop, 12)));

@@ -16,7 +16,7 @@ InputError line_error(std::string_view line, std::size_t line_number, const std:
                       std::size_t offset, const std::string& message);
 
 // The error for a line whose parse stopped at byte `stop` (< line.size())
-// after producing `items`.
+// after storing `items`.
 InputError explain_parse_stop(std::string_view line, std::size_t stop, const ast::Line& items,
                               std::size_t line_number, const std::string& file);
 

@@ -16,7 +16,7 @@ ProgramStats run_program(std::istream& in, const std::string& file, const Interp
   };
   while (!interpreter.program_ended() && reader.next(block)) {
     ++stats.lines;
-    interpreter.execute(block, reader.raw_line(), counting_sink);
+    interpreter.execute(block, reader.line_text(), counting_sink);
   }
   return stats;
 }

@@ -13,13 +13,13 @@
 // G20/G21, G40, G43/G49, G53, G54-G59, G61/G61.1/G64 (ignored), G80, G90/G91,
 // G90.1/G91.1, G92/G92.1/G92.2/G92.3, G94, G97, G98/G99; M0 M1 M2 M3 M4 M5
 // M6 M7 M8 M9 M30 M48 M49 M60. Everything else is refused.
+#include <Eigen/Core>
 #include <array>
 #include <functional>
 #include <map>
 #include <memory>
 #include <string>
-
-#include <Eigen/Core>
+#include <string_view>
 
 #include "abbe/gcode/block.hpp"
 #include "abbe/gcode/motion.hpp"
@@ -27,9 +27,10 @@
 namespace abbe::gcode {
 
 struct InterpreterConfig {
-  std::array<Eigen::Vector3d, 6> work_offsets{  // G54..G59, mm
-      Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
-      Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  std::array<Eigen::Vector3d, 6> work_offsets{// G54..G59, mm
+                                              Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
+                                              Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
+                                              Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   std::map<int, double> tool_lengths;  // H number -> tool length, mm (G43 H)
   // Length of the tool in the spindle when no G43 is active (the program then
   // drives the spindle nose s directly and P = s - L·e_z), mm.
@@ -48,9 +49,9 @@ class Interpreter {
 
   // Executes one block; every motion it makes goes to `sink` in order.
   // `raw_line` is used for error messages (caret display). Throws InputError.
-  void execute(const Block& block, const std::string& raw_line, const MotionSink& sink);
+  void execute(const Block& block, std::string_view raw_line, const MotionSink& sink);
 
-  bool program_ended() const;  // M2 / M30 seen
+  bool program_ended() const;        // M2 / M30 seen
   Eigen::Vector3d position() const;  // current tool tip, mm
 
   // Modal state after the last executed block (for post-processors that

@@ -6,8 +6,10 @@
 // RS274/NGC (LinuxCNC) tables.
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "abbe/gcode/block.hpp"
 
@@ -44,32 +46,48 @@ enum class MGroup : std::uint8_t {
 };
 
 struct CodeWord {
-  int code = 0;                // G: gcode_id; M: the integer number
-  const Word* word = nullptr;  // where it was written
+  int code;          // G: gcode_id; M: the integer number
+  const Word* word;  // where it was written
 };
 
 // Error context of one block: formats InputErrors at a word's column.
 struct BlockContext {
   const std::string& file;
   std::size_t line;
-  const std::string& raw_line;
+  std::string_view raw_line;
   [[noreturn]] void fail(const Word* at, const std::string& message) const;
 };
 
+// What classify_block found. Only the masks are initialised: an entry of
+// the arrays is valid when its bit is set (a block is classified per line,
+// so clearing some 500 bytes each time would show).
 struct BlockCodes {
-  std::array<std::optional<CodeWord>, static_cast<std::size_t>(GGroup::count)> g;
-  std::array<std::optional<CodeWord>, static_cast<std::size_t>(MGroup::count)> m;
-  std::array<const Word*, 26> letters{};  // every other letter, nullptr if absent
+  std::uint32_t g_mask = 0;       // bit i: g[i] holds the code of GGroup i
+  std::uint32_t m_mask = 0;       // bit i: m[i] holds the code of MGroup i
+  std::uint32_t letter_mask = 0;  // bit i: letters[i] is the word of letter 'A' + i
+  std::array<CodeWord, static_cast<std::size_t>(GGroup::count)> g;
+  std::array<CodeWord, static_cast<std::size_t>(MGroup::count)> m;
+  std::array<const Word*, 26> letters;
 
-  const std::optional<CodeWord>& group(GGroup which) const {
-    return g[static_cast<std::size_t>(which)];
+  // The code of a modal group, nullptr if the block has none.
+  const CodeWord* group(GGroup which) const {
+    const auto i = static_cast<std::size_t>(which);
+    return (g_mask >> i) & 1U ? &g[i] : nullptr;
   }
-  const std::optional<CodeWord>& group(MGroup which) const {
-    return m[static_cast<std::size_t>(which)];
+  const CodeWord* group(MGroup which) const {
+    const auto i = static_cast<std::size_t>(which);
+    return (m_mask >> i) & 1U ? &m[i] : nullptr;
   }
-  const Word* word(char letter) const { return letters[static_cast<std::size_t>(letter - 'A')]; }
-  bool has(char letter) const { return word(letter) != nullptr; }
-  bool has_axis_word() const { return has('X') || has('Y') || has('Z'); }
+  // The word of a letter (upper case, not G or M), nullptr if absent.
+  const Word* word(char letter) const {
+    const auto i = static_cast<std::size_t>(letter - 'A');
+    return (letter_mask >> i) & 1U ? letters[i] : nullptr;
+  }
+  bool has(char letter) const { return (letter_mask >> (letter - 'A')) & 1U; }
+  bool has_axis_word() const {
+    constexpr std::uint32_t kXyz = (1U << ('X' - 'A')) | (1U << ('Y' - 'A')) | (1U << ('Z' - 'A'));
+    return (letter_mask & kXyz) != 0;
+  }
 };
 
 // Sorts the block's words; throws InputError on conflicts or unsupported codes.

@@ -1,0 +1,109 @@
+#pragma once
+// Two small X3 primitive parsers the grammar is built from:
+//   number_parser  the numbers of words, scanned once: while it matches
+//                  `number` (or `digits`) of grammar/gcode.ebnf it collects
+//                  what the conversion to double needs (ast::Number), so no
+//                  second pass over the text is needed;
+//   position       matches nothing; its attribute is where it stands (the
+//                  offset of a word letter for the semantic action);
+//   blanks_parser  { " " | tab }, without an attribute (the most frequent
+//                  parser of a line: after every item).
+// Like every X3 parser they leave `first` unchanged when they fail.
+#include <boost/spirit/home/x3.hpp>
+#include <cstdint>
+#include <type_traits>
+
+#include "grammar/ast.hpp"
+
+namespace abbe::gcode::grammar {
+
+namespace x3 = boost::spirit::x3;
+
+namespace detail {
+
+// Appends the digits at `i` to n (mantissa: the first 19 digits only). The
+// loop does the least per digit; the rare number with more than 19 digits
+// (the mantissa wrapped) is redone with the cut-off.
+inline void scan_digits(const char*& i, const char* last, ast::Number& n, bool fraction) {
+  const char* const start = i;
+  std::uint64_t mantissa = n.mantissa;
+  for (; i != last && static_cast<unsigned char>(*i - '0') < 10; ++i)
+    mantissa = mantissa * 10 + static_cast<std::uint64_t>(*i - '0');
+  const auto count = static_cast<std::uint32_t>(i - start);
+  if (n.digits + count > 19) {
+    mantissa = n.mantissa;
+    std::uint32_t digits = n.digits;
+    for (const char* c = start; c != i && digits < 19; ++c, ++digits)
+      mantissa = mantissa * 10 + static_cast<std::uint64_t>(*c - '0');
+  }
+  n.mantissa = mantissa;
+  n.digits += count;
+  if (fraction) n.fraction += count;
+}
+
+}  // namespace detail
+
+// Real = true:  [ "+" | "-" ] , blanks , unsigned real
+// Real = false: digits
+template <bool Real>
+struct number_parser : x3::parser<number_parser<Real>> {
+  using attribute_type = ast::Number;
+  static bool const has_attribute = true;
+
+  template <typename It, typename Context, typename RContext, typename Attribute>
+  bool parse(It& first, It const& last, Context const&, RContext&, Attribute& attribute) const {
+    static_assert(std::is_same_v<It, const char*>, "the grammar parses const char* ranges");
+    ast::Number n;
+    n.begin = first;
+    const char* i = first;
+    if constexpr (Real) {
+      // Signs come in random order in a program: no branch on which one it is.
+      if (i != last) {
+        const bool minus = *i == '-';
+        const bool sign = minus | (*i == '+');
+        n.negative = minus;
+        i += sign;
+        const bool blank = i != last && (*i == ' ' || *i == '\t');
+        if (sign & blank)
+          while (i != last && (*i == ' ' || *i == '\t')) ++i;
+      }
+    }
+    detail::scan_digits(i, last, n, false);
+    if constexpr (Real) {
+      if (i != last && *i == '.') {
+        ++i;
+        n.point = true;
+        detail::scan_digits(i, last, n, true);
+      }
+    }
+    if (n.digits == 0) return false;  // no digit: "", "+", "."
+    n.end = i;
+    first = i;
+    x3::traits::move_to(n, attribute);
+    return true;
+  }
+};
+
+struct position_parser : x3::parser<position_parser> {
+  using attribute_type = ast::Iterator;
+  static bool const has_attribute = true;
+
+  template <typename It, typename Context, typename RContext, typename Attribute>
+  bool parse(It& first, It const&, Context const&, RContext&, Attribute& attribute) const {
+    x3::traits::move_to(first, attribute);
+    return true;
+  }
+};
+
+struct blanks_parser : x3::parser<blanks_parser> {
+  using attribute_type = x3::unused_type;
+  static bool const has_attribute = false;
+
+  template <typename It, typename Context, typename RContext, typename Attribute>
+  bool parse(It& first, It const& last, Context const&, RContext&, Attribute&) const {
+    while (first != last && (*first == ' ' || *first == '\t')) ++first;
+    return true;
+  }
+};
+
+}  // namespace abbe::gcode::grammar
