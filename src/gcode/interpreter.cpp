@@ -196,7 +196,7 @@ void Interpreter::execute(const Block& block, std::string_view raw_line, const M
     ctx.fail(c.word('H'), "H word with no G43 to use it");
 
   std::uint32_t sub = 0;
-  auto emit = [&](Motion m) {
+  auto emit = [&](Motion& m) {
     m.line = block.line;
     m.sub = sub++;
     m.tool_length = st.active_length_mm();

@@ -200,6 +200,78 @@ std::string gcode_name(int id) {
   return fmt::format("G{}.{}", id / 10, id % 10);
 }
 
+namespace {
+
+// The refusals of classify_block, out of line: the loop over the words stays
+// small (it runs for every block) and the formatting is done only on error.
+#define ABBE_COLD [[noreturn, gnu::cold, gnu::noinline]]
+
+ABBE_COLD void fail_g_value(const BlockContext& where, const Word& w) {
+  where.fail(&w, fmt::format("unknown G code G{}", format_number(w.value)));
+}
+
+ABBE_COLD void fail_g_code(const BlockContext& where, const Word& w, int id, const char* refusal) {
+  if (refusal) where.fail(&w, fmt::format("{} ({}) is not supported", refusal, gcode_name(id)));
+  where.fail(&w, fmt::format("unknown G code {}", gcode_name(id)));
+}
+
+ABBE_COLD void fail_g_twice(const BlockContext& where, const Word& w, GGroup group, int first,
+                            int id) {
+  if (group == GGroup::motion)
+    where.fail(&w, fmt::format("two motion codes in one block ({} and {})", gcode_name(first),
+                               gcode_name(id)));
+  where.fail(&w, fmt::format("two G codes of the same modal group in one block ({} and {})",
+                             gcode_name(first), gcode_name(id)));
+}
+
+ABBE_COLD void fail_m_value(const BlockContext& where, const Word& w) {
+  where.fail(&w, fmt::format("unknown M code M{}", format_number(w.value)));
+}
+
+ABBE_COLD void fail_m_code(const BlockContext& where, const Word& w, int number) {
+  where.fail(&w, fmt::format("M code M{} is not supported", number));
+}
+
+ABBE_COLD void fail_m_twice(const BlockContext& where, const Word& w, int first, int number) {
+  where.fail(&w, fmt::format("two M codes of the same modal group in one block (M{} and M{})",
+                             first, number));
+}
+
+ABBE_COLD void fail_letter(const BlockContext& where, const Word& w) {
+  const char letter = w.letter;
+  switch (letter) {
+    case 'D':
+      where.fail(&w, "D word (cutter radius compensation tool) is not supported");
+    case 'E':
+      where.fail(&w, "E word is not supported");
+    case 'N':
+    case 'O':
+      where.fail(&w, fmt::format("{} word in the middle of a block is not supported", letter));
+    default:  // A B C U V W
+      where.fail(&w,
+                 fmt::format("{} axis words are not supported (3-axis machines: X, Y, Z)", letter));
+  }
+}
+
+ABBE_COLD void fail_repeated(const BlockContext& where, const Word& w) {
+  where.fail(&w, fmt::format("repeated {} word in one block", w.letter));
+}
+
+ABBE_COLD void fail_unexpected(const BlockContext& where, const Word& w) {
+  where.fail(&w, fmt::format("unexpected word '{}'", w.letter));
+}
+
+#undef ABBE_COLD
+
+constexpr std::uint32_t letter_bit(char letter) { return 1U << (letter - 'A'); }
+
+// Letters refused outright: other axes, D, E, and N or O after the start.
+constexpr std::uint32_t kRefusedLetters =
+    letter_bit('A') | letter_bit('B') | letter_bit('C') | letter_bit('U') | letter_bit('V') |
+    letter_bit('W') | letter_bit('D') | letter_bit('E') | letter_bit('N') | letter_bit('O');
+
+}  // namespace
+
 BlockCodes classify_block(const Block& block, const BlockContext& where) {
   BlockCodes codes;
   for (const Word& w : block.words) {
@@ -211,73 +283,42 @@ BlockCodes classify_block(const Block& block, const BlockContext& where) {
       const bool in_range = w.value >= 0.0 && w.value <= 1000.1;
       const double rounded = in_range ? round_half_up(tenfold) : 0.0;
       if (!in_range || std::abs(tenfold - rounded) > 1e-6 || rounded > 10000.0)
-        where.fail(&w, fmt::format("unknown G code G{}", format_number(w.value)));
+        fail_g_value(where, w);
       const int id = static_cast<int>(rounded);
       const GInfo info = g_info(id);
-      if (!info.group) {
-        if (info.refusal)
-          where.fail(&w, fmt::format("{} ({}) is not supported", info.refusal, gcode_name(id)));
-        where.fail(&w, fmt::format("unknown G code {}", gcode_name(id)));
-      }
+      if (!info.group) fail_g_code(where, w, id, info.refusal);
       const auto group = static_cast<std::size_t>(*info.group);
       CodeWord& slot = codes.g[group];
       const bool taken = (codes.g_mask >> group) & 1U;
       codes.g_mask |= 1U << group;
-      // rs274ngc lets G80 share a block with another motion code, which wins.
-      if (taken && *info.group == GGroup::motion &&
-          (slot.code == gcode_id(80) || id == gcode_id(80))) {
-        if (slot.code == gcode_id(80)) slot = CodeWord{id, &w};
-        continue;
-      }
       if (taken) {
-        if (*info.group == GGroup::motion)
-          where.fail(&w, fmt::format("two motion codes in one block ({} and {})",
-                                     gcode_name(slot.code), gcode_name(id)));
-        where.fail(&w, fmt::format("two G codes of the same modal group in one block ({} and {})",
-                                   gcode_name(slot.code), gcode_name(id)));
+        // rs274ngc lets G80 share a block with another motion code, which wins.
+        if (*info.group == GGroup::motion && (slot.code == gcode_id(80) || id == gcode_id(80))) {
+          if (slot.code == gcode_id(80)) slot = CodeWord{id, &w};
+          continue;
+        }
+        fail_g_twice(where, w, *info.group, slot.code, id);
       }
       slot = CodeWord{id, &w};
     } else if (letter == 'M') {
       const bool in_range = w.value >= 0.0 && w.value <= 1e6 + 1.0;
       const double rounded = in_range ? round_half_up(w.value) : 0.0;
-      if (!in_range || std::abs(w.value - rounded) > 1e-9 || rounded > 1e6)
-        where.fail(&w, fmt::format("unknown M code M{}", format_number(w.value)));
+      if (!in_range || std::abs(w.value - rounded) > 1e-9 || rounded > 1e6) fail_m_value(where, w);
       const int number = static_cast<int>(rounded);
       const auto group = m_group(number);
-      if (!group) where.fail(&w, fmt::format("M code M{} is not supported", number));
+      if (!group) fail_m_code(where, w, number);
       const auto index = static_cast<std::size_t>(*group);
-      if ((codes.m_mask >> index) & 1U)
-        where.fail(&w, fmt::format("two M codes of the same modal group in one block (M{} and M{})",
-                                   codes.m[index].code, number));
+      if ((codes.m_mask >> index) & 1U) fail_m_twice(where, w, codes.m[index].code, number);
       codes.m_mask |= 1U << index;
       codes.m[index] = CodeWord{number, &w};
     } else if (letter >= 'A' && letter <= 'Z') {
-      switch (letter) {
-        case 'A':
-        case 'B':
-        case 'C':
-        case 'U':
-        case 'V':
-        case 'W':
-          where.fail(&w, fmt::format("{} axis words are not supported (3-axis machines: X, Y, Z)",
-                                     letter));
-        case 'D':
-          where.fail(&w, "D word (cutter radius compensation tool) is not supported");
-        case 'E':
-          where.fail(&w, "E word is not supported");
-        case 'N':
-        case 'O':
-          where.fail(&w, fmt::format("{} word in the middle of a block is not supported", letter));
-        default:
-          break;
-      }
-      const auto index = static_cast<std::size_t>(letter - 'A');
-      if ((codes.letter_mask >> index) & 1U)
-        where.fail(&w, fmt::format("repeated {} word in one block", letter));
-      codes.letter_mask |= 1U << index;
-      codes.letters[index] = &w;
+      const std::uint32_t bit = letter_bit(letter);
+      if (bit & kRefusedLetters) fail_letter(where, w);
+      if (codes.letter_mask & bit) fail_repeated(where, w);
+      codes.letter_mask |= bit;
+      codes.letters[static_cast<std::size_t>(letter - 'A')] = &w;
     } else {
-      where.fail(&w, fmt::format("unexpected word '{}'", letter));
+      fail_unexpected(where, w);
     }
   }
   return codes;

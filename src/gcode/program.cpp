@@ -10,7 +10,7 @@ ProgramStats run_program(std::istream& in, const std::string& file, const Interp
   BlockReader reader(in, file);
   Interpreter interpreter(config, file);
   Block block;
-  auto counting_sink = [&](const Motion& m) {
+  const MotionSink counting_sink = [&](const Motion& m) {  // built once, not per block
     ++stats.motions;
     sink(m);
   };
