@@ -233,6 +233,7 @@ class Compensator {
     for (std::size_t i = 0; i < motions_.size(); ++i) {
       const Vector3d start = motions_[i].start;
       fragmenter_.add(motions_[i], [&](const path::PathPoint& pp) {
+        last_point_dir_ = pp.dir;
         if (points_[i].empty() && pp.p == start && (pp.p - motions_[i].end).norm() > 0.0) return;
         points_[i].push_back(pp);
       });
@@ -244,9 +245,16 @@ class Compensator {
     const bool g53 = has_g(block, 53);
     bool feed_block = false;
     if (motions_.size() == 1) in_cycle_ = false;
-    if (motions_.size() > 1)
+    if (motions_.size() > 1) {
       cycle(block, editor, pieces);
-    else if (motions_[0].kind == gcode::MotionKind::rapid || g53)
+      // The cycle leaves the tool at its clearance height: the initial level
+      // (G98), which carries the correction of the point where the sequence
+      // began, or the R plane (G99), nominal in G90 and relative to the
+      // initial level in G91.
+      const int n = plane_axes(interp_.plane())[2];
+      const double level = retract_to_r_ && !incremental_ ? 0.0 : initial_level_delta_;
+      cmd_[n] = prog(p_after_)[n] + level / unit_;
+    } else if (motions_[0].kind == gcode::MotionKind::rapid || g53)
       rapid(block, editor, g53);
     else
       feed_block = feed(block, raw, editor, pieces, before);
@@ -284,8 +292,30 @@ class Compensator {
     return reference + ed.set(letter, target_abs - reference, baseline_abs - reference, may_insert);
   }
 
+  // A motion that does not move: its axis words name the point's commanded
+  // position — the correction there with the directions the machine has
+  // (those of the last motion): where the tool already is after a feed or a
+  // rapid; after a canned cycle (whose clearance moves keep their nominal
+  // height) the corrected point, a move of a few µm (written and changed
+  // axes, as for a rapid).
+  void hold(const gcode::Block& block, BlockEditor& ed) {
+    const gcode::Motion& m = motions_[0];
+    path::PathPoint pp;
+    pp.p = m.end;
+    pp.tool_length = m.tool_length;
+    pp.line = m.line;
+    pp.kind = m.kind;
+    pp.dir = last_point_dir_;
+    const Vector3d target = prog(m.end) + solve(pp) / unit_;
+    for (int k = 0; k < 3; ++k)
+      cmd_[k] = set_abs(ed, kAxis[k], target[k], cmd_[k], cmd_[k], incremental_, true);
+  }
+
   void rapid(const gcode::Block& block, BlockEditor& ed, bool g53) {
-    if (points_[0].empty()) return;  // zero-length
+    if (points_[0].empty()) {  // zero-length
+      if (!g53) hold(block, ed);
+      return;
+    }
     const Vector3d d = solve(points_[0].back());
     for (int a = 0; a < 3; ++a) {
       const gcode::Word* w = find_word(block, kAxis[a]);
@@ -385,7 +415,14 @@ class Compensator {
     for (const auto& h : holes)
       for (int k = 0; k < 3; ++k)
         exact = exact && round_to((h[k] - (k == n ? level : delta_[k])) / unit_, decimals_) == 0.0;
-    if (exact) return;
+    if (exact) {  // the increments as written: the tool ends L of them on
+      for (int k = 0; k < 2; ++k) {
+        const int a = ax[static_cast<std::size_t>(k)];
+        const gcode::Word* w = find_word(block, kAxis[a]);
+        cmd_[a] += static_cast<double>(repeats) * (w ? w->value : 0.0);
+      }
+      return;
+    }
     if (!retract_to_r_) {
       ed.remove('L');
       const char* sep = ed.spaced() ? " " : "";
@@ -438,7 +475,7 @@ class Compensator {
       const gcode::Word* w = find_word(block, kAxis[a]);
       const double inc = (w ? w->value : 0.0) + g[a] / unit_;
       const double v = ed.set(kAxis[a], inc, w ? w->value : 0.0, true);
-      cmd_[a] += static_cast<double>(repeats) * (v - (w ? w->value : 0.0));
+      cmd_[a] += static_cast<double>(repeats) * v;
     }
     if (zw) ed.set(kAxis[n], zw->value + mean_n / unit_, zw->value, false);
   }
@@ -503,7 +540,10 @@ class Compensator {
             std::vector<std::string>& pieces, std::string& before) {
     const gcode::Motion& m = motions_[0];
     auto& pts = points_[0];
-    if (pts.empty()) return false;  // zero-length: the commanded point does not move
+    if (pts.empty()) {  // zero-length: the commanded point does not move
+      hold(block, ed);
+      return false;
+    }
     const bool arc = m.kind == gcode::MotionKind::arc;
     const MotionPath path(m);
     const double len = path.length();
@@ -746,7 +786,8 @@ class Compensator {
   // feed ending at last_end_ (else empty): a feed starting there with the
   // same directions needs no new solution of its start.
   std::optional<std::array<std::int8_t, 3>> last_dir_;
-  bool feed_set_ = false;  // an F word was seen before the block
+  bool feed_set_ = false;                               // an F word was seen before the block
+  std::array<std::int8_t, 3> last_point_dir_{0, 0, 0};  // of the last fragment point
   // G91 canned cycles: their R is relative to the initial level, the height
   // where the cycle sequence began, which carries that point's correction
   // along the drill axis (mm); the depth word takes it out.
