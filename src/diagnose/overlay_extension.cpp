@@ -17,12 +17,22 @@ model::ModelKind other_of(model::ModelKind k) {
 
 }  // namespace
 
-OverlayExtension::OverlayExtension(Overlay overlay, const machine::Machine& machine)
+OverlayExtension::OverlayExtension(Overlay overlay, const machine::Machine& machine,
+                                   std::optional<double> fixed_time_s)
     : overlay_(std::move(overlay)),
+      fixed_time_s_(fixed_time_s),
       base_(machine, kind_of(overlay_)),
       other_(machine, other_of(kind_of(overlay_))) {
   needs_models_ = std::any_of(overlay_.terms.begin(), overlay_.terms.end(),
                               [](const Term& t) { return t.kind == TermKind::model_choice; });
+}
+
+bool OverlayExtension::time_dependent() const {
+  return std::any_of(overlay_.terms.begin(), overlay_.terms.end(), [](const Term& t) {
+    return t.kind == TermKind::thermal_drift ||
+           (t.kind == TermKind::unexplained &&
+            std::find(t.vars.begin(), t.vars.end(), 3) != t.vars.end());
+  });
 }
 
 PointContext OverlayExtension::context(const model::EvalPoint& point,
@@ -30,7 +40,7 @@ PointContext OverlayExtension::context(const model::EvalPoint& point,
   PointContext pc;
   pc.p = point.p;
   pc.s = point.p + Eigen::Vector3d(0.0, 0.0, point.tool_length);
-  pc.t = point.time;
+  pc.t = fixed_time_s_ ? *fixed_time_s_ : point.time;
   for (std::size_t k = 0; k < 3; ++k) pc.dir[k] = point.dir[k];
   // The component tables are the same for every model kind: ε_j is the
   // lookup the extended model has just made.
@@ -48,9 +58,10 @@ Eigen::Vector3d OverlayExtension::extra_um(const model::EvalPoint& point, const 
 }
 
 model::ErrorModel extend_model(const model::ErrorModel& model, const machine::Machine& machine,
-                               const std::string& overlay_file) {
+                               const std::string& overlay_file,
+                               std::optional<double> fixed_time_s) {
   return model.with_extension(
-      std::make_shared<const OverlayExtension>(Overlay::load(overlay_file), machine));
+      std::make_shared<const OverlayExtension>(Overlay::load(overlay_file), machine, fixed_time_s));
 }
 
 }  // namespace abbe::diagnose

@@ -63,6 +63,20 @@ if(plain LESS 5.5 OR plain GREATER 7.5)
   message(FATAL_ERROR "plain program with --extend: max ${plain} µm, expected 6.5 ± 1 µm")
 endif()
 
+# An overlay made by `abbe diagnose` from the sample measurement (a cyclic
+# term and smooth functions, one of them of the campaign time t, evaluated
+# at --extend-time, default 0 s, by compensate and verify alike).
+run(${ABBE} -q diagnose --machine ${MACHINE} --measured ${SRC}/machines/sample/measured-grid.csv
+    --overlay ${WORK}/diagnosed.yaml)
+file(READ ${WORK}/diagnosed.yaml diagnosed)
+if(NOT diagnosed MATCHES "term: cyclic")
+  message(FATAL_ERROR "the diagnosed overlay has no cyclic term:\n${diagnosed}")
+endif()
+run(${ABBE} compensate ${PROGRAM} --machine ${MACHINE} --extend ${WORK}/diagnosed.yaml
+    -o ${WORK}/diagnosed.ngc)
+verify_max(diag ${WORK}/diagnosed.ngc --against ${PROGRAM} --machine ${MACHINE}
+           --extend ${WORK}/diagnosed.yaml --tol 1 --check)
+
 # A bad overlay is refused naming the file and field; no output is written.
 file(WRITE ${WORK}/bad.yaml "format: abbe-overlay-1\neffects:\n  - term: scale\n    axis: Q\n")
 expect_failure("bad.yaml:4" ${ABBE} compensate ${PROGRAM} --machine ${MACHINE}

@@ -141,6 +141,33 @@ effects:
   }
 }
 
+// Time-dependent terms: at the point's time by default, at one campaign
+// time with fixed_time_s (compensate and verify).
+TEST(ErrorExtension, TimeDependentTermsAtTheFixedTime) {
+  const machine::Machine m = machine::Machine::load(kZero);
+  // thermal_drift X→X, τ = 0: coef·t/3600 µm (µm per hour).
+  const auto ov = diagnose::Overlay::parse(R"(format: abbe-overlay-1
+model: ae-arm
+effects:
+  - {term: thermal_drift, axis: X, direction: X, tau_s: 0, coef: [6]}
+)",
+                                           "<overlay>");
+  const diagnose::OverlayExtension along(ov, m), fixed(ov, m, 1800.0);
+  EXPECT_TRUE(along.time_dependent());
+  EXPECT_FALSE(diagnose::OverlayExtension(diagnose::Overlay::parse(kLinearOverlay, "<o>"), m)
+                   .time_dependent());
+  const model::ErrorModel plain(m, model::ModelKind::ae_arm);
+  model::ModelData data;
+  for (double t : {0.0, 600.0, 7200.0}) {
+    model::EvalPoint p;
+    p.p = Eigen::Vector3d(-400.0, -200.0, -300.0);
+    p.time = t;
+    const model::Deviation d = plain.evaluate(p, data);
+    EXPECT_NEAR(along.extra_um(p, d, data).x(), 6.0 * t / 3600.0, 1e-12);
+    EXPECT_NEAR(fixed.extra_um(p, d, data).x(), 3.0, 1e-12);
+  }
+}
+
 TEST(ErrorExtension, CompensatedPointMovesByMinusTheTerm) {
   const auto ov = diagnose::Overlay::parse(kLinearOverlay, "<overlay>");
   // All-zero tables: the extension is the whole error, c = n − extra exactly.

@@ -29,7 +29,8 @@ struct CompensateCliOptions {
   std::string machine;
   std::string model = "ae-arm";
   std::string output;
-  std::string extend;  // overlay of effects found by `abbe diagnose` (docs/compensation.md)
+  std::string extend;        // overlay of effects found by `abbe diagnose` (docs/compensation.md)
+  double extend_time = 0.0;  // campaign time (s) for time-dependent overlay terms
   compensate::CompensateOptions c;
   bool in_place = false;
   bool allow_unconverged = false;
@@ -60,7 +61,7 @@ int run_compensate(CompensateCliOptions o, const GlobalOptions& g) {
     throw InputError({"<command line>", 0, 0, "--model", ""},
                      fmt::format("unknown model \"{}\" (htm, ae-arm or dual)", o.model));
   model::ErrorModel model(machine, *kind);
-  if (!o.extend.empty()) model = diagnose::extend_model(model, machine, o.extend);
+  if (!o.extend.empty()) model = diagnose::extend_model(model, machine, o.extend, o.extend_time);
   const gcode::InterpreterConfig config = machine::interpreter_config(machine);
 
   std::ifstream in(o.input, std::ios::binary);
@@ -119,6 +120,9 @@ const CommandRegistrar registrar(
       sub.add_option("--extend", o->extend,
                      "Compensate the extended model: add the effects of an overlay written by "
                      "`abbe diagnose --overlay`");
+      sub.add_option("--extend-time", o->extend_time,
+                     "Campaign time (s) at which time-dependent overlay terms are evaluated")
+          ->capture_default_str();
       sub.add_option("--tol", o->c.tol_um,
                      "Allowed predicted deviation from the nominal path, µm (splits moves)")
           ->check(CLI::PositiveNumber)

@@ -26,7 +26,8 @@ struct VerifyCliOptions {
   std::string against;
   std::string machine;
   std::string model = "ae-arm";
-  std::string extend;  // overlay of effects found by `abbe diagnose`
+  std::string extend;        // overlay of effects found by `abbe diagnose`
+  double extend_time = 0.0;  // campaign time (s) for time-dependent overlay terms
   double tol_um = 1.0;
   bool check = false;
   compensate::VerifyOptions v;
@@ -47,7 +48,7 @@ int run_verify(const VerifyCliOptions& o, const GlobalOptions& g) {
     throw InputError({"<command line>", 0, 0, "--model", ""},
                      fmt::format("unknown model \"{}\" (htm, ae-arm or dual)", o.model));
   model::ErrorModel model(machine, *kind);
-  if (!o.extend.empty()) model = diagnose::extend_model(model, machine, o.extend);
+  if (!o.extend.empty()) model = diagnose::extend_model(model, machine, o.extend, o.extend_time);
   const gcode::InterpreterConfig config = machine::interpreter_config(machine);
   compensate::VerifyOptions vo = o.v;
   vo.tol_um = o.tol_um;
@@ -96,6 +97,9 @@ const CommandRegistrar registrar(
       sub.add_option("--extend", o->extend,
                      "Predict with the extended model: add the effects of an overlay written by "
                      "`abbe diagnose --overlay`");
+      sub.add_option("--extend-time", o->extend_time,
+                     "Campaign time (s) at which time-dependent overlay terms are evaluated")
+          ->capture_default_str();
       sub.add_option("--tol", o->tol_um, "Tolerance, µm")
           ->check(CLI::PositiveNumber)
           ->capture_default_str();
