@@ -298,7 +298,7 @@ class Compensator {
   // rapid; after a canned cycle (whose clearance moves keep their nominal
   // height) the corrected point, a move of a few µm (written and changed
   // axes, as for a rapid).
-  void hold(const gcode::Block& block, BlockEditor& ed) {
+  void hold(BlockEditor& ed) {
     const gcode::Motion& m = motions_[0];
     path::PathPoint pp;
     pp.p = m.end;
@@ -313,7 +313,7 @@ class Compensator {
 
   void rapid(const gcode::Block& block, BlockEditor& ed, bool g53) {
     if (points_[0].empty()) {  // zero-length
-      if (!g53) hold(block, ed);
+      if (!g53) hold(ed);
       return;
     }
     const Vector3d d = solve(points_[0].back());
@@ -541,7 +541,7 @@ class Compensator {
     const gcode::Motion& m = motions_[0];
     auto& pts = points_[0];
     if (pts.empty()) {  // zero-length: the commanded point does not move
-      hold(block, ed);
+      hold(ed);
       return false;
     }
     const bool arc = m.kind == gcode::MotionKind::arc;
