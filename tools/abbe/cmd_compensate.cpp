@@ -12,7 +12,6 @@
 #include <string>
 
 #include "abbe/compensate/program_compensator.hpp"
-#include "abbe/diagnose/overlay_extension.hpp"
 #include "abbe/io/atomic_file.hpp"
 #include "abbe/io/input_error.hpp"
 #include "abbe/io/progress.hpp"
@@ -20,6 +19,7 @@
 #include "abbe/machine/machine.hpp"
 #include "abbe/model/error_model.hpp"
 #include "command.hpp"
+#include "extend_option.hpp"
 
 namespace abbe::cli {
 namespace {
@@ -61,7 +61,7 @@ int run_compensate(CompensateCliOptions o, const GlobalOptions& g) {
     throw InputError({"<command line>", 0, 0, "--model", ""},
                      fmt::format("unknown model \"{}\" (htm, ae-arm or dual)", o.model));
   model::ErrorModel model(machine, *kind);
-  if (!o.extend.empty()) model = diagnose::extend_model(model, machine, o.extend, o.extend_time);
+  if (!o.extend.empty()) model = extend_with_overlay(model, machine, o.extend, o.extend_time);
   const gcode::InterpreterConfig config = machine::interpreter_config(machine);
 
   std::ifstream in(o.input, std::ios::binary);

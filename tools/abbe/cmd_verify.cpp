@@ -10,13 +10,13 @@
 #include <string>
 
 #include "abbe/compensate/path_verifier.hpp"
-#include "abbe/diagnose/overlay_extension.hpp"
 #include "abbe/io/input_error.hpp"
 #include "abbe/io/progress.hpp"
 #include "abbe/machine/interpreter_setup.hpp"
 #include "abbe/machine/machine.hpp"
 #include "abbe/model/error_model.hpp"
 #include "command.hpp"
+#include "extend_option.hpp"
 
 namespace abbe::cli {
 namespace {
@@ -48,7 +48,7 @@ int run_verify(const VerifyCliOptions& o, const GlobalOptions& g) {
     throw InputError({"<command line>", 0, 0, "--model", ""},
                      fmt::format("unknown model \"{}\" (htm, ae-arm or dual)", o.model));
   model::ErrorModel model(machine, *kind);
-  if (!o.extend.empty()) model = diagnose::extend_model(model, machine, o.extend, o.extend_time);
+  if (!o.extend.empty()) model = extend_with_overlay(model, machine, o.extend, o.extend_time);
   const gcode::InterpreterConfig config = machine::interpreter_config(machine);
   compensate::VerifyOptions vo = o.v;
   vo.tol_um = o.tol_um;
