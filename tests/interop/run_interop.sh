@@ -196,6 +196,19 @@ compensated_check() {
   local result
   result=$("$comp_compare" "$sample_machine" "$f" "$out/$i.rs274" "$out/$i.comp.rs274")
   rc=$?
+  if [ $rc = 0 ] && [ "$name" = nc-samples/thesis-toolpath-1.ngc ]; then
+    # The check must be able to fail: the last feed end moved by 1 µm (X).
+    awk '{ a[NR] = $0 } /STRAIGHT_FEED\(/ { last = NR } END {
+           for (k = 1; k <= NR; k++) {
+             if (k == last) { split(a[k], p, "("); split(p[2], q, ",");
+               sub(q[1] ",", sprintf("%.4f,", q[1] + 0.001), a[k]) }
+             print a[k] } }' "$out/$i.comp.rs274" >"$out/$i.comp-off.rs274"
+    if cmp -s "$out/$i.comp.rs274" "$out/$i.comp-off.rs274" ||
+      "$comp_compare" "$sample_machine" "$f" "$out/$i.rs274" "$out/$i.comp-off.rs274" >/dev/null; then
+      status=1
+      echo "interop: compensated_compare accepts an end point 1 µm off ($name)"
+    fi
+  fi
   cclass=${result%%$'\t'*}
   ccount[$cclass]=$((${ccount[$cclass]:-0} + 1))
   printf '%s\t%s\n' "$name" "$result" >>"$comp_rows"
