@@ -26,8 +26,8 @@ MotionPath::MotionPath(const gcode::Motion& m)
   const int a = ax_[0], b = ax_[1], n = ax_[2];
   const double us = start_[a] - center_[a], vs = start_[b] - center_[b];
   const double ue = end_[a] - center_[a], ve = end_[b] - center_[b];
-  r0_ = std::hypot(us, vs);
-  r1_ = std::hypot(ue, ve);
+  r0_ = std::sqrt(us * us + vs * vs);  // no overflow at machine sizes: no hypot
+  r1_ = std::sqrt(ue * ue + ve * ve);
   theta0_ = std::atan2(vs, us);
   const double two_pi = 2.0 * M_PI;
   double d = std::atan2(ve, ue) - theta0_;
@@ -43,7 +43,8 @@ MotionPath::MotionPath(const gcode::Motion& m)
   }
   sweep_ = d;
   const double planar = std::abs(sweep_) * 0.5 * (r0_ + r1_);
-  length_ = std::hypot(planar, end_[n] - start_[n]);
+  const double h = end_[n] - start_[n];
+  length_ = std::sqrt(planar * planar + h * h);
 }
 
 Eigen::Vector3d MotionPath::at(double t) const {
@@ -86,23 +87,30 @@ double MotionPath::distance_near(const Eigen::Vector3d& q) const {
   const double h = end_[n] - start_[n];
   if (h == 0.0) {
     const double r = r0_ + t * (r1_ - r0_);
-    return std::hypot(std::hypot(ua, ub) - r, q[n] - start_[n]);
+    const double dr = std::sqrt(ua * ua + ub * ub) - r, dn = q[n] - start_[n];
+    return std::sqrt(dr * dr + dn * dn);
   }
-  // A helix: its tangent has a normal component; Newton steps on
-  // (p(t) − q)·p'(t) from the angle's parameter.
+  // A helix: its tangent has a normal component; a Newton step on
+  // (p(t) − q)·p'(t) from the angle's parameter (which is off by the
+  // offset's share along the tangent only: one step leaves a second-order
+  // error), then the distance there.
   const double dr = r1_ - r0_;
-  for (int it = 0; it < 2; ++it) {
-    const double th = theta0_ + t * sweep_;
-    const double c = std::cos(th), s = std::sin(th);
-    const double r = r0_ + t * dr;
-    const double va = center_[a] + r * c - q[a], vb = center_[b] + r * s - q[b];
-    const double vn = start_[n] + t * h - q[n];
-    const double da = dr * c - r * sweep_ * s, db = dr * s + r * sweep_ * c;
-    const double g = va * da + vb * db + vn * h;
-    const double gp = da * da + db * db + h * h;
-    t = std::clamp(t - g / gp, 0.0, 1.0);
-  }
-  return (at(t) - q).norm();
+  auto offset = [&](double tt, double& c, double& s) {
+    const double th = theta0_ + tt * sweep_;
+    c = std::cos(th);
+    s = std::sin(th);
+    const double r = r0_ + tt * dr;
+    return Eigen::Vector3d(center_[a] + r * c - q[a], center_[b] + r * s - q[b],
+                           start_[n] + tt * h - q[n]);
+  };
+  double c = 0.0, s = 0.0;
+  Eigen::Vector3d v = offset(t, c, s);  // (a, b, n) components
+  const double r = r0_ + t * dr;
+  const double da = dr * c - r * sweep_ * s, db = dr * s + r * sweep_ * c;
+  const double g = v[0] * da + v[1] * db + v[2] * h;
+  t = std::clamp(t - g / (da * da + db * db + h * h), 0.0, 1.0);
+  v = offset(t, c, s);
+  return v.norm();
 }
 
 double MotionPath::distance(const Eigen::Vector3d& q) const { return (at(closest(q)) - q).norm(); }

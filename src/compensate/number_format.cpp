@@ -62,6 +62,12 @@ double round_to(double value, int decimals) {
 }
 
 std::string format_number(double value, const NumberStyle& style, int max_decimals) {
+  std::string t;
+  append_number(t, value, style, max_decimals);
+  return t;
+}
+
+void append_number(std::string& out, double value, const NumberStyle& style, int max_decimals) {
   const int places = std::max(style.decimals, max_decimals);
   std::string t;
   if (!fixed_text(value, places, t)) t = fmt::format("{:.{}f}", round_to(value, places), places);
@@ -79,8 +85,8 @@ std::string format_number(double value, const NumberStyle& style, int max_decima
     else if (t.rfind("-0.", 0) == 0)
       t.erase(1, 1);
   }
-  if (style.plus_sign && t[0] != '-') t.insert(0, "+");
-  return t;
+  if (style.plus_sign && t[0] != '-') out += '+';
+  out += t;  // short: in the string's own buffer, no allocation
 }
 
 }  // namespace abbe::compensate

@@ -31,11 +31,11 @@ bool has_g(const gcode::Block& b, double code) {
   return false;
 }
 
-// Appends "<sep><letter><number>" to `line`.
-void append_word(std::string& line, const char* sep, char letter, const std::string& number) {
+// Appends "<sep><letter><value>" in the default number style.
+void append_word(std::string& line, const char* sep, char letter, double value, int decimals) {
   line += sep;
   line += letter;
-  line += number;
+  append_number(line, value, NumberStyle{}, decimals);
 }
 
 const gcode::Word* find_word(const gcode::Block& b, char letter) {
@@ -442,13 +442,12 @@ class Compensator {
         for (int i = 0; i < 2; ++i) {
           const int a = ax[static_cast<std::size_t>(i)];
           const double v = round_to(h[a] - cmd_[a], decimals_);
-          append_word(line, line.empty() ? "" : sep, kAxis[a],
-                      format_number(v, NumberStyle{}, decimals_));
+          append_word(line, line.empty() ? "" : sep, kAxis[a], v, decimals_);
           cmd_[a] += v;
         }
         const double z = round_to(cc_k, decimals_);
         if (z != round_to(cc_written, decimals_)) {
-          append_word(line, sep, kAxis[n], format_number(z, NumberStyle{}, decimals_));
+          append_word(line, sep, kAxis[n], z, decimals_);
           cc_written = z;
         }
         pieces.push_back(line);
@@ -685,8 +684,7 @@ class Compensator {
           } else if (!write) {
             continue;
           }
-          append_word(line, line.empty() ? "" : sep, kAxis[k],
-                      format_number(v, NumberStyle{}, decimals_));
+          append_word(line, line.empty() ? "" : sep, kAxis[k], v, decimals_);
           cmd_[k] = incremental_ ? cmd_[k] + v : v;
         }
         if (arc) arc_words(ed, block, m, ax, centre, sp[a], sp[b], start_cmd, r_form, &line);
@@ -719,7 +717,7 @@ class Compensator {
       const bool write = incremental_ ? v != 0.0 : v != round_to(cmd_[k], decimals_);
       if (!write) continue;
       any = true;
-      append_word(line, spaced ? " " : "", kAxis[k], format_number(v, NumberStyle{}, decimals_));
+      append_word(line, spaced ? " " : "", kAxis[k], v, decimals_);
       cmd_[k] = incremental_ ? cmd_[k] + v : v;
     }
     return any ? line : std::string();
@@ -744,7 +742,7 @@ class Compensator {
         const gcode::Word* w = find_word(block, 'R');
         ed.set('R', rv, w->value, false);
       } else {
-        append_word(*line, sep, 'R', format_number(rv, NumberStyle{}, decimals_));
+        append_word(*line, sep, 'R', rv, decimals_);
       }
       return;
     }
@@ -755,7 +753,7 @@ class Compensator {
       if (!line) {
         ed.set(kCentre[i], value, 0.0, true);
       } else {
-        append_word(*line, sep, kCentre[i], format_number(value, NumberStyle{}, decimals_));
+        append_word(*line, sep, kCentre[i], value, decimals_);
       }
     }
   }

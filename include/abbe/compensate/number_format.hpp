@@ -20,6 +20,8 @@ NumberStyle number_style(std::string_view text);
 
 // `value` rounded to `max_decimals` (≥ style.decimals) in the given style.
 std::string format_number(double value, const NumberStyle& style, int max_decimals);
+// The same appended to `out`.
+void append_number(std::string& out, double value, const NumberStyle& style, int max_decimals);
 
 // `value` rounded to `decimals` places (the number the text above represents).
 double round_to(double value, int decimals);
