@@ -34,26 +34,6 @@ double power_of_ten(int decimals) {
   return decimals >= 0 && decimals < 16 ? kPow[decimals] : std::pow(10.0, decimals);
 }
 
-// The digits of round(|value|·10^places) with the decimal point placed:
-// what "{:.{places}f}" prints for round_to(value, places), without fmt.
-bool fixed_text(double value, int places, std::string& t) {
-  const double scaled = std::round(std::abs(value) * power_of_ten(places));
-  if (!(scaled < 9e15) || places > 15) return false;
-  auto k = static_cast<unsigned long long>(scaled);
-  char digits[40];
-  int n = 0;
-  do {
-    digits[n++] = static_cast<char>('0' + k % 10);
-    k /= 10;
-  } while (k > 0 || n <= places);
-  t.clear();
-  if (value < 0.0) t.push_back('-');
-  for (int i = n - 1; i >= 0; --i) {
-    t.push_back(digits[i]);
-    if (i == places && places > 0) t.push_back('.');
-  }
-  return true;
-}
 }  // namespace
 
 double round_to(double value, int decimals) {
@@ -69,8 +49,33 @@ std::string format_number(double value, const NumberStyle& style, int max_decima
 
 void append_number(std::string& out, double value, const NumberStyle& style, int max_decimals) {
   const int places = std::max(style.decimals, max_decimals);
-  std::string t;
-  if (!fixed_text(value, places, t)) t = fmt::format("{:.{}f}", round_to(value, places), places);
+  const double scaled = std::round(std::abs(value) * power_of_ten(places));
+  if (scaled < 9e15 && places <= 15) {  // the digits of the rounded integer, placed
+    auto k = static_cast<unsigned long long>(scaled);
+    int shown = places;  // trailing zeros beyond the number's own decimals go
+    while (shown > style.decimals && k % 10 == 0) {
+      k /= 10;
+      --shown;
+    }
+    char digits[40];
+    int n = 0;
+    do {
+      digits[n++] = static_cast<char>('0' + k % 10);
+      k /= 10;
+    } while (k > 0 || n <= shown);
+    if (scaled > 0.0 && value < 0.0)
+      out += '-';  // no negative zero
+    else if (style.plus_sign)
+      out += '+';
+    // digits[shown..n-1]: the integer part, digits[0..shown-1] the decimals.
+    const bool bare = !style.leading_zero && shown > 0 && n - 1 == shown && digits[shown] == '0';
+    for (int i = n - 1; i >= shown; --i)
+      if (!bare) out += digits[i];
+    if (shown > 0) out += '.';
+    for (int i = shown - 1; i >= 0; --i) out += digits[i];
+    return;
+  }
+  std::string t = fmt::format("{:.{}f}", round_to(value, places), places);
   if (t.find('.') != std::string::npos) {
     std::size_t keep = t.find('.') + static_cast<std::size_t>(style.decimals);
     while (t.size() - 1 > keep && t.back() == '0') t.pop_back();
