@@ -551,7 +551,8 @@ class Compensator {
     // tables switch there. Those within kNearReversal of an end count as at
     // that end: directions are taken at t clamped into [lo, hi].
     const double lo = path.near_lo(kNearReversal), hi = path.near_hi(kNearReversal);
-    std::vector<double> reversals;
+    auto& reversals = reversals_;
+    reversals.clear();
     if (arc) path.for_each_reversal(lo, hi, [&](double t) { reversals.push_back(t); });
     const auto dir0 = pts.front().dir;
     if (arc) {
@@ -569,8 +570,8 @@ class Compensator {
       d_start = solve_at(m, m.start, start_dir);
     const bool micro_start = 1e3 * (d_start - delta_).norm() > 0.25 * o_.tol_um;
     if (!micro_start) d_start = delta_;
-    std::vector<SolvedPoint> sp;
-    sp.reserve(pts.size() + 2 * reversals.size() + 1);
+    auto& sp = sp_;  // reused: no allocation per block
+    sp.clear();
     sp.push_back({m.start, d_start, 0.0, false, d_start, false});
     std::size_t r = 0;
     const double jump_tol = 0.25e-3 * o_.tol_um;
@@ -595,7 +596,8 @@ class Compensator {
     }
     // Greedy pieces: each as long as it stays within tol/2; a piece ends at
     // every reversal point that needs one.
-    std::vector<std::size_t> breaks;
+    auto& breaks = breaks_;
+    breaks.clear();
     bool reversal = false;
     for (const auto& x : sp) reversal = reversal || x.reversal;
     if (!reversal && piece_ok(m, sp, 0, sp.size() - 1)) breaks.push_back(sp.size() - 1);
@@ -784,7 +786,10 @@ class Compensator {
   // feed ending at last_end_ (else empty): a feed starting there with the
   // same directions needs no new solution of its start.
   std::optional<std::array<std::int8_t, 3>> last_dir_;
-  bool feed_set_ = false;                               // an F word was seen before the block
+  bool feed_set_ = false;        // an F word was seen before the block
+  std::vector<SolvedPoint> sp_;  // feed(): the solved points of the move (reused)
+  std::vector<std::size_t> breaks_;
+  std::vector<double> reversals_;
   std::array<std::int8_t, 3> last_point_dir_{0, 0, 0};  // of the last fragment point
   // G91 canned cycles: their R is relative to the initial level, the height
   // where the cycle sequence began, which carries that point's correction
