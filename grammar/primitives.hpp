@@ -53,8 +53,25 @@ struct number_parser : x3::parser<number_parser<Real>> {
   template <typename It, typename Context, typename RContext, typename Attribute>
   bool parse(It& first, It const& last, Context const&, RContext&, Attribute& attribute) const {
     static_assert(std::is_same_v<It, const char*>, "the grammar parses const char* ranges");
-    ast::Number n;
+    if constexpr (std::is_same_v<Attribute, ast::Number>) {
+      return scan(first, last, attribute);  // straight into the action's attribute
+    } else {
+      ast::Number n;
+      if (!scan(first, last, n)) return false;
+      x3::traits::move_to(n, attribute);
+      return true;
+    }
+  }
+
+ private:
+  // Matches at `first` and fills every field of n; n is garbage on failure.
+  static bool scan(const char*& first, const char* last, ast::Number& n) {
     n.begin = first;
+    n.mantissa = 0;
+    n.digits = 0;
+    n.fraction = 0;
+    n.negative = false;
+    n.point = false;
     const char* i = first;
     if constexpr (Real) {
       // Signs come in random order in a program: no branch on which one it is.
@@ -79,7 +96,6 @@ struct number_parser : x3::parser<number_parser<Real>> {
     if (n.digits == 0) return false;  // no digit: "", "+", "."
     n.end = i;
     first = i;
-    x3::traits::move_to(n, attribute);
     return true;
   }
 };

@@ -1,10 +1,12 @@
 // Throughput of the front end on an in-memory generated program (gen_program's
-// generator, 100 k blocks): parse only, parse + interpret, + fragment (5 mm),
-// + CSV formatting. Items are program lines.
+// generator, 100 k blocks): read + parse, parse_line alone, parse + interpret,
+// + fragment (5 mm), + CSV formatting. Items are program lines.
 #include <benchmark/benchmark.h>
 
 #include <sstream>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "abbe/gcode/parser.hpp"
 #include "abbe/gcode/program.hpp"
@@ -47,6 +49,28 @@ void BM_Parse(benchmark::State& state) {
   report(state, lines);
 }
 BENCHMARK(BM_Parse)->Unit(benchmark::kMillisecond);
+
+// parse_line on each line of the program, without the reader: what the
+// grammar and its actions cost alone.
+void BM_ParseLines(benchmark::State& state) {
+  const std::string& text = program();
+  std::vector<std::string_view> lines;
+  for (std::size_t at = 0; at < text.size();) {
+    std::size_t end = text.find('\n', at);
+    if (end == std::string::npos) end = text.size();
+    lines.emplace_back(text.data() + at, end - at);
+    at = end + 1;
+  }
+  const std::string file = "<bench>";
+  abbe::gcode::Block block;
+  for (auto _ : state) {
+    std::size_t n = 0;
+    for (const auto line : lines) abbe::gcode::parse_line(line, ++n, file, block);
+    benchmark::DoNotOptimize(block);
+  }
+  report(state, lines.size());
+}
+BENCHMARK(BM_ParseLines)->Unit(benchmark::kMillisecond);
 
 void BM_Interpret(benchmark::State& state) {
   std::size_t lines = 0;
