@@ -107,6 +107,15 @@ inline std::vector<Canon> read_rs274(const std::string& path, std::string& error
     const std::vector<double> v = numbers_in(call, paren + 1);
     const double res = 0.5e-4 * u;  // half of the last printed digit, mm
     auto printed_slack = [&](double value) { return value != 0.0 ? res : 0.0; };
+    // A motion carries the modal feed and tool length offset in force.
+    auto push_motion = [&](Canon& c) {
+      c.feed = feed;
+      c.feed_slack = feed_slack;
+      c.tool_length = tlo;
+      c.tool_slack = tlo_slack;
+      c.text = call;
+      out.push_back(c);
+    };
     if (name == "USE_LENGTH_UNITS") {
       u = call.find("INCHES") != std::string::npos ? 25.4 : 1.0;
     } else if (name == "SET_G5X_OFFSET" && v.size() >= 4) {
@@ -136,12 +145,7 @@ inline std::vector<Canon> read_rs274(const std::string& path, std::string& error
         c.end[a] = v.at(static_cast<std::size_t>(a)) * u + g5x[a] + g92[a];
         c.slack[a] = res + g5x_slack[a] + g92_slack[a];
       }
-      c.feed = feed;
-      c.feed_slack = feed_slack;
-      c.tool_length = tlo;
-      c.tool_slack = tlo_slack;
-      c.text = call;
-      out.push_back(c);
+      push_motion(c);
     } else if (name == "ARC_FEED" && v.size() >= 6) {
       Canon c;
       c.kind = Kind::arc;
@@ -158,12 +162,7 @@ inline std::vector<Canon> read_rs274(const std::string& path, std::string& error
         c.centre[a] += g5x[a] + g92[a];
         c.slack[a] = res + g5x_slack[a] + g92_slack[a];
       }
-      c.feed = feed;
-      c.feed_slack = feed_slack;
-      c.tool_length = tlo;
-      c.tool_slack = tlo_slack;
-      c.text = call;
-      out.push_back(c);
+      push_motion(c);
     } else if (name == "DWELL" && !v.empty()) {
       Canon c;
       c.kind = Kind::dwell;

@@ -21,8 +21,9 @@
 # Each file is classified (see docs/interop.md): matched, refused (abbe
 # stops with a clear file:line:col error; OK), rs274-refused (rs274 stops
 # with an error, abbe does not; listed), or mismatch / abbe-failed (test
-# failure). The counts and the per-file table go to stdout and into
-# docs/interop.md (or $ABBE_INTEROP_REPORT), between the result markers.
+# failure). The counts and the per-file table go to stdout and to
+# <work>/results.md; with ABBE_INTEROP_REPORT=<absolute path of docs/interop.md> (or another
+# page with the result markers) they also replace that page's results.
 #
 # The package is fetched once with `apt-get download` and unpacked into
 # WORK_DIR. Without network the test fails loudly; ABBE_SKIP_INTEROP=1 skips
@@ -276,7 +277,16 @@ if [ -n "$comp_compare" ]; then
 fi
 
 # Report: replace the results section of docs/interop.md.
-report=${ABBE_INTEROP_REPORT:-$src/docs/interop.md}
+report=${ABBE_INTEROP_REPORT:-}
+# The per-file table of a results file (name, class, motions, detail; tab-separated).
+results_table() {
+  echo "| file | result | motions | detail |"
+  echo "|---|---|---|---|"
+  while IFS=$'\t' read -r name class motions detail; do
+    detail=${detail//|/\\|}
+    echo "| $name | $class | $motions | $detail |"
+  done <"$1"
+}
 version=$(cat "$lcnc/VERSION" 2>/dev/null)
 {
   echo "<!-- interop-results-begin (written by tests/interop/run_interop.sh) -->"
@@ -287,12 +297,7 @@ version=$(cat "$lcnc/VERSION" 2>/dev/null)
   echo "|---|---|---|---|---|---|"
   echo "| $total | ${count[matched]} | ${count[refused]} | ${count[rs274-refused]} | ${count[mismatch]} | ${count[abbe-failed]} |"
   echo
-  echo "| file | result | motions | detail |"
-  echo "|---|---|---|---|"
-  while IFS=$'\t' read -r name class motions detail; do
-    detail=${detail//|/\\|}
-    echo "| $name | $class | $motions | $detail |"
-  done <"$rows"
+  results_table "$rows"
   echo
   if [ -n "$comp_compare" ]; then
     echo "Compensated programs (sample machine, ae-arm): rs274's end points against the"
@@ -302,17 +307,14 @@ version=$(cat "$lcnc/VERSION" 2>/dev/null)
     echo "|---|---|---|---|"
     echo "| ${ccount[matched]} | ${ccount[still-refused]} | ${ccount[compensate-refused]} | ${ccount[mismatch]} |"
     echo
-    echo "| file | result | motions | detail |"
-    echo "|---|---|---|---|"
-    while IFS=$'\t' read -r name class motions detail; do
-      detail=${detail//|/\\|}
-      echo "| $name | $class | $motions | $detail |"
-    done <"$comp_rows"
+    results_table "$comp_rows"
     echo
   fi
   echo "<!-- interop-results-end -->"
 } >"$work/results.md"
-if [ -f "$report" ] && grep -q 'interop-results-begin' "$report" && grep -q 'interop-results-end' "$report"; then
+if [ -z "$report" ]; then
+  echo "interop: results are in $work/results.md (ABBE_INTEROP_REPORT=/abs/path/docs/interop.md puts them into the docs)"
+elif [ -f "$report" ] && grep -q 'interop-results-begin' "$report" && grep -q 'interop-results-end' "$report"; then
   tmp="$report.tmp.$$"
   awk -v results="$work/results.md" '
     /interop-results-begin/ { while ((getline line < results) > 0) print line; skip = 1; next }
