@@ -10,6 +10,7 @@
 #include <optional>
 #include <string_view>
 
+#include "abbe/io/csv_fields.hpp"
 #include "abbe/io/input_error.hpp"
 
 namespace abbe::io {
@@ -20,24 +21,7 @@ constexpr std::array<std::string_view, 16> kNames{"x",  "y",  "z",           "dx
                                                   "nz", "dn", "tool_length", "set"};
 enum Col { cx, cy, cz, cdx, cdy, cdz, ct, cvx, cvy, cvz, cnx, cny, cnz, cdn, cl, cset };
 
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
-    s.remove_suffix(1);
-  return s;
-}
-
-// Fields with their 1-based start columns.
-std::vector<std::pair<std::string_view, std::size_t>> split(std::string_view l) {
-  std::vector<std::pair<std::string_view, std::size_t>> out;
-  std::size_t start = 0;
-  for (std::size_t i = 0; i <= l.size(); ++i)
-    if (i == l.size() || l[i] == ',') {
-      out.emplace_back(l.substr(start, i - start), start + 1);
-      start = i + 1;
-    }
-  return out;
-}
+std::string_view trim(std::string_view s) { return trim_blanks(s); }
 
 }  // namespace
 
@@ -66,12 +50,12 @@ MeasuredData read_measured_data(std::istream& in, const std::string& file) {
   }
   std::array<int, kNames.size()> col;
   col.fill(-1);
-  const auto names = split(line);
+  const auto names = split_csv_line(line);
   for (std::size_t i = 0; i < names.size(); ++i) {
-    const std::string_view n = trim(names[i].first);
+    const std::string_view n = trim(names[i].text);
     for (std::size_t k = 0; k < kNames.size(); ++k)
       if (n == kNames[k]) {
-        if (col[k] >= 0) fail(names[i].second, n, fmt::format("column `{}` appears twice", n));
+        if (col[k] >= 0) fail(names[i].column, n, fmt::format("column `{}` appears twice", n));
         col[k] = static_cast<int>(i);
       }
   }
@@ -90,8 +74,8 @@ MeasuredData read_measured_data(std::istream& in, const std::string& file) {
   while (std::getline(in, line)) {
     ++line_no;
     if (trim(line).empty() || trim(line).front() == '#') continue;
-    const auto fields = split(line);
-    auto text = [&](int k) -> std::optional<std::pair<std::string_view, std::size_t>> {
+    const auto fields = split_csv_line(line);
+    auto text = [&](int k) -> std::optional<CsvField> {  // trimmed
       const int c = col[static_cast<std::size_t>(k)];
       if (c < 0) return std::nullopt;
       const auto uc = static_cast<std::size_t>(c);
@@ -99,20 +83,20 @@ MeasuredData read_measured_data(std::istream& in, const std::string& file) {
         fail(line.size() + 1, kNames[static_cast<std::size_t>(k)],
              fmt::format("{} fields, but `{}` is column {}", fields.size(),
                          kNames[static_cast<std::size_t>(k)], uc + 1));
-      const std::string_view t = trim(fields[uc].first);
+      const std::string_view t = trim(fields[uc].text);
       if (t.empty()) return std::nullopt;
-      return std::make_pair(t, fields[uc].second);
+      return CsvField{t, fields[uc].column};
     };
     auto number = [&](int k) -> std::optional<double> {
       auto f = text(k);
       if (!f) return std::nullopt;
-      std::string_view t = f->first;
+      std::string_view t = f->text;
       const char* b = t.data();
       if (*b == '+') ++b;
       double v = 0.0;
       auto [ptr, ec] = std::from_chars(b, t.data() + t.size(), v);
       if (ec != std::errc() || ptr != t.data() + t.size() || !std::isfinite(v))
-        fail(f->second, kNames[static_cast<std::size_t>(k)],
+        fail(f->column, kNames[static_cast<std::size_t>(k)],
              fmt::format("\"{}\" is not a finite number", t));
       return v;
     };
@@ -122,14 +106,14 @@ MeasuredData read_measured_data(std::istream& in, const std::string& file) {
       auto v = number(cx + k);
       if (!v) {
         const auto c = static_cast<std::size_t>(col[static_cast<std::size_t>(cx + k)]);
-        fail(c < fields.size() ? fields[c].second : 1, kNames[static_cast<std::size_t>(cx + k)],
+        fail(c < fields.size() ? fields[c].column : 1, kNames[static_cast<std::size_t>(cx + k)],
              "empty coordinate (x, y and z are required on every row)");
       }
       r.p[k] = *v;
       if (auto d = number(cdx + k)) r.d[static_cast<std::size_t>(k)] = *d;
       if (auto s = number(cvx + k)) {
         if (*s != -1.0 && *s != 0.0 && *s != 1.0)
-          fail(text(cvx + k)->second, kNames[static_cast<std::size_t>(cvx + k)],
+          fail(text(cvx + k)->column, kNames[static_cast<std::size_t>(cvx + k)],
                "the direction of motion must be -1, 0 or 1");
         r.v[static_cast<std::size_t>(k)] = static_cast<std::int8_t>(*s);
       }
@@ -137,11 +121,11 @@ MeasuredData read_measured_data(std::istream& in, const std::string& file) {
     }
     if (auto t = number(ct)) r.t = *t;
     if (auto l = number(cl)) r.tool_length = *l;
-    if (auto s = text(cset)) r.set = std::string(s->first);
+    if (auto s = text(cset)) r.set = std::string(s->text);
     if (auto dn = number(cdn)) {
       const double norm = r.n.norm();
       if (std::abs(norm - 1.0) > 1e-3)
-        fail(text(cdn)->second, "dn",
+        fail(text(cdn)->column, "dn",
              fmt::format("the normal (nx, ny, nz) must be a unit vector (|n| = {:.6g})", norm));
       r.n /= norm;
       r.dn = *dn;

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string_view>
 
+#include "abbe/io/csv_fields.hpp"
 #include "abbe/io/input_error.hpp"
 
 namespace abbe::machine {
@@ -18,12 +19,7 @@ namespace {
 constexpr std::array<std::string_view, 5> kColumns{"axis", "component", "position_mm", "direction",
                                                    "value"};
 
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
-    s.remove_suffix(1);
-  return s;
-}
+std::string_view trim(std::string_view s) { return io::trim_blanks(s); }
 
 struct Field {
   std::string_view text;

@@ -19,18 +19,15 @@
 #include "abbe/machine/machine.hpp"
 #include "abbe/model/error_model.hpp"
 #include "command.hpp"
-#include "extend_option.hpp"
+#include "model_option.hpp"
 
 namespace abbe::cli {
 namespace {
 
 struct CompensateCliOptions {
   std::string input;
-  std::string machine;
-  std::string model = "ae-arm";
+  ModelOptions m;
   std::string output;
-  std::string extend;        // overlay of effects found by `abbe diagnose` (docs/compensation.md)
-  double extend_time = 0.0;  // campaign time (s) for time-dependent overlay terms
   compensate::CompensateOptions c;
   bool in_place = false;
   bool allow_unconverged = false;
@@ -55,13 +52,8 @@ int run_compensate(CompensateCliOptions o, const GlobalOptions& g) {
     throw InputError({"<command line>", 0, 0, "-o", ""},
                      "the output is the input: give --in-place to replace it");
   }
-  const machine::Machine machine = machine::Machine::load(o.machine);
-  const auto kind = model::parse_model_kind(o.model);
-  if (!kind)
-    throw InputError({"<command line>", 0, 0, "--model", ""},
-                     fmt::format("unknown model \"{}\" (htm, ae-arm or dual)", o.model));
-  model::ErrorModel model(machine, *kind);
-  if (!o.extend.empty()) model = extend_with_overlay(model, machine, o.extend, o.extend_time);
+  const machine::Machine machine = machine::Machine::load(o.m.machine);
+  const model::ErrorModel model = make_model(o.m, machine);
   const gcode::InterpreterConfig config = machine::interpreter_config(machine);
 
   std::ifstream in(o.input, std::ios::binary);
@@ -112,17 +104,10 @@ const CommandRegistrar registrar(
     [](CLI::App& sub, const GlobalOptions& g) -> CommandAction {
       auto o = std::make_shared<CompensateCliOptions>();
       sub.add_option("input", o->input, "NC program")->required();
-      sub.add_option("--machine", o->machine, "Machine file (YAML, docs/formats.md)")->required();
-      sub.add_option("--model", o->model, "Error model: htm, ae-arm or dual")
-          ->check(CLI::IsMember({"htm", "ae-arm", "dual"}))
-          ->capture_default_str();
       sub.add_option("-o,--output", o->output, "Output program (written atomically), - for stdout");
-      sub.add_option("--extend", o->extend,
-                     "Compensate the extended model: add the effects of an overlay written by "
-                     "`abbe diagnose --overlay`");
-      sub.add_option("--extend-time", o->extend_time,
-                     "Campaign time (s) at which time-dependent overlay terms are evaluated")
-          ->capture_default_str();
+      add_model_options(sub, o->m,
+                        "Compensate the extended model: add the effects of an overlay written by "
+                        "`abbe diagnose --overlay`");
       sub.add_option("--tol", o->c.tol_um,
                      "Allowed predicted deviation from the nominal path, µm (splits moves)")
           ->check(CLI::PositiveNumber)

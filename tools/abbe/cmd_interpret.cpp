@@ -10,8 +10,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -23,6 +21,7 @@
 #include "abbe/machine/interpreter_setup.hpp"
 #include "abbe/machine/machine.hpp"
 #include "command.hpp"
+#include "input_stream.hpp"
 #include "interpreter_options.hpp"
 
 namespace abbe::cli {
@@ -104,17 +103,8 @@ void append_canon(fmt::memory_buffer& out, const gcode::Motion& m) {
 
 int run_interpret(const InterpretOptions& o) {
   const gcode::InterpreterConfig config = make_config(o);
-  std::ifstream file;
-  std::istream* in = &std::cin;
-  if (o.program != "-") {
-    file.open(o.program, std::ios::binary);
-    if (!file) {
-      SourceLocation where;
-      where.file = o.program;
-      throw InputError(where, std::string("cannot open NC program: ") + std::strerror(errno));
-    }
-    in = &file;
-  }
+  InputStream input(o.program, "NC program");
+  std::istream* in = &input.stream();
 
   std::array<std::size_t, 4> by_kind{};
   fmt::memory_buffer out;

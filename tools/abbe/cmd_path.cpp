@@ -6,8 +6,6 @@
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
-#include <cstring>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -23,6 +21,7 @@
 #include "abbe/machine/machine.hpp"
 #include "abbe/path/fragmenter.hpp"
 #include "command.hpp"
+#include "input_stream.hpp"
 #include "interpreter_options.hpp"
 
 namespace abbe::cli {
@@ -61,18 +60,9 @@ int run_path(const PathOptions& o, const GlobalOptions& g) {
   const gcode::InterpreterConfig config = make_config(o);
   const io::PathFormat format = io::parse_path_format(o.format);
 
-  std::ifstream file;
-  std::istream* in = &std::cin;
-  const bool from_stdin = o.program == "-";
-  if (!from_stdin) {
-    file.open(o.program, std::ios::binary);
-    if (!file) {
-      SourceLocation where;
-      where.file = o.program;
-      throw InputError(where, std::string("cannot open NC program: ") + std::strerror(errno));
-    }
-    in = &file;
-  }
+  InputStream input(o.program, "NC program");
+  std::istream* in = &input.stream();
+  const bool from_stdin = input.from_stdin();
 
   path::FragmentOptions fragment_options;
   fragment_options.step = o.step;
@@ -85,7 +75,7 @@ int run_path(const PathOptions& o, const GlobalOptions& g) {
   auto tick = [&] {
     if (!progress.active() || (++seen & 4095) != 0) return;
     if (from_stdin) return progress.update(seen);
-    const auto pos = file.tellg();
+    const auto pos = input.position();
     if (pos >= 0) progress.update(static_cast<std::uint64_t>(pos));
   };
 

@@ -11,7 +11,6 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -23,6 +22,7 @@
 #include "abbe/diagnose/overlay_extension.hpp"
 #include "abbe/gcode/program.hpp"
 #include "abbe/io/atomic_file.hpp"
+#include "abbe/io/csv_fields.hpp"
 #include "abbe/io/input_error.hpp"
 #include "abbe/io/path_writer.hpp"
 #include "abbe/io/progress.hpp"
@@ -31,6 +31,7 @@
 #include "abbe/model/error_model.hpp"
 #include "abbe/path/fragmenter.hpp"
 #include "command.hpp"
+#include "input_stream.hpp"
 
 namespace abbe::cli {
 namespace {
@@ -77,13 +78,13 @@ class PointReader {
       : in_(in), file_(std::move(file)), default_l_(default_tool_length) {
     if (!next_line())
       throw InputError({file_, 1, 1, "header", ""}, "empty points file: a header is required");
-    auto names = split(line_);
+    auto names = io::split_csv_line(line_);
     for (std::size_t i = 0; i < names.size(); ++i) {
-      std::string_view n = trim(names[i].first);
+      std::string_view n = io::trim_blanks(names[i].text);
       for (std::size_t k = 0; k < kNames.size(); ++k)
         if (n == kNames[k]) {
           if (col_[k] >= 0)
-            error(names[i].second, std::string(n), fmt::format("column `{}` appears twice", n));
+            error(names[i].column, std::string(n), fmt::format("column `{}` appears twice", n));
           col_[k] = static_cast<int>(i);
         }
     }
@@ -95,17 +96,17 @@ class PointReader {
 
   bool next(model::EvalPoint& p, std::size_t& line) {
     while (next_line()) {
-      if (trim(line_).empty()) continue;
-      auto fields = split(line_);
+      if (io::trim_blanks(line_).empty()) continue;
+      auto fields = io::split_csv_line(line_);
       auto get = [&](std::size_t k) -> std::optional<double> {
         if (col_[k] < 0) return std::nullopt;
         auto c = static_cast<std::size_t>(col_[k]);
         if (c >= fields.size())
           error(line_.size() + 1, std::string(kNames[k]),
                 fmt::format("{} fields, but `{}` is column {}", fields.size(), kNames[k], c + 1));
-        std::string_view t = trim(fields[c].first);
+        std::string_view t = io::trim_blanks(fields[c].text);
         if (t.empty()) {
-          if (k < 3) error(fields[c].second, std::string(kNames[k]), "empty coordinate");
+          if (k < 3) error(fields[c].column, std::string(kNames[k]), "empty coordinate");
           return std::nullopt;
         }
         double v = 0.0;
@@ -113,7 +114,7 @@ class PointReader {
         if (*b == '+') ++b;
         auto [ptr, ec] = std::from_chars(b, t.data() + t.size(), v);
         if (ec != std::errc() || ptr != t.data() + t.size() || !std::isfinite(v))
-          error(fields[c].second, std::string(kNames[k]),
+          error(fields[c].column, std::string(kNames[k]),
                 fmt::format("\"{}\" is not a finite number", t));
         return v;
       };
@@ -121,7 +122,7 @@ class PointReader {
       for (std::size_t k = 0; k < 3; ++k) {
         auto v = get(3 + k);
         if (v && *v != -1.0 && *v != 0.0 && *v != 1.0)
-          error(fields[static_cast<std::size_t>(col_[3 + k])].second, std::string(kNames[3 + k]),
+          error(fields[static_cast<std::size_t>(col_[3 + k])].column, std::string(kNames[3 + k]),
                 "the direction of motion must be -1, 0 or 1");
         p.dir[k] = static_cast<std::int8_t>(v ? *v : 0.0);
       }
@@ -137,23 +138,6 @@ class PointReader {
  private:
   static constexpr std::array<std::string_view, 7> kNames{"x",  "y",  "z",          "vx",
                                                           "vy", "vz", "tool_length"};
-  static std::string_view trim(std::string_view s) {
-    while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-    while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
-      s.remove_suffix(1);
-    return s;
-  }
-  // Fields and their 1-based columns.
-  static std::vector<std::pair<std::string_view, std::size_t>> split(std::string_view l) {
-    std::vector<std::pair<std::string_view, std::size_t>> out;
-    std::size_t start = 0;
-    for (std::size_t i = 0; i <= l.size(); ++i)
-      if (i == l.size() || l[i] == ',') {
-        out.emplace_back(l.substr(start, i - start), start + 1);
-        start = i + 1;
-      }
-    return out;
-  }
   bool next_line() {
     if (!std::getline(in_, line_)) return false;
     ++line_no_;
@@ -380,15 +364,8 @@ int run_predict(const PredictOptions& o, const GlobalOptions& g) {
   std::vector<model::Deviation> devs(kinds.size());
   std::vector<double> norms(kinds.size());  // |e| per model, for the statistics and the output
 
-  std::ifstream file;
-  std::istream* in = &std::cin;
-  if (o.input != "-") {
-    file.open(o.input, std::ios::binary);
-    if (!file)
-      throw InputError({o.input, 0, 0, "", ""},
-                       std::string("cannot open the input: ") + std::strerror(errno));
-    in = &file;
-  }
+  InputStream input(o.input, "the input");
+  std::istream* in = &input.stream();
 
   std::unique_ptr<io::AtomicOutputFile> out;
   std::unique_ptr<PredictionWriter> writer;
@@ -400,13 +377,13 @@ int run_predict(const PredictOptions& o, const GlobalOptions& g) {
 
   std::size_t n_points = 0;
   // Progress on a terminal: bytes of the input file read, or points from stdin.
-  const bool from_file = o.input != "-";
+  const bool from_file = !input.from_stdin();
   io::Progress progress("predict", from_file ? io::Progress::file_size(o.input) : 0, !g.quiet,
                         from_file ? "bytes" : "points");
   auto tick = [&] {
     if (!progress.active() || (n_points & 4095) != 0) return;
     if (!from_file) return progress.update(n_points);
-    const auto pos = file.tellg();
+    const auto pos = input.position();
     if (pos >= 0) progress.update(static_cast<std::uint64_t>(pos));
   };
   auto evaluate = [&](const model::EvalPoint& p, std::size_t line) {

@@ -26,6 +26,7 @@
 #include "abbe/report/predict_section.hpp"
 #include "abbe/report/predicted_path.hpp"
 #include "command.hpp"
+#include "input_stream.hpp"
 
 namespace abbe::cli {
 namespace {
@@ -64,15 +65,8 @@ int run_report_predict(const ReportOptions& o, const GlobalOptions& g) {
   po.models = parse_models(o.model);
   po.step = o.step;
   po.max_points = o.max_points;
-  std::ifstream file;
-  std::istream* in = &std::cin;
-  if (o.input != "-") {
-    file.open(o.input, std::ios::binary);
-    if (!file)
-      throw InputError({o.input, 0, 0, "", ""},
-                       std::string("cannot open the NC program: ") + std::strerror(errno));
-    in = &file;
-  }
+  InputStream input(o.input, "the NC program");
+  std::istream* in = &input.stream();
   io::Progress progress("report: predict", io::Progress::file_size(o.input), !g.quiet);
   po.progress = [&](std::uint64_t bytes) { progress.update(bytes); };
   const report::PredictedPath path = report::predict_program(machine, *in, o.input, po);

@@ -16,7 +16,7 @@
 #include "abbe/machine/machine.hpp"
 #include "abbe/model/error_model.hpp"
 #include "command.hpp"
-#include "extend_option.hpp"
+#include "model_option.hpp"
 
 namespace abbe::cli {
 namespace {
@@ -24,10 +24,7 @@ namespace {
 struct VerifyCliOptions {
   std::string input;
   std::string against;
-  std::string machine;
-  std::string model = "ae-arm";
-  std::string extend;        // overlay of effects found by `abbe diagnose`
-  double extend_time = 0.0;  // campaign time (s) for time-dependent overlay terms
+  ModelOptions m;
   double tol_um = 1.0;
   bool check = false;
   compensate::VerifyOptions v;
@@ -42,13 +39,8 @@ std::ifstream open_input(const std::string& path) {
 }
 
 int run_verify(const VerifyCliOptions& o, const GlobalOptions& g) {
-  const machine::Machine machine = machine::Machine::load(o.machine);
-  const auto kind = model::parse_model_kind(o.model);
-  if (!kind)
-    throw InputError({"<command line>", 0, 0, "--model", ""},
-                     fmt::format("unknown model \"{}\" (htm, ae-arm or dual)", o.model));
-  model::ErrorModel model(machine, *kind);
-  if (!o.extend.empty()) model = extend_with_overlay(model, machine, o.extend, o.extend_time);
+  const machine::Machine machine = machine::Machine::load(o.m.machine);
+  const model::ErrorModel model = make_model(o.m, machine);
   const gcode::InterpreterConfig config = machine::interpreter_config(machine);
   compensate::VerifyOptions vo = o.v;
   vo.tol_um = o.tol_um;
@@ -67,19 +59,20 @@ int run_verify(const VerifyCliOptions& o, const GlobalOptions& g) {
       compensate::verify_program(comp, o.input, orig, o.against, config, model, vo);
   progress.finish();
   const double max = std::max(s.max_um, s.backward_max_um);
-  std::fputs(fmt::format("{} against {} (model {}):\n"
-                         "  predicted compensated -> nominal: {} points, max {:.4f} µm (line {}), "
-                         "rms {:.4f} µm, {} beyond tol\n"
-                         "  nominal -> predicted compensated: {} points, max {:.4f} µm (line {}), "
-                         "rms {:.4f} µm, {} beyond tol\n"
-                         "  max {:.4f} µm, tol {} µm: {}\n",
-                         o.input, o.against,
-                         model::to_string(*kind) + (o.extend.empty() ? "" : " + " + o.extend),
-                         s.points, s.max_um, s.max_line, s.rms_um, s.over_tol, s.backward_points,
-                         s.backward_max_um, s.backward_max_line, s.backward_rms_um,
-                         s.backward_over_tol, max, o.tol_um, max <= o.tol_um ? "pass" : "FAIL")
-                 .c_str(),
-             stdout);
+  std::fputs(
+      fmt::format("{} against {} (model {}):\n"
+                  "  predicted compensated -> nominal: {} points, max {:.4f} µm (line {}), "
+                  "rms {:.4f} µm, {} beyond tol\n"
+                  "  nominal -> predicted compensated: {} points, max {:.4f} µm (line {}), "
+                  "rms {:.4f} µm, {} beyond tol\n"
+                  "  max {:.4f} µm, tol {} µm: {}\n",
+                  o.input, o.against,
+                  model::to_string(model.kind()) + (o.m.extend.empty() ? "" : " + " + o.m.extend),
+                  s.points, s.max_um, s.max_line, s.rms_um, s.over_tol, s.backward_points,
+                  s.backward_max_um, s.backward_max_line, s.backward_rms_um, s.backward_over_tol,
+                  max, o.tol_um, max <= o.tol_um ? "pass" : "FAIL")
+          .c_str(),
+      stdout);
   if (o.check && max > o.tol_um) return kBadInput;
   return kOk;
 }
@@ -90,16 +83,9 @@ const CommandRegistrar registrar(
       auto o = std::make_shared<VerifyCliOptions>();
       sub.add_option("input", o->input, "Compensated NC program")->required();
       sub.add_option("--against", o->against, "The original NC program")->required();
-      sub.add_option("--machine", o->machine, "Machine file (YAML, docs/formats.md)")->required();
-      sub.add_option("--model", o->model, "Error model: htm, ae-arm or dual")
-          ->check(CLI::IsMember({"htm", "ae-arm", "dual"}))
-          ->capture_default_str();
-      sub.add_option("--extend", o->extend,
-                     "Predict with the extended model: add the effects of an overlay written by "
-                     "`abbe diagnose --overlay`");
-      sub.add_option("--extend-time", o->extend_time,
-                     "Campaign time (s) at which time-dependent overlay terms are evaluated")
-          ->capture_default_str();
+      add_model_options(sub, o->m,
+                        "Predict with the extended model: add the effects of an overlay written by "
+                        "`abbe diagnose --overlay`");
       sub.add_option("--tol", o->tol_um, "Tolerance, µm")
           ->check(CLI::PositiveNumber)
           ->capture_default_str();
