@@ -32,15 +32,6 @@ endif()
 
 include(${SRC}/tests/cli/lib/script_helpers.cmake)
 
-# run() that also shows stdout on failure (identify prints its diagnostics there).
-function(run)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "${ARGN}: exit code ${rc}\n${out}\n${err}")
-  endif()
-  set(run_out "${out}" PARENT_SCOPE)
-endfunction()
-
 
 function(expect_match text regex what)
   if(NOT text MATCHES "${regex}")

@@ -1,10 +1,11 @@
 # Helpers for the script-mode parts of tests/cli/*.cmake (cmake -P):
-# run(COMMAND…) must exit 0 (its stdout in run_out); expect_failure(MESSAGE
+# run(COMMAND…) must exit 0 (its stdout in run_out; on failure both streams
+# are shown, some commands print their diagnostics on stdout); expect_failure(MESSAGE
 # COMMAND…) must exit 1 with MESSAGE on stderr.
 function(run)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "${ARGN}: exit code ${rc}\n${err}")
+    message(FATAL_ERROR "${ARGN}: exit code ${rc}\n${out}\n${err}")
   endif()
   set(run_out "${out}" PARENT_SCOPE)
 endfunction()
