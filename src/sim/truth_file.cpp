@@ -237,6 +237,8 @@ GeneratedMachine truth_from_yaml(const std::string& text, const std::string& fil
   cs.seed = r.as<std::uint64_t>(r.need(c, "seed", "campaign"), "campaign.seed");
   cs.squareness_sigma_urad =
       r.number(r.need(c, "squareness_sigma_urad", "campaign"), "campaign.squareness_sigma_urad");
+  if (cs.squareness_sigma_urad < 0.0)
+    r.fail(c["squareness_sigma_urad"], "campaign.squareness_sigma_urad", "must be ≥ 0");
   const YAML::Node caxes = r.need(c, "axes", "campaign");
   for (int j = 0; j < 3; ++j) {
     const std::string an(1, axis_letter(j));

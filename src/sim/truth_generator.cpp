@@ -1,7 +1,6 @@
 #include "abbe/sim/truth_generator.hpp"
 
 #include <Eigen/Geometry>  // cross()
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -185,6 +184,9 @@ GeneratedMachine generate_machine(const GeneratorOptions& options) {
                                 "\" (mazak or generic)");
   if (!(options.spacing_mm > 0.0)) throw std::invalid_argument("target spacing must be > 0 mm");
   if (options.runs < 2) throw std::invalid_argument("a campaign needs at least 2 runs");
+  if (options.squareness_sigma_urad &&
+      !(std::isfinite(*options.squareness_sigma_urad) && *options.squareness_sigma_urad >= 0.0))
+    throw std::invalid_argument("squareness sigma must be a finite number ≥ 0 µrad");
   Random rng(options.seed);
   GeneratedMachine g;
   set_geometry(g, options.chain);
@@ -193,7 +195,10 @@ GeneratedMachine generate_machine(const GeneratorOptions& options) {
   g.campaign.seed = rng.next_seed();
   g.campaign.spacing_mm = options.spacing_mm;
   g.campaign.runs = options.runs;
-  g.campaign.squareness_sigma_urad = 2.0 * options.noise_scale;
+  // The mazak profile carries the thesis' squareness over as the result of
+  // its own (separate) measurement: no simulated noise on top by default.
+  g.campaign.squareness_sigma_urad =
+      options.squareness_sigma_urad.value_or(mazak ? 0.0 : 2.0 * options.noise_scale);
   if (mazak) {
     g.truth.squareness = {14.569, -24.362, 13.757};
   } else {

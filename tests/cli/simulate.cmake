@@ -60,7 +60,31 @@ if(NOT run_out MATCHES "\n-650\\.0000,-350\\.0000,-280\\.0000,[^\n]*,200,program
   message(FATAL_ERROR "program measurement lacks the far corner:\n${run_out}")
 endif()
 
+# Squareness: the mazak profile carries the thesis' values as measured (no
+# noise) into machine.yaml; --squareness-sigma adds noise to that measurement.
+run(${ABBE} -q simulate machine --seed 7 --like mazak --spacing 100 -o ${WORK}/mz)
+file(READ ${WORK}/mz/machine.yaml mz)
+if(NOT mz MATCHES "EC0Y: 14\\.569\n  EB0Z: -24\\.362\n  EA0Z: 13\\.757\n")
+  message(FATAL_ERROR "mazak machine.yaml lacks the thesis' squareness:\n${mz}")
+endif()
+run(${ABBE} -q simulate machine --seed 7 --like mazak --spacing 100 --squareness-sigma 2urad
+    -o ${WORK}/mz2)
+file(READ ${WORK}/mz2/machine.yaml mz2)
+file(READ ${WORK}/mz2/truth.yaml mz2_truth)
+if(mz2 MATCHES "EC0Y: 14\\.569\n" OR NOT mz2_truth MATCHES "squareness_sigma_urad: 2\n")
+  message(FATAL_ERROR "--squareness-sigma 2urad did not add noise:\n${mz2}")
+endif()
+file(READ ${WORK}/mz/errors.csv t1)
+file(READ ${WORK}/mz2/errors.csv t2)
+if(NOT t1 STREQUAL t2)
+  message(FATAL_ERROR "the squareness noise changed the laser tables")
+endif()
+
 # Bad input: exit code 1 and a message naming the problem.
+foreach(bad -1 nan inf 2mrad)
+  expect_failure("[--squareness-sigma]: error: expected a finite number ≥ 0 in µrad" ${ABBE}
+                 simulate machine --squareness-sigma "${bad}" -o ${WORK}/x)
+endforeach()
 expect_failure("magnitude needs a unit" ${ABBE} simulate measure --truth ${WORK}/m/truth.yaml
                --grid 100 --inject reversal:Y:4)
 expect_failure("give --grid SPACING, --box … or --program FILE" ${ABBE} simulate measure

@@ -44,16 +44,25 @@ std::vector<sim::Effect> parse_effects(const std::vector<std::string>& specs) {
   return effects;
 }
 
-// "0.5um", "0.5" (µm) → µm.
-double parse_um(const std::string& field, const std::string& text) {
+// A finite number ≥ 0 with an optional unit suffix ("0.5um", "0.5"); NaN if it is not one.
+double parse_non_negative(const std::string& text, const std::string& unit) {
   std::string number = text;
-  if (number.size() > 2 && number.compare(number.size() - 2, 2, "um") == 0)
-    number.resize(number.size() - 2);
+  if (number.size() > unit.size() &&
+      number.compare(number.size() - unit.size(), unit.size(), unit) == 0)
+    number.resize(number.size() - unit.size());
   errno = 0;
   char* end = nullptr;
   const double v = std::strtod(number.c_str(), &end);
   if (number.empty() || end != number.c_str() + number.size() || errno != 0 || !std::isfinite(v) ||
       v < 0.0)
+    return NAN;
+  return v;
+}
+
+// "0.5um", "0.5" (µm) → µm.
+double parse_um(const std::string& field, const std::string& text) {
+  const double v = parse_non_negative(text, "um");
+  if (std::isnan(v))
     bad_option(field, "expected a non-negative length in µm (e.g. 0.5um), got '" + text + "'");
   return v;
 }
@@ -75,6 +84,8 @@ void write_campaign(const sim::GeneratedMachine& g, const std::string& dir) {
 
 struct MachineOptions {
   sim::GeneratorOptions gen;
+  std::string squareness_sigma;
+  bool squareness_sigma_given = false;  // false: the profile's default
   std::vector<std::string> inject;
   std::string output;
 };
@@ -105,11 +116,23 @@ struct MeasureOptions {
 };
 
 int run_machine(const MachineOptions& o) {
+  sim::GeneratorOptions gen = o.gen;
+  if (o.squareness_sigma_given) {
+    gen.squareness_sigma_urad = parse_non_negative(o.squareness_sigma, "urad");
+    if (std::isnan(*gen.squareness_sigma_urad))
+      bad_option("--squareness-sigma",
+                 "expected a finite number ≥ 0 in µrad (e.g. 2 or 2urad), got '" +
+                     o.squareness_sigma + "'");
+  }
   sim::GeneratedMachine g;
   try {
-    g = sim::generate_machine(o.gen);
+    g = sim::generate_machine(gen);
   } catch (const std::invalid_argument& e) {
-    bad_option(std::string(e.what()).find("chain") == 0 ? "--chain" : "--like", e.what());
+    const std::string what = e.what();
+    bad_option(what.find("chain") == 0              ? "--chain"
+               : what.find("squareness sigma") == 0 ? "--squareness-sigma"
+                                                    : "--like",
+               what);
   }
   g.truth.effects = parse_effects(o.inject);
   write_campaign(g, o.output);
@@ -219,6 +242,13 @@ const CommandRegistrar registrar(
           ->add_option("--angular-scale", mo->gen.angular_scale,
                        "Multiplies the angular error motions (after calibration)")
           ->capture_default_str();
+      auto* squareness_sigma =
+          machine
+              ->add_option(
+                  "--squareness-sigma", mo->squareness_sigma,
+                  "Noise of the squareness measurement, µrad, used as given (default: mazak "
+                  "0 — the thesis' values as measured; generic 2 × --noise-scale)")
+              ->option_text("URAD");
       machine->add_option("--inject", mo->inject,
                           "Effect stored in the truth, KIND:AXIS:MAG[:k=v,...] (repeatable)");
       machine->add_option("-o,--output", mo->output, "Output directory")->required();
@@ -263,8 +293,11 @@ const CommandRegistrar registrar(
       sub.footer(
           "Example: abbe simulate measure --truth machines/sample/truth.yaml --grid 100 "
           "-o measured.csv");
-      return [machine, campaign, measure, mo, co, me, grid, program]() {
-        if (machine->parsed()) return run_machine(*mo);
+      return [machine, campaign, measure, mo, co, me, grid, program, squareness_sigma]() {
+        if (machine->parsed()) {
+          mo->squareness_sigma_given = squareness_sigma->count() > 0;
+          return run_machine(*mo);
+        }
         if (campaign->parsed()) return run_campaign_cmd(*co);
         if (measure->parsed()) {
           if (grid->count() == 0 && program->count() == 0) {
