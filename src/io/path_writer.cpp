@@ -11,8 +11,6 @@
 namespace abbe::io {
 
 namespace {
-constexpr double kScale = 1e6;  // 6 decimals
-
 // Kind names padded to 8 bytes so that the fast path copies a fixed size.
 struct KindName {
   char text[8];
@@ -34,120 +32,6 @@ const KindName& kind_name(gcode::MotionKind kind) {
   return kDwell;
 }
 
-// "00" "01" … "99": two digits per table lookup.
-constexpr char kDigitPairs[] =
-    "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
-    "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
-    "8081828384858687888990919293949596979899";
-
-int count_digits(unsigned long long v) {
-  int n = 1;
-  for (;;) {
-    if (v < 10) return n;
-    if (v < 100) return n + 1;
-    if (v < 1000) return n + 2;
-    if (v < 10000) return n + 3;
-    v /= 10000;
-    n += 4;
-  }
-}
-
-// Writes the n = count_digits(v) digits of v ending at p + n, backwards.
-void write_digits_backwards(char* end, unsigned long long v) {
-  while (v >= 100) {
-    const auto pair = static_cast<std::size_t>(v % 100) * 2;
-    v /= 100;
-    end -= 2;
-    std::memcpy(end, kDigitPairs + pair, 2);
-  }
-  if (v >= 10) {
-    end -= 2;
-    std::memcpy(end, kDigitPairs + static_cast<std::size_t>(v) * 2, 2);
-  } else {
-    *--end = static_cast<char>('0' + v);
-  }
-}
-
-char* write_uint(char* p, unsigned long long v) {
-  const int n = count_digits(v);
-  write_digits_backwards(p + n, v);
-  return p + n;
-}
-
-#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
-// Big-endian: digit by digit.
-char* write_fixed6_fast(char* p, double value) {
-  const double scaled = value * kScale;
-  const long long r = static_cast<long long>(scaled < 0.0 ? scaled - 0.5 : scaled + 0.5);
-  if (r < 0) *p++ = '-';
-  const unsigned long long u =
-      r < 0 ? 0ULL - static_cast<unsigned long long>(r) : static_cast<unsigned long long>(r);
-  p = write_uint(p, u / 1000000ULL);
-  const auto frac = static_cast<unsigned>(u % 1000000ULL);
-  if (frac == 0) return p;
-  p[0] = '.';
-  std::memcpy(p + 1, kDigitPairs + (frac / 10000) * 2, 2);
-  std::memcpy(p + 3, kDigitPairs + (frac / 100 % 100) * 2, 2);
-  std::memcpy(p + 5, kDigitPairs + (frac % 100) * 2, 2);
-  char* end = p + 7;
-  while (end[-1] == '0') --end;
-  return end;
-}
-#else
-// Little-endian: the digits are assembled in a register (the first character
-// in the lowest byte) and stored with one unaligned write, the lengths
-// computed without branches (the digit counts of a column vary from row to
-// row, which a branch predictor cannot follow).
-
-// "000" … "999" as 32-bit words (the first character in the lowest byte, the
-// fourth byte zero): three digits per table lookup.
-struct DigitTriples {
-  std::uint32_t word[1000];
-  constexpr DigitTriples() : word() {
-    for (std::uint32_t i = 0; i < 1000; ++i)
-      word[i] = (48 + i / 100) | (48 + i / 10 % 10) << 8 | (48 + i % 10) << 16;
-  }
-};
-constexpr DigitTriples kDigitTriples;
-
-// The format of append_fixed6 for fixed6_fits(value) (|value| < 9e12, so that
-// value · 1e6 fits an int64): at most 21 characters at p (up to 24 bytes
-// stored); returns one past the last character.
-char* write_fixed6_fast(char* p, double value) {
-  // Round half away from zero (printf differs only at exact binary ties).
-  const double scaled = value * kScale;
-  const long long r = static_cast<long long>(scaled + std::copysign(0.5, scaled));
-  *p = '-';
-  p += r < 0;
-  const unsigned long long u =
-      r < 0 ? 0ULL - static_cast<unsigned long long>(r) : static_cast<unsigned long long>(r);
-  const unsigned long long int_part = u / 1000000ULL;
-  const auto frac = static_cast<std::uint32_t>(u - int_part * 1000000ULL);
-  if (int_part < 1000) {
-    // Up to three digits: one lookup, the leading zeros shifted out.
-    const auto v = static_cast<std::uint32_t>(int_part);
-    const std::uint32_t n = 1u + (v >= 10) + (v >= 100);
-    const std::uint32_t w = kDigitTriples.word[v] >> (8 * (3 - n));
-    std::memcpy(p, &w, 4);
-    p += n;
-  } else {
-    p = write_uint(p, int_part);
-  }
-  if (frac == 0) return p;
-  // ".dddddd" and a zero byte in one store; keep the digits up to the last
-  // nonzero one (trailing zeros dropped).
-  const std::uint64_t digits = std::uint64_t{kDigitTriples.word[frac / 1000]} |
-                               std::uint64_t{kDigitTriples.word[frac % 1000]} << 24;
-  const std::uint64_t w = '.' | digits << 8;
-  std::memcpy(p, &w, 8);
-  const std::uint64_t values = digits ^ 0x303030303030ULL;  // digit values, nonzero: frac > 0
-  const int last = (63 - __builtin_clzll(values)) / 8;      // byte of the last nonzero digit
-  return p + 2 + last;
-}
-#endif
-
-bool fast_number(double value) { return fixed6_fits(value); }
-
 void append_str(fmt::memory_buffer& out, std::string_view s) {
   out.append(s.data(), s.data() + s.size());
 }
@@ -165,8 +49,8 @@ struct CharOut {
     p += k.size;
   }
   void ch(char c) { *p++ = c; }
-  void num(double v) { p = write_fixed6_fast(p, v); }
-  void uint(std::size_t v) { p = write_uint(p, static_cast<unsigned long long>(v)); }
+  void num(double v) { p = write_fixed6(p, v); }
+  void uint(std::size_t v) { p = write_decimal(p, static_cast<unsigned long long>(v)); }
 };
 
 // Row output appended to the buffer (any number, including the slow ones).
@@ -181,7 +65,7 @@ struct BufferOut {
   void num(double v) { append_fixed6(b, v); }
   void uint(std::size_t v) {
     char digits[24];
-    b.append(digits, write_uint(digits, static_cast<unsigned long long>(v)));
+    b.append(digits, write_decimal(digits, static_cast<unsigned long long>(v)));
   }
 };
 
@@ -279,21 +163,17 @@ PathFormat parse_path_format(std::string_view name) {
   throw InputError(where, "unknown path format '" + std::string(name) + "' (expected csv or json)");
 }
 
-char* write_fixed6(char* out, double value) { return write_fixed6_fast(out, value); }
-
-char* write_decimal(char* out, unsigned long long v) { return write_uint(out, v); }
-
 void append_fixed6(fmt::memory_buffer& out, double value) {
   if (!std::isfinite(value)) {
     append_str(out, std::isnan(value) ? "nan" : (value > 0 ? "inf" : "-inf"));
     return;
   }
-  if (!fast_number(value)) {
+  if (!fixed6_fits(value)) {
     fmt::format_to(std::back_inserter(out), "{:.6f}", value);
     return;
   }
   char digits[32];
-  out.append(digits, write_fixed6_fast(digits, value));
+  out.append(digits, write_fixed6(digits, value));
 }
 
 PathWriter::PathWriter(PathFormat format, ByteSink sink, std::size_t chunk_bytes)
@@ -306,8 +186,8 @@ PathWriter::PathWriter(PathFormat format, ByteSink sink, std::size_t chunk_bytes
 }
 
 void PathWriter::write(const path::PathPoint& pt) {
-  const bool fast = fast_number(pt.p.x()) && fast_number(pt.p.y()) && fast_number(pt.p.z()) &&
-                    fast_number(pt.tool_length) && fast_number(pt.feed) && fast_number(pt.time);
+  const bool fast = fixed6_fits(pt.p.x()) && fixed6_fits(pt.p.y()) && fixed6_fits(pt.p.z()) &&
+                    fixed6_fits(pt.tool_length) && fixed6_fits(pt.feed) && fixed6_fits(pt.time);
   if (fast) {
     if (!middle_valid_ || pt.line != middle_line_ || pt.kind != middle_kind_ ||
         pt.tool_length != middle_tool_length_ || pt.feed != middle_feed_) {

@@ -75,59 +75,39 @@ AxisErrorTable AxisErrorTable::build(const machine::ComponentTable& table, machi
               : 0.0;
   // Extrapolation past the last knot continues the last segment.
   if (grid.size() >= 2) out.knots_.back().slope = out.knots_[grid.size() - 2].slope;
+  out.s0_ = grid.front();
+  out.last_ = grid.size() >= 2 ? grid.size() - 2 : 0;
+  out.last_d_ = static_cast<double>(out.last_);
+  out.inv_step_ = grid.size() >= 2 ? 1.0 / (grid[1] - grid[0]) : 0.0;
+  const double inf = std::numeric_limits<double>::infinity();
+  out.clamp_lo_ = out.extrapolate_ ? -inf : grid.front();
+  out.clamp_hi_ = out.extrapolate_ ? inf : grid.back();
   return out;
 }
 
-std::size_t AxisErrorTable::find_segment(double s, TableCursor& cursor) const {
-  // Segments are [s_i, s_{i+1}], i = 0..n-2. Walk a few steps from the last
-  // one, then fall back to bisection.
-  std::size_t last = s_.size() - 2;
-  std::size_t i = std::min(cursor.segment, last);
-  for (int step = 0; step < 4; ++step) {
-    if (s < s_[i]) {
-      if (i == 0) return cursor.segment = 0;
-      --i;
-    } else if (s > s_[i + 1]) {
-      if (i == last) return cursor.segment = last;
-      ++i;
-    } else {
-      return cursor.segment = i;
-    }
+// Off the guessed segment (uneven spacing or rounding): step towards x, then
+// bisect if it is far.
+std::size_t AxisErrorTable::step_down(double x, std::size_t i) const {
+  for (int n = 0; n < 4; ++n) {
+    --i;
+    if (i == 0 || x >= s_[i]) return i;
   }
-  std::size_t j = static_cast<std::size_t>(std::upper_bound(s_.begin(), s_.end(), s) - s_.begin());
-  return cursor.segment = std::clamp<std::size_t>(j, 1, last + 1) - 1;
+  const auto j = static_cast<std::size_t>(
+      std::upper_bound(s_.begin(), s_.begin() + static_cast<std::ptrdiff_t>(i) + 1, x) -
+      s_.begin());
+  return j == 0 ? 0 : j - 1;
 }
 
-bool AxisErrorTable::eval_general(double s, TableCursor& cursor, AxisErrors& out) const {
-  if (knots_.empty()) {
-    out.delta_um.setZero();
-    out.theta_urad.setZero();
-    return true;
+std::size_t AxisErrorTable::step_up(double x, std::size_t i) const {
+  for (int n = 0; n < 4; ++n) {
+    ++i;
+    if (i == last_ || x < s_[i + 1]) return i;
   }
-  bool inside = s >= lo_ && s <= hi_;
-  const Knot* k;
-  double t;
-  if (s_.size() == 1) {
-    k = &knots_[0];
-    t = 0.0;
-  } else if (!extrapolate_ && s <= s_.front()) {
-    k = &knots_.front();
-    t = 0.0;
-  } else if (!extrapolate_ && s >= s_.back()) {
-    k = &knots_.back();
-    t = 0.0;
-  } else {
-    std::size_t i = find_segment(s, cursor);
-    k = &knots_[i];
-    t = s - s_[i];
-  }
-  for (int d = 0; d < 3; ++d) {
-    out.delta_um[d] =
-        k->value[static_cast<std::size_t>(d)] + t * k->slope[static_cast<std::size_t>(d)];
-    out.theta_urad[d] =
-        k->value[static_cast<std::size_t>(d + 3)] + t * k->slope[static_cast<std::size_t>(d + 3)];
-  }
-  return inside;
+  const auto j = static_cast<std::size_t>(
+      std::upper_bound(s_.begin() + static_cast<std::ptrdiff_t>(i) + 1,
+                       s_.begin() + static_cast<std::ptrdiff_t>(last_) + 1, x) -
+      s_.begin());
+  return j - 1;
 }
 
 }  // namespace abbe::model

@@ -4,6 +4,7 @@
 
 #include "abbe/io/input_error.hpp"
 #include "abbe/model/error_extension.hpp"
+#include "ae_arm_model_inl.hpp"
 
 namespace abbe::model {
 
@@ -50,7 +51,7 @@ void ErrorModel::lookup(const EvalPoint& point, ModelData& data) const {
     int dir = point.dir[j] > 0 ? 2 : point.dir[j] < 0 ? 0 : 1;
     const AxisErrorTable& t = tables_->by_axis_dir[j][static_cast<std::size_t>(dir)];
     const double s_j = s[static_cast<Eigen::Index>(j)];
-    if (!t.eval(s_j, data.cursor_[j][static_cast<std::size_t>(dir)], data.errors[j])) {
+    if (!t.eval(s_j, data.errors[j])) {
       if (policy_ == machine::OutOfRangePolicy::error)
         throw_out_of_range(tables_->file, static_cast<int>(j), s_j, t.lo(), t.hi());
       ++data.out_of_range_lookups;
@@ -82,12 +83,6 @@ ErrorModel ErrorModel::with_extension(std::shared_ptr<const ErrorExtension> exte
   ErrorModel m = *this;
   m.extension_ = std::move(extension);
   return m;
-}
-
-// (−EC0Y·y + EB0Z·z, −EA0Z·z, 0): µrad × mm = nm, hence the 1e-3.
-Eigen::Vector3d ErrorModel::squareness_um(const Eigen::Vector3d& p) const {
-  return 1e-3 * Eigen::Vector3d(-squareness_.ec0y * p.y() + squareness_.eb0z * p.z(),
-                                -squareness_.ea0z * p.z(), 0.0);
 }
 
 Eigen::Vector3d ErrorModel::measurement_point(Axis j, int k, const EvalPoint& point) const {

@@ -2,6 +2,9 @@
 // the out-of-range policies.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <vector>
+
 #include "abbe/io/input_error.hpp"
 #include "model_test_machines.hpp"
 
@@ -59,6 +62,43 @@ TEST(ModelTableLookup, InterpolatesAlongAPathBothWays) {
   for (double x = 0.0; x >= -1000.0; x -= 11.1) xs.push_back(x);
   for (double x : {-10.0, -990.0, -500.0, 0.0, -1000.0, -475.0}) xs.push_back(x);
   for (double x : xs) EXPECT_NEAR(ae.evaluate(at_x(x), data).e_um.x(), reference(x), 1e-12) << x;
+}
+
+// Uneven knots: the segment guessed from the first spacing is off by many
+// segments (stepping and bisection find it), and an evenly spaced table with
+// a shorter last segment (a travel that is not a multiple of the spacing).
+TEST(ModelTableLookup, UnevenKnotsInterpolateLikeTheSeries) {
+  const std::vector<std::vector<double>> grids = {
+      {-1000, -999, -998, -990, -900, -899, -500, -499.5, -100, -10, -9, 0},
+      {-990, -965, -940, -915, -890, -865, -840, -815, -790, -765, -740, -715, -690, -665,
+       -640, -615, -590, -565, -540, -515, -490, -465, -440, -415, -390, -365, -340, -315,
+       -290, -265, -240, -215, -190, -165, -140, -115, -90,  -65,  -40,  -15,  0}};
+  for (const auto& grid : grids) {
+    std::string csv = std::string(test::kHeader);
+    std::vector<double> values;
+    for (std::size_t i = 0; i < grid.size(); ++i) {
+      values.push_back(std::sin(0.37 * static_cast<double>(i)) * 5.0 + 0.01 * grid[i]);
+      csv += fmt::format("X,EXX,{},mean,{:.6f}\n", grid[i], values.back());
+    }
+    machine::Machine m(test::spec_with("w X' b Y Z t", csv));
+    ErrorModel ae(m, ModelKind::ae_arm);
+    model::ModelData data;
+    const auto& s = m.table().series().front();
+    auto reference = [&](double x) {
+      if (x <= grid.front()) return s.value.front();
+      if (x >= grid.back()) return s.value.back();
+      std::size_t i = 0;
+      while (grid[i + 1] <= x) ++i;
+      const double t = (x - grid[i]) / (grid[i + 1] - grid[i]);
+      return s.value[i] + t * (s.value[i + 1] - s.value[i]);
+    };
+    std::vector<double> xs(grid);  // every knot exactly
+    for (double x = -1010.0; x <= 10.0; x += 0.73) xs.push_back(x);
+    for (double x = 5.0; x >= -1005.0; x -= 13.1) xs.push_back(x);
+    for (double x : {-999.5, -0.5, -1000.0, 0.0, -9.5, -499.75, -14.9, -15.0, -15.1})
+      xs.push_back(x);
+    for (double x : xs) EXPECT_NEAR(ae.evaluate(at_x(x), data).e_um.x(), reference(x), 1e-11) << x;
+  }
 }
 
 std::string short_table() {

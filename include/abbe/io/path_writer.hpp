@@ -15,6 +15,7 @@
 #include <string>
 #include <string_view>
 
+#include "abbe/io/fixed6.hpp"
 #include "abbe/path/path_point.hpp"
 
 namespace abbe::io {
@@ -30,20 +31,6 @@ using ByteSink = std::function<void(const char* data, std::size_t size)>;
 // Appends `value` rounded to 6 decimals, trailing zeros (and a bare '.')
 // dropped: 1.5 → "1.5", -350 → "-350", 1e-7 → "0". Non-finite → "nan"/"inf".
 void append_fixed6(fmt::memory_buffer& out, double value);
-
-// The in-place core of append_fixed6, for writers that format whole rows
-// into memory they reserved: fixed6_fits(v) says whether write_fixed6 can
-// take v (finite, |v| < 9e12); write_fixed6 then writes the same text as
-// append_fixed6 (at most 21 characters) and returns one past its last
-// character. It may store up to kFixed6MaxChars bytes from `out` (the bytes
-// past the text are scratch). Other values go through append_fixed6.
-inline constexpr std::size_t kFixed6MaxChars = 24;
-inline bool fixed6_fits(double value) {  // NaN: false; no branch
-  return (value < 9e12) & (value > -9e12);
-}
-char* write_fixed6(char* out, double value);
-// Writes the decimal digits of v (at most 20) from `out`; returns one past the last.
-char* write_decimal(char* out, unsigned long long v);
 
 class PathWriter {
  public:

@@ -6,6 +6,7 @@
 // exact, because a piecewise-linear function stays piecewise linear on a
 // finer grid — so a lookup finds one segment instead of six.
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <string>
@@ -18,12 +19,6 @@ namespace abbe::model {
 struct AxisErrors {
   Eigen::Vector3d delta_um = Eigen::Vector3d::Zero();    // EX·, EY·, EZ·
   Eigen::Vector3d theta_urad = Eigen::Vector3d::Zero();  // EA·, EB·, EC·
-};
-
-// The segment a lookup found last; points along a path move little, so the
-// next lookup usually starts in the right segment.
-struct TableCursor {
-  std::size_t segment = 0;
 };
 
 class AxisErrorTable {
@@ -43,24 +38,21 @@ class AxisErrorTable {
 
   // Values at s. Returns false when s lies outside [lo, hi] (the caller
   // counts it; clamp/extrapolate follow the policy the table was built with).
-  // Along a path the point usually stays in the segment found last: that
-  // case is inline, everything else (another segment, clamping, empty or
-  // one-knot tables) goes through eval_general.
-  bool eval(double s, TableCursor& cursor, AxisErrors& out) const {
-    const std::size_t i = cursor.segment;
-    // s in [s_i, s_{i+1}): never a clamped end (below s_0 or at/after the last
-    // knot), and at s_0 clamping gives the same value.
-    if (i + 1 < s_.size() && s >= s_[i] && s < s_[i + 1]) {
-      const Knot& k = knots_[i];
-      const double t = s - s_[i];
-      for (int d = 0; d < 3; ++d) {
-        const auto c = static_cast<std::size_t>(d);
-        out.delta_um[d] = k.value[c] + t * k.slope[c];
-        out.theta_urad[d] = k.value[c + 3] + t * k.slope[c + 3];
-      }
-      return s >= lo_ && s <= hi_;
+  // No search and no state: the segment is guessed from the first knot
+  // spacing (exact on the campaign's evenly spaced targets, a shorter last
+  // segment included) and corrected by stepping (segment()).
+  bool eval(double s, AxisErrors& out) const {
+    if (knots_.empty()) {
+      out.delta_um.setZero();
+      out.theta_urad.setZero();
+      return true;
     }
-    return eval_general(s, cursor, out);
+    // Clamping evaluates the end segments at their end knots (the bounds are
+    // infinite when the table extrapolates).
+    const double x = std::min(std::max(s, clamp_lo_), clamp_hi_);
+    const std::size_t i = segment(x);
+    at(knots_[i], x - s_[i], out);
+    return s >= lo_ && s <= hi_;
   }
 
  private:
@@ -68,12 +60,36 @@ class AxisErrorTable {
     std::array<double, 6> value;
     std::array<double, 6> slope;  // per mm, towards the next knot
   };
-  std::size_t find_segment(double s, TableCursor& cursor) const;
-  bool eval_general(double s, TableCursor& cursor, AxisErrors& out) const;
+  // The six values at distance t past knot k (computed into a local first:
+  // the compiler then packs them two by two).
+  static void at(const Knot& k, double t, AxisErrors& out) {
+    double r[6];
+    for (std::size_t c = 0; c < 6; ++c) r[c] = k.value[c] + t * k.slope[c];
+    out.delta_um = Eigen::Vector3d(r[0], r[1], r[2]);
+    out.theta_urad = Eigen::Vector3d(r[3], r[4], r[5]);
+  }
+  // The segment i ∈ [0, last_] with s_i ≤ x < s_{i+1} (the first or last one
+  // outside the knots; NaN gives 0).
+  std::size_t segment(double x) const {
+    double guess = (x - s0_) * inv_step_;
+    guess = guess > 0.0 ? guess : 0.0;  // also NaN
+    guess = guess < last_d_ ? guess : last_d_;
+    const auto i = static_cast<std::size_t>(static_cast<int>(guess));
+    if (x < s_[i] && i > 0) return step_down(x, i);
+    if (i < last_ && x >= s_[i + 1]) return step_up(x, i);
+    return i;
+  }
+  std::size_t step_down(double x, std::size_t i) const;
+  std::size_t step_up(double x, std::size_t i) const;
 
   std::vector<double> s_;
   std::vector<Knot> knots_;
   double lo_ = 0.0, hi_ = 0.0;
+  double s0_ = 0.0;                         // first knot
+  double inv_step_ = 0.0;                   // 1 / (s_1 − s_0); 0 with one knot
+  std::size_t last_ = 0;                    // index of the last segment (0 with one knot)
+  double last_d_ = 0.0;                     // the same as a double
+  double clamp_lo_ = 0.0, clamp_hi_ = 0.0;  // the knots' range, or ±∞ to extrapolate
   bool extrapolate_ = false;
 };
 

@@ -2,8 +2,8 @@
 // ErrorModel / ModelData: the Model/Data pair of the error prediction.
 // ErrorModel is immutable and built once from a Machine (tables resampled per
 // axis and direction, measurement points and U(j) folded into constants);
-// ModelData is the per-thread workspace of the evaluations (table cursors,
-// out-of-range counter). evaluate() predicts the deviation of the tool tip
+// ModelData is the per-thread workspace of the evaluations (the component
+// errors looked up last, out-of-range counter). evaluate() predicts the deviation of the tool tip
 // from its nominal position at one point (docs/models.md).
 #include <Eigen/Core>
 #include <array>
@@ -39,10 +39,6 @@ class ModelData {
   std::size_t out_of_range_lookups = 0;  // (point, axis) lookups outside the measured range
   std::size_t evaluations = 0;
   std::array<AxisErrors, 3> errors;  // per axis, from the last evaluation
-
- private:
-  friend class ErrorModel;
-  std::array<std::array<TableCursor, 3>, 3> cursor_{};  // [axis][direction]
 };
 
 class ErrorModel {
@@ -80,7 +76,11 @@ class ErrorModel {
     std::string file;
   };
 
-  Eigen::Vector3d squareness_um(const Eigen::Vector3d& p) const;
+  // (−EC0Y·y + EB0Z·z, −EA0Z·z, 0): µrad × mm = nm, hence the 1e-3.
+  Eigen::Vector3d squareness_um(const Eigen::Vector3d& p) const {
+    return 1e-3 * Eigen::Vector3d(-squareness_.ec0y * p.y() + squareness_.eb0z * p.z(),
+                                  -squareness_.ea0z * p.z(), 0.0);
+  }
   Deviation evaluate_ae_arm(const EvalPoint& point, const Eigen::Vector3d& s,
                             const ModelData& data) const;
   Deviation evaluate_htm(const EvalPoint& point, const Eigen::Vector3d& s,
