@@ -196,13 +196,15 @@ class PredictionWriter {
           line_text_.data());
     }
     // The in-place formatter takes the row when every number fits; the sum of
-    // the magnitudes is a cheap sufficient test (NaN and infinity fail it, and
-    // a row that fails takes the appending path, which writes the same text).
+    // the magnitudes of the nominal point and the deviations bounds every
+    // number of the row (|p + 1e-3·e| and |e| are at most that sum), so it is
+    // a cheap sufficient test (NaN and infinity fail it, and a row that fails
+    // takes the appending path, which writes the same text).
     double magnitude = l1(p.p);
     for (std::size_t i = 0; i < kinds_.size(); ++i) {
       const model::Deviation& d = devs[i];
       pred_[i] = p.p + 1e-3 * d.e_um;
-      magnitude += l1(pred_[i]) + l1(d.e_um) + l1(d.second_order_um) + std::abs(norms[i]);
+      magnitude += l1(d.e_um) + l1(d.second_order_um);
     }
     const bool fits = io::fixed6_fits(magnitude);
     if (fits) {

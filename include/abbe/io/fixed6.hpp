@@ -4,12 +4,14 @@
 // 1.5 → "1.5", -350 → "-350", 1e-7 → "0".
 //
 // write_fixed6 is the in-place core for writers that format whole rows into
-// memory they reserved. It is inline because a row holds up to a few dozen
-// numbers and the call itself would cost a fifth of the conversion
-// (docs/performance.md). fixed6_fits(v) says whether write_fixed6 can take v
-// (finite, |v| < 9e12, so that v·1e6 fits an int64); other values go through
-// io::append_fixed6 (path_writer.hpp), which writes the same text for the
-// values both take and handles NaN, infinity and huge numbers.
+// memory they reserved (the path writer, predict's rows). It is defined here
+// so that every writer shares one definition; the compiler keeps it out of
+// line where a row holds many numbers (forcing it inline into predict's row
+// made predict 30 % slower: docs/performance.md). fixed6_fits(v) says
+// whether write_fixed6 can take v (finite, |v| < 9e12, so that v·1e6 fits an
+// int64); other values go through io::append_fixed6 (path_writer.hpp), which
+// writes the same text for the values both take and handles NaN, infinity
+// and huge numbers.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
