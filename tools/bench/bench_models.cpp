@@ -4,6 +4,7 @@
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <string>
@@ -87,6 +88,37 @@ std::vector<EvalPoint> random_points() {
   return pts;
 }
 
+// A random walk like the generated benchmark program: straight moves of
+// 5–150 mm in random directions inside an 800 × 400 × 100 mm box, a point
+// every 5 mm, every axis moving and reversing.
+std::vector<EvalPoint> walk_points() {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const Eigen::Vector3d lo(-900.0, -500.0, -300.0), hi(-100.0, -100.0, -200.0);
+  Eigen::Vector3d at(-500.0, -300.0, -250.0);
+  std::vector<EvalPoint> pts;
+  while (pts.size() < 65536) {
+    Eigen::Vector3d to;
+    for (int k = 0; k < 3; ++k) to[k] = lo[k] + (hi[k] - lo[k]) * u(rng);
+    to = at + (to - at).normalized() * (5.0 + 145.0 * u(rng));
+    to = to.cwiseMax(lo).cwiseMin(hi);
+    const Eigen::Vector3d step = to - at;
+    const int n = std::max(1, static_cast<int>(std::ceil(step.norm() / 5.0)));
+    EvalPoint p;
+    p.tool_length = 150.0;
+    for (int k = 0; k < 3; ++k)
+      p.dir[static_cast<std::size_t>(k)] = static_cast<std::int8_t>(step[k] > 0.0   ? 1
+                                                                    : step[k] < 0.0 ? -1
+                                                                                    : 0);
+    for (int i = 1; i <= n; ++i) {
+      p.p = at + step * (static_cast<double>(i) / n);
+      pts.push_back(p);
+    }
+    at = to;
+  }
+  return pts;
+}
+
 void run(benchmark::State& state, ModelKind kind, const std::vector<EvalPoint>& pts) {
   ErrorModel model(bench_machine(), kind);
   ModelData data;
@@ -102,12 +134,14 @@ void run(benchmark::State& state, ModelKind kind, const std::vector<EvalPoint>& 
 void BM_AeArmPath(benchmark::State& s) { run(s, ModelKind::ae_arm, path_points()); }
 void BM_HtmPath(benchmark::State& s) { run(s, ModelKind::htm, path_points()); }
 void BM_DualPath(benchmark::State& s) { run(s, ModelKind::dual, path_points()); }
+void BM_AeArmWalk(benchmark::State& s) { run(s, ModelKind::ae_arm, walk_points()); }
 void BM_AeArmRandom(benchmark::State& s) { run(s, ModelKind::ae_arm, random_points()); }
 void BM_DualRandom(benchmark::State& s) { run(s, ModelKind::dual, random_points()); }
 
 BENCHMARK(BM_AeArmPath);
 BENCHMARK(BM_HtmPath);
 BENCHMARK(BM_DualPath);
+BENCHMARK(BM_AeArmWalk);
 BENCHMARK(BM_AeArmRandom);
 BENCHMARK(BM_DualRandom);
 
