@@ -5,17 +5,6 @@
 
 namespace abbe::compensate {
 
-std::array<int, 3> plane_axes(gcode::Plane plane) {
-  switch (plane) {
-    case gcode::Plane::xz:
-      return {2, 0, 1};
-    case gcode::Plane::yz:
-      return {1, 2, 0};
-    default:
-      return {0, 1, 2};
-  }
-}
-
 MotionPath::MotionPath(const gcode::Motion& m)
     : start_(m.start), end_(m.end), center_(m.center), arc_(m.kind == gcode::MotionKind::arc) {
   if (!arc_) {

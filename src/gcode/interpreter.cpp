@@ -20,22 +20,15 @@ constexpr double kMaxPecks = 100000;
 
 constexpr double kMmPerInch = 25.4;
 
-// Axis indices (first, second, normal) of the arc / canned-cycle plane, in
-// LinuxCNC's order: G17 (X, Y, Z), G18 (Z, X, Y), G19 (Y, Z, X).
+// gcode::plane_axes with names: the (first, second, normal) axes of the arc
+// and canned-cycle plane.
 struct PlaneAxes {
   int first, second, normal;
 };
 
-PlaneAxes plane_axes(Plane plane) {
-  switch (plane) {
-    case Plane::xz:
-      return {2, 0, 1};
-    case Plane::yz:
-      return {1, 2, 0};
-    case Plane::xy:
-    default:
-      return {0, 1, 2};
-  }
+PlaneAxes named_axes(Plane plane) {
+  const std::array<int, 3> a = plane_axes(plane);
+  return {a[0], a[1], a[2]};
 }
 
 const char* plane_name(Plane plane) {
@@ -348,7 +341,7 @@ void Interpreter::execute(const Block& block, std::string_view raw_line, const M
       const char* gname = motion == gcode_id(2) ? "G2" : "G3";
       if (st.feed_mm == 0.0)
         ctx.fail(motion_word, fmt::format("arc ({}) with zero feed rate (no F word yet)", gname));
-      const PlaneAxes ax = plane_axes(st.plane);
+      const PlaneAxes ax = named_axes(st.plane);
       const bool ijk = c.has('I') || c.has('J') || c.has('K');
       if (!c.has('R') && !ijk)
         ctx.fail(motion_word, fmt::format("arc ({}) without I, J, K or R", gname));
@@ -412,7 +405,7 @@ void Interpreter::execute(const Block& block, std::string_view raw_line, const M
       const std::string gname = gcode_name(motion);
       if (st.feed_mm == 0.0)
         ctx.fail(motion_word, fmt::format("canned cycle ({}) with zero feed rate", gname));
-      const PlaneAxes ax = plane_axes(st.plane);
+      const PlaneAxes ax = named_axes(st.plane);
       const bool continued = st.motion_mode == motion;
       double r_value = st.cycle_r;
       if (const Word* r = c.word('R'))

@@ -12,18 +12,6 @@ constexpr double kTwoPi = 6.283185307179586476925286766559;
 constexpr double kFullCircleTolerance = 1e-9;
 }  // namespace
 
-std::array<int, 3> plane_axes(gcode::Plane plane) {
-  switch (plane) {
-    case gcode::Plane::xz:
-      return {2, 0, 1};
-    case gcode::Plane::yz:
-      return {1, 2, 0};
-    case gcode::Plane::xy:
-    default:
-      return {0, 1, 2};
-  }
-}
-
 ArcSpan::ArcSpan(const gcode::Motion& motion)
     : axes_(plane_axes(motion.plane)),
       p_start_(motion.start),

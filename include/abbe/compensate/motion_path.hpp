@@ -13,10 +13,6 @@
 
 namespace abbe::compensate {
 
-// Indices of the plane's (first, second, normal) axes: XY (0,1,2), XZ
-// (2,0,1), YZ (1,2,0), so that positive angles turn counter-clockwise.
-std::array<int, 3> plane_axes(gcode::Plane plane);
-
 // Distance from an end of an arc within which a reversal counts as at that
 // end, and the least distance of a piece end from a reversal, mm.
 constexpr double kNearReversal = 0.05;

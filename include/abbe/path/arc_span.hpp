@@ -3,7 +3,7 @@
 // (gcode::Motion with kind == arc), parametrised by t ∈ [0, 1] proportional to
 // arc length.
 //
-// In plane coordinates (a, b, n) — XY: (x, y, z), XZ (G18): (z, x, y),
+// In plane coordinates (a, b, n) = gcode::plane_axes — XY: (x, y, z), XZ (G18): (z, x, y),
 // YZ (G19): (y, z, x), so that a × b = n — the point at t is
 //   θ(t) = θ0 + φ·t,  r(t) = r0 + (r1 − r0)·t,  n(t) = n0 + (n1 − n0)·t,
 //   p = c + r(t)·(cos θ, sin θ) in (a, b),
@@ -21,9 +21,6 @@
 #include "abbe/gcode/motion.hpp"
 
 namespace abbe::path {
-
-// Indices of the (a, b, n) axes of a plane, see above.
-std::array<int, 3> plane_axes(gcode::Plane plane);
 
 class ArcSpan {
  public:
