@@ -65,11 +65,13 @@ TEST(ModelTableLookup, InterpolatesAlongAPathBothWays) {
 }
 
 // Uneven knots: the segment guessed from the first spacing is off by many
-// segments (stepping and bisection find it), and an evenly spaced table with
-// a shorter last segment (a travel that is not a multiple of the spacing).
+// segments, too high or too low (stepping and bisection find it), and an
+// evenly spaced table with a shorter last segment (a travel that is not a
+// multiple of the spacing).
 TEST(ModelTableLookup, UnevenKnotsInterpolateLikeTheSeries) {
   const std::vector<std::vector<double>> grids = {
       {-1000, -999, -998, -990, -900, -899, -500, -499.5, -100, -10, -9, 0},
+      {-1000, -100, -99, -98, -97, -96, -95, -94, -93, -92, -91, -90, -50, 0},
       {-990, -965, -940, -915, -890, -865, -840, -815, -790, -765, -740, -715, -690, -665,
        -640, -615, -590, -565, -540, -515, -490, -465, -440, -415, -390, -365, -340, -315,
        -290, -265, -240, -215, -190, -165, -140, -115, -90,  -65,  -40,  -15,  0}};
