@@ -1,5 +1,8 @@
 #include "abbe/io/fixed6.hpp"
 
+#include <iterator>
+#include <string_view>
+
 namespace abbe::io {
 
 namespace {
@@ -39,6 +42,20 @@ char* write_decimal(char* out, unsigned long long v) {
     *--p = static_cast<char>('0' + v);
   }
   return end;
+}
+
+void append_fixed6(fmt::memory_buffer& out, double value) {
+  if (!std::isfinite(value)) {
+    const std::string_view s = std::isnan(value) ? "nan" : (value > 0 ? "inf" : "-inf");
+    out.append(s.data(), s.data() + s.size());
+    return;
+  }
+  if (!fixed6_fits(value)) {
+    fmt::format_to(std::back_inserter(out), "{:.6f}", value);
+    return;
+  }
+  char digits[kFixed6MaxChars];
+  out.append(digits, write_fixed6(digits, value));
 }
 
 }  // namespace abbe::io

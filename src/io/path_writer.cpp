@@ -1,5 +1,6 @@
 #include "abbe/io/path_writer.hpp"
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -7,18 +8,19 @@
 #include <iterator>
 
 #include "abbe/io/input_error.hpp"
+#include "abbe/io/row_text.hpp"
 
 namespace abbe::io {
 
 namespace {
 // Kind names padded to 8 bytes so that the fast path copies a fixed size.
 struct KindName {
-  char text[8];
+  std::array<char, 8> text;
   std::size_t size;
 };
 const KindName& kind_name(gcode::MotionKind kind) {
-  static const KindName kRapid{"rapid", 5}, kLinear{"linear", 6}, kArc{"arc", 3},
-      kDwell{"dwell", 5};
+  static const KindName kRapid{{"rapid"}, 5}, kLinear{{"linear"}, 6}, kArc{{"arc"}, 3},
+      kDwell{{"dwell"}, 5};
   switch (kind) {
     case gcode::MotionKind::rapid:
       return kRapid;
@@ -36,43 +38,10 @@ void append_str(fmt::memory_buffer& out, std::string_view s) {
   out.append(s.data(), s.data() + s.size());
 }
 
-// Row output into memory with room for kMaxFastRow bytes (all numbers on the fast path).
-struct CharOut {
-  char* p;
-  template <std::size_t N>
-  void str(const char (&s)[N]) {  // a literal: fixed-size copy
-    std::memcpy(p, s, N - 1);
-    p += N - 1;
-  }
-  void kind(const KindName& k) {
-    std::memcpy(p, k.text, sizeof(k.text));
-    p += k.size;
-  }
-  void ch(char c) { *p++ = c; }
-  void num(double v) { p = write_fixed6(p, v); }
-  void uint(std::size_t v) { p = write_decimal(p, static_cast<unsigned long long>(v)); }
-};
-
-// Row output appended to the buffer (any number, including the slow ones).
-struct BufferOut {
-  fmt::memory_buffer& b;
-  template <std::size_t N>
-  void str(const char (&s)[N]) {
-    b.append(s, s + N - 1);
-  }
-  void kind(const KindName& k) { b.append(k.text, k.text + k.size); }
-  void ch(char c) { b.push_back(c); }
-  void num(double v) { append_fixed6(b, v); }
-  void uint(std::size_t v) {
-    char digits[24];
-    b.append(digits, write_decimal(digits, static_cast<unsigned long long>(v)));
-  }
-};
-
 template <class Out>
 void sign(Out& out, std::int8_t s) {
   if (s < 0)
-    out.str("-1");
+    out.text("-1");
   else
     out.ch(s > 0 ? '1' : '0');
 }
@@ -90,13 +59,13 @@ void format_head(Out& out, PathFormat format, const path::PathPoint& pt, bool fi
     out.num(pt.p.z());
   } else {
     if (first)
-      out.str("{\"x\":");
+      out.text("{\"x\":");
     else
-      out.str(",\n{\"x\":");
+      out.text(",\n{\"x\":");
     out.num(pt.p.x());
-    out.str(",\"y\":");
+    out.text(",\"y\":");
     out.num(pt.p.y());
-    out.str(",\"z\":");
+    out.text(",\"z\":");
     out.num(pt.p.z());
   }
 }
@@ -109,20 +78,22 @@ void format_middle(Out& out, PathFormat format, const path::PathPoint& pt) {
     out.ch(',');
     out.uint(pt.line);
     out.ch(',');
-    out.kind(kind_name(pt.kind));
+    const KindName& kind = kind_name(pt.kind);
+    out.block(kind.text, kind.size);
     out.ch(',');
     out.num(pt.feed);
     out.ch(',');
   } else {
-    out.str(",\"tool_length\":");
+    out.text(",\"tool_length\":");
     out.num(pt.tool_length);
-    out.str(",\"line\":");
+    out.text(",\"line\":");
     out.uint(pt.line);
-    out.str(",\"kind\":\"");
-    out.kind(kind_name(pt.kind));
-    out.str("\",\"feed\":");
+    out.text(",\"kind\":\"");
+    const KindName& kind = kind_name(pt.kind);
+    out.block(kind.text, kind.size);
+    out.text("\",\"feed\":");
     out.num(pt.feed);
-    out.str(",\"time\":");
+    out.text(",\"time\":");
   }
 }
 
@@ -138,11 +109,11 @@ void format_tail(Out& out, PathFormat format, const path::PathPoint& pt) {
     sign(out, pt.dir[2]);
     out.ch('\n');
   } else {
-    out.str(",\"vx\":");
+    out.text(",\"vx\":");
     sign(out, pt.dir[0]);
-    out.str(",\"vy\":");
+    out.text(",\"vy\":");
     sign(out, pt.dir[1]);
-    out.str(",\"vz\":");
+    out.text(",\"vz\":");
     sign(out, pt.dir[2]);
     out.ch('}');
   }
@@ -163,19 +134,6 @@ PathFormat parse_path_format(std::string_view name) {
   throw InputError(where, "unknown path format '" + std::string(name) + "' (expected csv or json)");
 }
 
-void append_fixed6(fmt::memory_buffer& out, double value) {
-  if (!std::isfinite(value)) {
-    append_str(out, std::isnan(value) ? "nan" : (value > 0 ? "inf" : "-inf"));
-    return;
-  }
-  if (!fixed6_fits(value)) {
-    fmt::format_to(std::back_inserter(out), "{:.6f}", value);
-    return;
-  }
-  char digits[32];
-  out.append(digits, write_fixed6(digits, value));
-}
-
 PathWriter::PathWriter(PathFormat format, ByteSink sink, std::size_t chunk_bytes)
     : format_(format), sink_(std::move(sink)), chunk_bytes_(chunk_bytes) {
   buffer_.reserve(chunk_bytes_ + 2 * kMaxFastRow);
@@ -191,7 +149,7 @@ void PathWriter::write(const path::PathPoint& pt) {
   if (fast) {
     if (!middle_valid_ || pt.line != middle_line_ || pt.kind != middle_kind_ ||
         pt.tool_length != middle_tool_length_ || pt.feed != middle_feed_) {
-      CharOut m{middle_.data()};
+      InPlaceRow m{middle_.data()};
       format_middle(m, format_, pt);
       middle_size_ = static_cast<std::size_t>(m.p - middle_.data());
       middle_line_ = pt.line;
@@ -203,14 +161,14 @@ void PathWriter::write(const path::PathPoint& pt) {
     // Format in place at the end of the buffer (no intermediate copy).
     const std::size_t old_size = buffer_.size();
     buffer_.resize(old_size + kMaxFastRow);
-    CharOut out{buffer_.data() + old_size};
+    InPlaceRow out{buffer_.data() + old_size};
     format_head(out, format_, pt, points_ == 0);
     std::memcpy(out.p, middle_.data(), middle_size_);
     out.p += middle_size_;
     format_tail(out, format_, pt);
     buffer_.resize(static_cast<std::size_t>(out.p - buffer_.data()));
   } else {
-    BufferOut out{buffer_};
+    AppendedRow out{buffer_};
     format_head(out, format_, pt, points_ == 0);
     format_middle(out, format_, pt);
     format_tail(out, format_, pt);

@@ -26,6 +26,7 @@
 #include "abbe/io/input_error.hpp"
 #include "abbe/io/path_writer.hpp"
 #include "abbe/io/progress.hpp"
+#include "abbe/io/row_text.hpp"
 #include "abbe/machine/interpreter_setup.hpp"
 #include "abbe/machine/machine.hpp"
 #include "abbe/model/error_model.hpp"
@@ -210,11 +211,11 @@ class PredictionWriter {
     if (fits) {
       const std::size_t old_size = buf_.size();
       buf_.resize(old_size + row_max_);
-      InPlace out{buf_.data() + old_size};
+      io::InPlaceRow out{buf_.data() + old_size};
       row(out, p, devs, norms);
       buf_.resize(static_cast<std::size_t>(out.p - buf_.data()));
     } else {
-      Appended out{buf_};
+      io::AppendedRow out{buf_};
       row(out, p, devs, norms);
     }
     ++points_;
@@ -228,35 +229,6 @@ class PredictionWriter {
 
  private:
   static constexpr std::size_t kChunk = std::size_t{1} << 16;
-
-  // Text into memory reserved for a whole row (every number fits).
-  struct InPlace {
-    char* p;
-    void num(double v) { p = io::write_fixed6(p, v); }
-    void text(std::string_view s) {
-      std::memcpy(p, s.data(), s.size());
-      p += s.size();
-    }
-    template <std::size_t N>
-    void text(const char (&s)[N]) {  // a literal: fixed-size copy, no call
-      std::memcpy(p, s, N - 1);
-      p += N - 1;
-    }
-    void ch(char c) { *p++ = c; }
-    // The first n characters of a 24-byte block, copied whole (fixed size: no call).
-    void block(const std::array<char, 24>& b, std::size_t n) {
-      std::memcpy(p, b.data(), b.size());
-      p += n;
-    }
-  };
-  // Text appended to the buffer (any number).
-  struct Appended {
-    fmt::memory_buffer& b;
-    void num(double v) { io::append_fixed6(b, v); }
-    void text(std::string_view s) { b.append(s.data(), s.data() + s.size()); }
-    void ch(char c) { b.push_back(c); }
-    void block(const std::array<char, 24>& s, std::size_t n) { b.append(s.data(), s.data() + n); }
-  };
 
   template <class Out>
   void row(Out& out, const model::EvalPoint& p, const std::vector<model::Deviation>& devs,

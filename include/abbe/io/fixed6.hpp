@@ -12,6 +12,8 @@
 // int64); other values go through io::append_fixed6 (path_writer.hpp), which
 // writes the same text for the values both take and handles NaN, infinity
 // and huge numbers.
+#include <fmt/format.h>
+
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -29,6 +31,10 @@ inline bool fixed6_fits(double value) {  // NaN: false; no branch
 
 // Writes the decimal digits of v (at most 20) from `out`; returns one past the last.
 char* write_decimal(char* out, unsigned long long v);
+
+// Appends `value` in the same text, for any value: non-finite → "nan"/"inf",
+// huge values with printf's "%.6f".
+void append_fixed6(fmt::memory_buffer& out, double value);
 
 namespace detail {
 // "000" … "999" as 32-bit words (the first character in the lowest byte, the

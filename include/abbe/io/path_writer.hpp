@@ -28,10 +28,6 @@ PathFormat parse_path_format(std::string_view name);
 // Receives the formatted bytes, a chunk at a time.
 using ByteSink = std::function<void(const char* data, std::size_t size)>;
 
-// Appends `value` rounded to 6 decimals, trailing zeros (and a bare '.')
-// dropped: 1.5 → "1.5", -350 → "-350", 1e-7 → "0". Non-finite → "nan"/"inf".
-void append_fixed6(fmt::memory_buffer& out, double value);
-
 class PathWriter {
  public:
   PathWriter(PathFormat format, ByteSink sink, std::size_t chunk_bytes = std::size_t{1} << 20);
