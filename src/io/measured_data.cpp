@@ -21,8 +21,6 @@ constexpr std::array<std::string_view, 16> kNames{"x",  "y",  "z",           "dx
                                                   "nz", "dn", "tool_length", "set"};
 enum Col { cx, cy, cz, cdx, cdy, cdz, ct, cvx, cvy, cvz, cnx, cny, cnz, cdn, cl, cset };
 
-std::string_view trim(std::string_view s) { return trim_blanks(s); }
-
 }  // namespace
 
 MeasuredData read_measured_data(std::istream& in, const std::string& file) {
@@ -39,7 +37,7 @@ MeasuredData read_measured_data(std::istream& in, const std::string& file) {
     ++line_no;
     if (line_no == 1 && line.size() >= 3 && line.compare(0, 3, "\xEF\xBB\xBF") == 0)
       line.erase(0, 3);
-    if (!trim(line).empty()) {
+    if (!trim_blanks(line).empty()) {
       have_header = true;
       break;
     }
@@ -52,7 +50,7 @@ MeasuredData read_measured_data(std::istream& in, const std::string& file) {
   col.fill(-1);
   const auto names = split_csv_line(line);
   for (std::size_t i = 0; i < names.size(); ++i) {
-    const std::string_view n = trim(names[i].text);
+    const std::string_view n = trim_blanks(names[i].text);
     for (std::size_t k = 0; k < kNames.size(); ++k)
       if (n == kNames[k]) {
         if (col[k] >= 0) fail(names[i].column, n, fmt::format("column `{}` appears twice", n));
@@ -73,7 +71,7 @@ MeasuredData read_measured_data(std::istream& in, const std::string& file) {
 
   while (std::getline(in, line)) {
     ++line_no;
-    if (trim(line).empty() || trim(line).front() == '#') continue;
+    if (trim_blanks(line).empty() || trim_blanks(line).front() == '#') continue;
     const auto fields = split_csv_line(line);
     auto text = [&](int k) -> std::optional<CsvField> {  // trimmed
       const int c = col[static_cast<std::size_t>(k)];
@@ -83,7 +81,7 @@ MeasuredData read_measured_data(std::istream& in, const std::string& file) {
         fail(line.size() + 1, kNames[static_cast<std::size_t>(k)],
              fmt::format("{} fields, but `{}` is column {}", fields.size(),
                          kNames[static_cast<std::size_t>(k)], uc + 1));
-      const std::string_view t = trim(fields[uc].text);
+      const std::string_view t = trim_blanks(fields[uc].text);
       if (t.empty()) return std::nullopt;
       return CsvField{t, fields[uc].column};
     };

@@ -34,7 +34,7 @@ ErrorModel::ErrorModel(const machine::Machine& machine, ModelKind kind)
 }
 
 namespace {
-// Out of line, so that lookup() stays small enough to be inlined into evaluate().
+// Out of line, so that lookup_at() stays small enough to be inlined into evaluate().
 [[noreturn]] [[gnu::cold]] [[gnu::noinline]] void throw_out_of_range(const std::string& file, int j,
                                                                      double s, double lo,
                                                                      double hi) {
@@ -46,9 +46,13 @@ namespace {
 }  // namespace
 
 void ErrorModel::lookup(const EvalPoint& point, ModelData& data) const {
-  const Eigen::Vector3d s = point.p + Eigen::Vector3d(0.0, 0.0, point.tool_length);
+  lookup_at(point.p + Eigen::Vector3d(0.0, 0.0, point.tool_length), point.dir, data);
+}
+
+void ErrorModel::lookup_at(const Eigen::Vector3d& s, const std::array<std::int8_t, 3>& dirs,
+                           ModelData& data) const {
   for (std::size_t j = 0; j < 3; ++j) {
-    int dir = point.dir[j] > 0 ? 2 : point.dir[j] < 0 ? 0 : 1;
+    int dir = dirs[j] > 0 ? 2 : dirs[j] < 0 ? 0 : 1;
     const AxisErrorTable& t = tables_->by_axis_dir[j][static_cast<std::size_t>(dir)];
     const double s_j = s[static_cast<Eigen::Index>(j)];
     if (!t.eval(s_j, data.errors[j])) {
@@ -60,9 +64,9 @@ void ErrorModel::lookup(const EvalPoint& point, ModelData& data) const {
 }
 
 Deviation ErrorModel::evaluate(const EvalPoint& point, ModelData& data) const {
-  lookup(point, data);
-  ++data.evaluations;
   const Eigen::Vector3d s = point.p + Eigen::Vector3d(0.0, 0.0, point.tool_length);
+  lookup_at(s, point.dir, data);
+  ++data.evaluations;
   Deviation d;
   switch (kind_) {
     case ModelKind::ae_arm:

@@ -3,8 +3,9 @@
 // ErrorModel is immutable and built once from a Machine (tables resampled per
 // axis and direction, measurement points and U(j) folded into constants);
 // ModelData is the per-thread workspace of the evaluations (the component
-// errors looked up last, out-of-range counter). evaluate() predicts the deviation of the tool tip
-// from its nominal position at one point (docs/models.md).
+// errors looked up last, out-of-range counter). evaluate() predicts the
+// deviation of the tool tip from its nominal position at one point
+// (docs/models.md).
 #include <Eigen/Core>
 #include <array>
 #include <cstddef>
@@ -76,6 +77,9 @@ class ErrorModel {
     std::string file;
   };
 
+  // The lookup at axis positions s = P + L·e_z with the axes' directions of motion.
+  void lookup_at(const Eigen::Vector3d& s, const std::array<std::int8_t, 3>& dirs,
+                 ModelData& data) const;
   // (−EC0Y·y + EB0Z·z, −EA0Z·z, 0): µrad × mm = nm, hence the 1e-3.
   Eigen::Vector3d squareness_um(const Eigen::Vector3d& p) const {
     return 1e-3 * Eigen::Vector3d(-squareness_.ec0y * p.y() + squareness_.eb0z * p.z(),
