@@ -19,13 +19,6 @@ namespace {
 constexpr std::array<std::string_view, 5> kColumns{"axis", "component", "position_mm", "direction",
                                                    "value"};
 
-std::string_view trim(std::string_view s) { return io::trim_blanks(s); }
-
-struct Field {
-  std::string_view text;
-  std::size_t column;  // 1-based column of the field's first character
-};
-
 }  // namespace
 
 const char* to_string(TableDirection d) {
@@ -56,11 +49,12 @@ ComponentTable ComponentTable::parse(const std::string& text, const std::string&
   std::string_view rest(text);
   std::size_t line_no = 0;
   bool header_seen = false;
-  std::array<Field, 5> fields;
+  std::array<io::CsvField, 5> fields;  // trimmed, with the column of their first character
   std::string_view line;
 
   auto error = [&](std::size_t column, std::string_view field, const std::string& msg) {
-    throw InputError({file, line_no, column, std::string(field), std::string(trim(line))}, msg);
+    throw InputError(
+        {file, line_no, column, std::string(field), std::string(io::trim_blanks(line))}, msg);
   };
 
   while (!rest.empty()) {
@@ -68,7 +62,7 @@ ComponentTable ComponentTable::parse(const std::string& text, const std::string&
     line = rest.substr(0, nl);
     rest = nl == std::string_view::npos ? std::string_view{} : rest.substr(nl + 1);
     ++line_no;
-    std::string_view content = trim(line);
+    std::string_view content = io::trim_blanks(line);
     if (content.empty() || content.front() == '#') continue;
 
     // Split into exactly five fields.
@@ -80,7 +74,7 @@ ComponentTable ComponentTable::parse(const std::string& text, const std::string&
         std::string_view raw = line.substr(start, i - start);
         std::size_t lead = 0;
         while (lead < raw.size() && (raw[lead] == ' ' || raw[lead] == '\t')) ++lead;
-        fields[n++] = {trim(raw), start + lead + 1};
+        fields[n++] = {io::trim_blanks(raw), start + lead + 1};
         start = i + 1;
       }
     }
@@ -115,7 +109,7 @@ ComponentTable ComponentTable::parse(const std::string& text, const std::string&
                         axis_letter(comp->axis), axis_letter(*axis)));
     double position = 0.0, value = 0.0;
     for (int f : {2, 4}) {
-      const Field& fld = fields[static_cast<std::size_t>(f)];
+      const io::CsvField& fld = fields[static_cast<std::size_t>(f)];
       double& out = f == 2 ? position : value;
       const char* b = fld.text.data();
       const char* e = b + fld.text.size();
