@@ -28,7 +28,7 @@ class MotionStream {
       : reader_(in, file), interp_(config, file) {}
   // `skip`: a motion of a canned cycle that is not a hole bottom.
   bool next(gcode::Motion& m, bool& skip) {
-    while (head_ == pending_.size()) {
+    while (head_ == skip_.size()) {
       if (interp_.program_ended() || !reader_.next(block_)) return false;
       block_motions_.clear();
       head_ = 0;
@@ -38,7 +38,7 @@ class MotionStream {
       // A hole: the motions at one position of the plane; its bottom is the
       // feed end deepest along the drill axis (pecks stop short of it).
       const bool cycle = block_motions_.size() > 1;
-      pending_.assign(block_motions_.size(), cycle);
+      skip_.assign(block_motions_.size(), cycle);
       if (cycle) {
         const auto ax = plane_axes(interp_.plane());
         const auto same_place = [&](const Eigen::Vector3d& p, const Eigen::Vector3d& q) {
@@ -57,13 +57,13 @@ class MotionStream {
                                std::abs(block_motions_[*bottom].end[ax[2]] - top))
               bottom = k;
           }
-          if (bottom) pending_[*bottom] = false;
+          if (bottom) skip_[*bottom] = false;
           i = j;
         }
       }
     }
     m = block_motions_[head_];
-    skip = pending_[head_];
+    skip = skip_[head_];
     ++head_;
     return true;
   }
@@ -73,7 +73,7 @@ class MotionStream {
   gcode::Interpreter interp_;
   gcode::Block block_;
   std::vector<gcode::Motion> block_motions_;
-  std::vector<bool> pending_;
+  std::vector<bool> skip_;  // per motion of the block: `skip` of next()
   std::size_t head_ = 0;
 };
 
@@ -97,18 +97,6 @@ Eigen::AlignedBox3d bounds(const gcode::Motion& m) {
     b.extend(m.center + Eigen::Vector3d::Constant(r));
   }
   return b;
-}
-
-// Direction signs on a nominal curve at parameter t, as the fragmenter gives
-// them: the curve's own; for the in-plane axes of an arc the sign of the
-// tangent (at a reversal itself, the sign before it).
-Dir direction_at(const Curve& c, double t) {
-  Dir dir = c.dir;
-  if (!c.path.is_arc()) return dir;
-  for (int k = 0; k < 2; ++k)
-    dir[static_cast<std::size_t>(c.path.axes()[static_cast<std::size_t>(k)])] =
-        c.path.in_plane_direction(k, t);
-  return dir;
 }
 
 struct PassStats {
@@ -164,13 +152,9 @@ PassStats run_pass(MotionStream& a, MotionStream& b, double step, std::size_t wi
       if (!feed || (point.p - m.start).norm() == 0.0) return;
       if (cycle && point.p != m.end) return;  // a hole: its bottom only
       path::PathPoint pp = point;
-      if (arc) {
-        const double t = std::clamp(arc->closest(pp.p), arc->near_lo(kNearReversal),
-                                    arc->near_hi(kNearReversal));
-        for (int k = 0; k < 2; ++k)
-          pp.dir[static_cast<std::size_t>(arc->axes()[static_cast<std::size_t>(k)])] =
-              arc->in_plane_direction(k, t);
-      }
+      if (arc)
+        pp.dir = arc->directions(pp.dir, std::clamp(arc->closest(pp.p), arc->near_lo(kNearReversal),
+                                                    arc->near_hi(kNearReversal)));
       while (!b_done && curves.size() < cursor + window + 1) pull();
       if (curves.empty()) return;
       // Candidates: the curves within `slack` of the best match (a point at
@@ -242,11 +226,8 @@ VerifyStats verify_program(std::istream& compensated, const std::string& compens
       return c.path.distance(pp.p);
     };
     const auto measure = [&](const Curve& c, const path::PathPoint& pp) {
+      if (!c.path.is_arc()) return c.path.distance(pp.p + error_mm(pp.p, pp.tool_length, c.dir));
       const double t0 = c.path.closest(pp.p);
-      if (!c.path.is_arc()) {
-        const Vector3d q = pp.p + error_mm(pp.p, pp.tool_length, c.dir);
-        return (c.path.at(c.path.closest(q)) - q).norm();
-      }
       const double w = c.path.length() > 0.0 ? 0.5 / c.path.length() : 1.0;
       const double t_lo = std::max(0.0, t0 - w), t_hi = std::min(1.0, t0 + w);
       const double lo = c.path.near_lo(kNearReversal), hi = c.path.near_hi(kNearReversal);
@@ -261,7 +242,7 @@ VerifyStats verify_program(std::istream& compensated, const std::string& compens
       for (int s = 0; s + 1 < nb; ++s) {
         const double sa = bounds_t[s], sb = bounds_t[s + 1];
         const double mid = std::clamp(0.5 * (sa + sb), lo, hi);
-        const Vector3d q = pp.p + error_mm(pp.p, pp.tool_length, direction_at(c, mid));
+        const Vector3d q = pp.p + error_mm(pp.p, pp.tool_length, c.path.directions(c.dir, mid));
         const double t = std::clamp(c.path.closest(q), sa, sb);
         best = std::min(best, (c.path.at(t) - q).norm());
       }

@@ -252,6 +252,8 @@ class Compensator {
       // began, or the R plane (G99), nominal in G90 and relative to the
       // initial level in G91.
       const int n = plane_axes(interp_.plane())[2];
+      // The written depth word is the modal one afterwards.
+      if (const gcode::Word* w = find_word(block, kAxis[n])) orig_cc_ = w->value;
       const double level = retract_to_r_ && !incremental_ ? 0.0 : initial_level_delta_;
       cmd_[n] = prog(p_after_)[n] + level / unit_;
     } else if (motions_[0].kind == gcode::MotionKind::rapid || g53)
@@ -300,13 +302,7 @@ class Compensator {
   // axes, as for a rapid).
   void hold(BlockEditor& ed) {
     const gcode::Motion& m = motions_[0];
-    path::PathPoint pp;
-    pp.p = m.end;
-    pp.tool_length = m.tool_length;
-    pp.line = m.line;
-    pp.kind = m.kind;
-    pp.dir = last_point_dir_;
-    const Vector3d target = prog(m.end) + solve(pp) / unit_;
+    const Vector3d target = prog(m.end) + solve_at(m, m.end, last_point_dir_) / unit_;
     for (int k = 0; k < 3; ++k)
       cmd_[k] = set_abs(ed, kAxis[k], target[k], cmd_[k], cmd_[k], incremental_, true);
   }
@@ -333,13 +329,6 @@ class Compensator {
   void cycle(const gcode::Block& block, BlockEditor& ed, std::vector<std::string>& pieces) {
     const auto ax = plane_axes(interp_.plane());
     const int n = ax[2];
-    struct OrigDepth {  // the written depth word is the modal one afterwards
-      const gcode::Word* w;
-      double& cc;
-      ~OrigDepth() {
-        if (w) cc = w->value;
-      }
-    } orig_depth{find_word(block, kAxis[n]), orig_cc_};
     if (!in_cycle_) initial_level_delta_ = delta_[n];
     in_cycle_ = true;
     const double level = incremental_ ? initial_level_delta_ : 0.0;
@@ -512,16 +501,6 @@ class Compensator {
     return true;
   }
 
-  // Direction signs at parameter t of an arc: `base` for the normal axis,
-  // the tangent's for the in-plane axes (before a reversal at t itself).
-  static std::array<std::int8_t, 3> arc_dir(const MotionPath& path, std::array<std::int8_t, 3> base,
-                                            double t) {
-    for (int k = 0; k < 2; ++k)
-      base[static_cast<std::size_t>(path.axes()[static_cast<std::size_t>(k)])] =
-          path.in_plane_direction(k, t);
-    return base;
-  }
-
   Vector3d solve_at(const gcode::Motion& m, const Vector3d& p,
                     const std::array<std::int8_t, 3>& dir) {
     path::PathPoint pp;
@@ -558,13 +537,13 @@ class Compensator {
     if (arc) {
       for (std::size_t k = 0; k < pts.size(); ++k) {
         const double t = static_cast<double>(k + 1) / static_cast<double>(pts.size());
-        if (t < lo || t > hi) pts[k].dir = arc_dir(path, dir0, std::clamp(t, lo, hi));
+        if (t < lo || t > hi) pts[k].dir = path.directions(dir0, std::clamp(t, lo, hi));
       }
     }
     // The start: solved with this motion's directions; a jump from the
     // correction the previous motion ended with (an axis reverses at the
     // corner) is taken by a micro move before the block.
-    std::array<std::int8_t, 3> start_dir = arc ? arc_dir(path, dir0, lo) : dir0;
+    const std::array<std::int8_t, 3> start_dir = path.directions(dir0, lo);
     Vector3d d_start = delta_;
     if (!(last_dir_ && *last_dir_ == start_dir && last_end_ == m.start))
       d_start = solve_at(m, m.start, start_dir);
@@ -583,8 +562,8 @@ class Compensator {
       while (r < reversals.size() && reversals[r] <= t + near && (!last || reversals[r] < t)) {
         const double tr = reversals[r++];
         const Vector3d nr = path.at(tr);
-        const Vector3d d_before = solve_at(m, nr, arc_dir(path, dir0, tr));
-        const Vector3d d_after = solve_at(m, nr, arc_dir(path, dir0, std::min(hi, tr + 1e-6)));
+        const Vector3d d_before = solve_at(m, nr, path.directions(dir0, tr));
+        const Vector3d d_after = solve_at(m, nr, path.directions(dir0, std::min(hi, tr + 1e-6)));
         if ((d_after - d_before).norm() <= jump_tol) continue;
         // No fragment point closer than kNearReversal before it.
         while (sp.size() > 1 && sp.back().t > tr - near && !sp.back().reversal) sp.pop_back();
@@ -613,12 +592,11 @@ class Compensator {
         }
       if (b < limit) {
         std::size_t good = b, step = 1;
-        std::size_t bad = limit + 1;
         while (good + step <= limit && piece_ok(m, sp, a, good + step)) {
           good += step;
           step *= 2;
         }
-        bad = std::min(limit + 1, good + step);
+        std::size_t bad = std::min(limit + 1, good + step);
         while (bad - good > 1) {
           const std::size_t mid = good + (bad - good) / 2;
           if (piece_ok(m, sp, a, mid))
@@ -674,21 +652,9 @@ class Compensator {
         }
         if (arc) arc_words(ed, block, m, ax, centre, sp[a], sp[b], start_cmd, r_form, nullptr);
       } else {
-        std::string line;
-        const char* sep = ed.spaced() ? " " : "";
-        if (after_micro) line = motion_word;
-        for (int k = 0; k < 3; ++k) {
-          const double v = incremental_ ? round_to(target[k] - cmd_[k], decimals_)
-                                        : round_to(target[k], decimals_);
-          const bool write = incremental_ ? v != 0.0 : v != round_to(cmd_[k], decimals_);
-          if (arc && !write && k != ax[2]) {
-            // an arc piece names its in-plane end point
-          } else if (!write) {
-            continue;
-          }
-          append_word(line, line.empty() ? "" : sep, kAxis[k], v, decimals_);
-          cmd_[k] = incremental_ ? cmd_[k] + v : v;
-        }
+        std::string line = after_micro ? motion_word : "";
+        // An arc piece names its in-plane end point.
+        append_axes(line, target, ed.spaced(), arc ? (1 << ax[0]) | (1 << ax[1]) : 0);
         if (arc) arc_words(ed, block, m, ax, centre, sp[a], sp[b], start_cmd, r_form, &line);
         pieces.push_back(line);
       }
@@ -707,22 +673,30 @@ class Compensator {
     return true;
   }
 
-  // "G1 X.. Y.. Z..": a straight move of the commanded point to `target`
-  // (program frame and units), only the axes whose written value changes;
-  // empty if none does. Updates cmd_.
-  std::string micro_line(const Vector3d& target, bool spaced) {
-    std::string line = "G1";
+  // Appends to `line` the axis words that take the commanded point to
+  // `target` (program frame and units): the axes whose written value
+  // changes and those in the bit mask `always`. Updates cmd_; returns true
+  // if a word was appended.
+  bool append_axes(std::string& line, const Vector3d& target, bool spaced, int always) {
     bool any = false;
     for (int k = 0; k < 3; ++k) {
       const double v =
           incremental_ ? round_to(target[k] - cmd_[k], decimals_) : round_to(target[k], decimals_);
       const bool write = incremental_ ? v != 0.0 : v != round_to(cmd_[k], decimals_);
-      if (!write) continue;
+      if (!write && !(always & (1 << k))) continue;
       any = true;
-      append_word(line, spaced ? " " : "", kAxis[k], v, decimals_);
+      append_word(line, line.empty() || !spaced ? "" : " ", kAxis[k], v, decimals_);
       cmd_[k] = incremental_ ? cmd_[k] + v : v;
     }
-    return any ? line : std::string();
+    return any;
+  }
+
+  // "G1 X.. Y.. Z..": a straight move of the commanded point to `target`
+  // (program frame and units), only the axes whose written value changes;
+  // empty if none does. Updates cmd_.
+  std::string micro_line(const Vector3d& target, bool spaced) {
+    std::string line = "G1";
+    return append_axes(line, target, spaced, 0) ? line : std::string();
   }
 
   // Centre words (IJK or R) of an arc piece from sp_a to sp_b: the centre

@@ -34,6 +34,14 @@ class MotionPath {
   // Direction sign of plane axis k (0: first, 1: second) of an arc at t: the
   // tangent's; at a reversal itself the sign just before it.
   std::int8_t in_plane_direction(int k, double t) const;
+  // `dir` with the in-plane axes of an arc set to in_plane_direction at t
+  // (the normal axis, and every axis of a line, as given).
+  std::array<std::int8_t, 3> directions(std::array<std::int8_t, 3> dir, double t) const {
+    if (!arc_) return dir;
+    for (std::size_t k = 0; k < 2; ++k)
+      dir[static_cast<std::size_t>(ax_[k])] = in_plane_direction(static_cast<int>(k), t);
+    return dir;
+  }
   // Reversals closer than `near` (mm) to an end of an arc count as at that
   // end: the parameter range [lo, hi] inside which directions are taken
   // (t is clamped into it). Compensation and verification share this.
