@@ -18,8 +18,8 @@ namespace abbe::gcode::ast {
 using Iterator = const char*;
 using Span = boost::iterator_range<Iterator>;
 
-// A number scanned once by grammar/number_parser.hpp: its text and what the
-// conversion to double needs.
+// A number scanned once by number_parser (grammar/primitives.hpp): its text
+// and what the conversion to double needs.
 struct Number {
   Iterator begin = nullptr;    // the sign if any, else the first digit or '.'
   Iterator end = nullptr;      // one past the last digit or '.'

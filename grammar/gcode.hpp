@@ -14,6 +14,13 @@ namespace x3 = boost::spirit::x3;
 // bounds the memory a single absurd line can take.
 inline constexpr std::size_t kMaxItemsPerBlock = 1024;
 
+// Numbers longer than this (digits and '.') are refused: no CAM post emits
+// them and they can only be garbage.
+inline constexpr std::size_t kMaxNumberChars = 64;
+
+// Largest program number and checksum.
+inline constexpr long kMaxProgramNumber = 999'999'999L;
+
 struct line_class;
 using line_type = x3::rule<line_class, ast::Line>;
 BOOST_SPIRIT_DECLARE(line_type)

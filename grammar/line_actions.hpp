@@ -14,17 +14,11 @@
 #include <cstring>
 
 #include "grammar/ast.hpp"
+#include "grammar/gcode.hpp"  // kMaxNumberChars, kMaxProgramNumber
 
 namespace abbe::gcode::grammar {
 
 namespace x3 = boost::spirit::x3;
-
-// Numbers longer than this (digits and '.') are refused: no CAM post emits
-// them and they can only be garbage.
-inline constexpr std::size_t kMaxNumberChars = 64;
-
-// Largest program number and checksum.
-inline constexpr long kMaxProgramNumber = 999'999'999L;
 
 namespace detail {
 

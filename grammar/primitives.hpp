@@ -1,13 +1,13 @@
 #pragma once
-// Two small X3 primitive parsers the grammar is built from:
-//   number_parser  the numbers of words, scanned once: while it matches
-//                  `number` (or `digits`) of grammar/gcode.ebnf it collects
-//                  what the conversion to double needs (ast::Number), so no
-//                  second pass over the text is needed;
-//   position       matches nothing; its attribute is where it stands (the
-//                  offset of a word letter for the semantic action);
-//   blanks_parser  { " " | tab }, without an attribute (the most frequent
-//                  parser of a line: after every item).
+// Three small X3 primitive parsers the grammar is built from:
+//   number_parser    the numbers of words, scanned once: while it matches
+//                    `number` (or `digits`) of grammar/gcode.ebnf it collects
+//                    what the conversion to double needs (ast::Number), so no
+//                    second pass over the text is needed;
+//   position_parser  matches nothing; its attribute is where it stands (the
+//                    offset of a word letter for the semantic action);
+//   blanks_parser    { " " | tab }, without an attribute (the most frequent
+//                    parser of a line: after every item).
 // Like every X3 parser they leave `first` unchanged when they fail.
 #include <boost/spirit/home/x3.hpp>
 #include <cstdint>

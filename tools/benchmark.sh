@@ -77,7 +77,8 @@ best_of() {
       return 1
     }
     line=$(echo "$t $(tail -1 "$work/rss.txt")" | awk '{printf "%.3f %.3f %d", $1, $2 + $3, $4}')
-    if [ -z "$best" ] || awk -v a="$(echo "$line" | cut -d' ' -f2)" -v b="$(echo "$best" | cut -d' ' -f2)" 'BEGIN{exit !(a < b)}'; then
+    # Compare the second fields (CPU time).
+    if [ -z "$best" ] || awk -v a="$line" -v b="$best" 'BEGIN{split(a, x); split(b, y); exit !(x[2] < y[2])}'; then
       best=$line
     fi
   done

@@ -23,8 +23,6 @@ namespace {
 // Input is read in chunks of this size (lines may be longer: the buffer grows).
 constexpr std::size_t kChunkBytes = std::size_t{1} << 20;
 
-constexpr long kMaxProgramNumber = 999'999'999L;
-
 void reset(Block& block, std::size_t line_number) {
   block.line = line_number;
   block.block_delete = false;
@@ -38,13 +36,14 @@ void reset(Block& block, std::size_t line_number) {
 std::string number_error_message(ast::NumberError error) {
   switch (error) {
     case ast::NumberError::too_long:
+      static_assert(grammar::kMaxNumberChars == 64);
       return "number is too long (more than 64 characters)";
     case ast::NumberError::out_of_range:
       return "number is out of range";
     case ast::NumberError::program_number_too_large:
-      return fmt::format("program number is too large (at most {})", kMaxProgramNumber);
+      return fmt::format("program number is too large (at most {})", grammar::kMaxProgramNumber);
     case ast::NumberError::checksum_too_large:
-      return fmt::format("checksum is too large (at most {})", kMaxProgramNumber);
+      return fmt::format("checksum is too large (at most {})", grammar::kMaxProgramNumber);
     case ast::NumberError::none:
       break;
   }

@@ -35,6 +35,7 @@
 
 #include "abbe/compensate/motion_path.hpp"
 #include "abbe/compensate/point_solver.hpp"
+#include "abbe/gcode/motion.hpp"
 #include "abbe/gcode/program.hpp"
 #include "abbe/io/input_error.hpp"
 #include "abbe/machine/interpreter_setup.hpp"
@@ -73,8 +74,14 @@ Kind kind_of(abbe::gcode::MotionKind k) {
   }
 }
 
-int normal_axis(abbe::gcode::Plane p) {
-  return p == abbe::gcode::Plane::xy ? 2 : p == abbe::gcode::Plane::xz ? 1 : 0;
+// The point the solver compensates: a path point with its direction signs.
+abbe::model::EvalPoint nominal(const abbe::path::PathPoint& pp) {
+  abbe::model::EvalPoint ep;
+  ep.p = pp.p;
+  ep.tool_length = pp.tool_length;
+  ep.dir = pp.dir;
+  ep.time = pp.time;
+  return ep;
 }
 
 // Compensation vectors at every motion end of the original (dwells left out).
@@ -100,14 +107,7 @@ std::vector<Expected> compensation_vectors(const std::string& machine_file,
           last = pp;
           have = true;
         });
-        if (have) {
-          abbe::model::EvalPoint ep;
-          ep.p = last.p;
-          ep.tool_length = last.tool_length;
-          ep.dir = last.dir;
-          ep.time = last.time;
-          d = solver.solve(ep, data).c - last.p;
-        }
+        if (have) d = solver.solve(nominal(last), data).c - last.p;
         Expected e;
         e.kind = kind_of(mo.kind);
         e.alt.push_back(d);
@@ -123,10 +123,7 @@ std::vector<Expected> compensation_vectors(const std::string& machine_file,
             if (std::abs(v[a]) <= 0.02 * v.norm()) open.push_back(a);
           const int combos = open.size() == 1 ? 3 : open.size() == 2 ? 9 : 1;
           for (int c = 0; c < combos && !open.empty(); ++c) {
-            abbe::model::EvalPoint ep;
-            ep.p = last.p;
-            ep.tool_length = last.tool_length;
-            ep.dir = last.dir;
+            abbe::model::EvalPoint ep = nominal(last);
             ep.dir[static_cast<std::size_t>(open[0])] = static_cast<std::int8_t>(c % 3 - 1);
             if (open.size() > 1)
               ep.dir[static_cast<std::size_t>(open[1])] = static_cast<std::int8_t>(c / 3 - 1);
@@ -135,7 +132,7 @@ std::vector<Expected> compensation_vectors(const std::string& machine_file,
         }
         e.line = mo.line;
         e.d = d;
-        e.normal = normal_axis(mo.plane);
+        e.normal = abbe::gcode::plane_axes(mo.plane)[2];
         out.push_back(e);
         motions.push_back(mo);
       });
@@ -221,7 +218,8 @@ int main(int argc, char** argv) {
   char buf[512];
   for (std::size_t i = 0; i < o.size(); ++i) {
     const Expected& e = want[i];
-    const Eigen::Vector3d target = Eigen::Vector3d(o[i].end[0], o[i].end[1], o[i].end[2]) + e.d;
+    const Eigen::Vector3d original(o[i].end[0], o[i].end[1], o[i].end[2]);
+    const Eigen::Vector3d target = original + e.d;
     auto residual_to = [&](const Canon& x, const Eigen::Vector3d& t, double& worst) {
       worst = 0.0;
       bool ok = true;
@@ -234,15 +232,18 @@ int main(int argc, char** argv) {
       }
       return ok;
     };
+    // Whether x ends at the original plus one of the accepted vectors; worst:
+    // the least residual among the vectors it matches (among all if none).
     auto residual = [&](const Canon& x, double& worst) {
       bool ok = false;
       worst = 1e300;
       for (const Eigen::Vector3d& d : e.alt) {
         double w = 0.0;
-        const Eigen::Vector3d t = Eigen::Vector3d(o[i].end[0], o[i].end[1], o[i].end[2]) + d;
-        const bool hit = residual_to(x, t, w);
-        if (hit && !ok) worst = w;
-        if (hit == ok || hit) worst = std::min(worst, w);
+        const bool hit = residual_to(x, original + d, w);
+        if (hit && !ok)
+          worst = w;  // the first match: misses no longer count
+        else if (hit || !ok)
+          worst = std::min(worst, w);
         ok = ok || hit;
       }
       return ok;

@@ -104,7 +104,7 @@ void append_canon(fmt::memory_buffer& out, const gcode::Motion& m) {
 int run_interpret(const InterpretOptions& o) {
   const gcode::InterpreterConfig config = make_config(o);
   InputStream input(o.program, "NC program");
-  std::istream* in = &input.stream();
+  std::istream& in = input.stream();
 
   std::array<std::size_t, 4> by_kind{};
   fmt::memory_buffer out;
@@ -114,7 +114,7 @@ int run_interpret(const InterpretOptions& o) {
   };
   gcode::ProgramStats stats;
   try {
-    stats = gcode::run_program(*in, o.program, config, [&](const gcode::Motion& m) {
+    stats = gcode::run_program(in, o.program, config, [&](const gcode::Motion& m) {
       ++by_kind[static_cast<std::size_t>(m.kind)];
       if (o.canon) {
         append_canon(out, m);

@@ -61,7 +61,7 @@ int run_path(const PathOptions& o, const GlobalOptions& g) {
   const io::PathFormat format = io::parse_path_format(o.format);
 
   InputStream input(o.program, "NC program");
-  std::istream* in = &input.stream();
+  std::istream& in = input.stream();
   const bool from_stdin = input.from_stdin();
 
   path::FragmentOptions fragment_options;
@@ -87,7 +87,7 @@ int run_path(const PathOptions& o, const GlobalOptions& g) {
       tick();
     };
     const auto stats = gcode::run_program(
-        *in, o.program, config, [&](const gcode::Motion& m) { fragmenter.add(m, count); });
+        in, o.program, config, [&](const gcode::Motion& m) { fragmenter.add(m, count); });
     progress.finish();
     fmt::print("lines={} motions={} points={} time_s={:.3f}\n", stats.lines, stats.motions, points,
                fragmenter.time());
@@ -100,7 +100,7 @@ int run_path(const PathOptions& o, const GlobalOptions& g) {
     writer.write(p);
     tick();
   };
-  const auto stats = gcode::run_program(*in, o.program, config,
+  const auto stats = gcode::run_program(in, o.program, config,
                                         [&](const gcode::Motion& m) { fragmenter.add(m, write); });
   progress.finish();
   writer.finish();
