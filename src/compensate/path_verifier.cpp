@@ -32,7 +32,7 @@ class MotionStream {
       if (interp_.program_ended() || !reader_.next(block_)) return false;
       block_motions_.clear();
       head_ = 0;
-      interp_.execute(block_, reader_.raw_line(), [&](const gcode::Motion& x) {
+      interp_.execute(block_, reader_.line_text(), [&](const gcode::Motion& x) {
         if (x.kind != gcode::MotionKind::dwell) block_motions_.push_back(x);
       });
       // A hole: the motions at one position of the plane; its bottom is the
