@@ -12,6 +12,7 @@
 #include "abbe/gcode/parser.hpp"
 #include "abbe/io/input_error.hpp"
 #include "abbe/path/fragmenter.hpp"
+#include "abbe/pipeline/program_path.hpp"
 
 namespace abbe::compensate {
 namespace {
@@ -180,14 +181,9 @@ class Compensator {
   }
 
   Vector3d solve(const path::PathPoint& pp) {
-    model::EvalPoint ep;
-    ep.p = pp.p;
-    ep.tool_length = pp.tool_length;
-    ep.dir = pp.dir;
-    ep.time = pp.time;
     Solution sol;
     try {
-      sol = solver_.solve(ep, data_);
+      sol = solver_.solve(pipeline::eval_point(pp), data_);
     } catch (const InputError& e) {
       throw InputError({file_, pp.line, 0, e.where().field, ""},
                        fmt::format("at the point ({:.4f}, {:.4f}, {:.4f}) mm: {}", pp.p.x(),
@@ -207,8 +203,6 @@ class Compensator {
   }
 
   void process(const gcode::Block& block, const std::string& raw) {
-    if (has_g(block, 98)) retract_to_r_ = false;
-    if (has_g(block, 99)) retract_to_r_ = true;
     if (has_g(block, 80)) in_cycle_ = false;
     motions_.clear();
     interp_.execute(block, raw, [&](const gcode::Motion& m) {
@@ -254,7 +248,7 @@ class Compensator {
       const int n = plane_axes(interp_.plane())[2];
       // The written depth word is the modal one afterwards.
       if (const gcode::Word* w = find_word(block, kAxis[n])) orig_cc_ = w->value;
-      const double level = retract_to_r_ && !incremental_ ? 0.0 : initial_level_delta_;
+      const double level = interp_.retract_to_r() && !incremental_ ? 0.0 : initial_level_delta_;
       cmd_[n] = prog(p_after_)[n] + level / unit_;
     } else if (motions_[0].kind == gcode::MotionKind::rapid || g53)
       rapid(block, editor, g53);
@@ -412,7 +406,7 @@ class Compensator {
       }
       return;
     }
-    if (!retract_to_r_) {
+    if (!interp_.retract_to_r()) {
       ed.remove('L');
       const char* sep = ed.spaced() ? " " : "";
       double cc_written = cc + depth_delta_ / unit_;
@@ -750,7 +744,6 @@ class Compensator {
   Vector3d delta_ = Vector3d::Zero();  // commanded − nominal tool tip, mm
   double depth_delta_ = 0.0;           // correction in the modal canned-cycle depth, mm
   double orig_cc_ = 0.0;               // the modal depth word of the original (program units)
-  bool retract_to_r_ = true;           // G99 (the interpreter's start-up mode)
   Vector3d cmd_ = Vector3d::Zero();    // commanded point, program frame and units
   Vector3d pos_after_ = Vector3d::Zero(), p_after_ = Vector3d::Zero();
   double unit_ = 1.0;

@@ -2,15 +2,8 @@
 
 namespace abbe::diagnose {
 
-namespace {
-// model_choice compares htm with the Abbe-consistent ae-arm model.
-model::ModelKind other_of(model::ModelKind k) {
-  return k == model::ModelKind::htm ? model::ModelKind::ae_arm : model::ModelKind::htm;
-}
-}  // namespace
-
 ContextBuilder::ContextBuilder(const machine::Machine& machine, model::ModelKind base)
-    : base_(machine, base), other_(machine, other_of(base)) {}
+    : base_(machine, base), other_(machine, model::alternative_model(base)) {}
 
 PointContext ContextBuilder::make(const model::EvalPoint& point, const std::string& set,
                                   Eigen::Vector3d& predicted_um) {

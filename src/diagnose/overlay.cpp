@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "abbe/io/input_error.hpp"
+#include "abbe/model/model_kind.hpp"
 
 namespace abbe::diagnose {
 namespace {
@@ -93,9 +94,10 @@ Overlay Overlay::parse(const std::string& text, const std::string& file) {
     rd.fail(root, "format", "missing or unknown `format` (expected abbe-overlay-1)");
   Overlay ov;
   if (root["model"]) ov.base_model = root["model"].as<std::string>("");
-  if (ov.base_model != "htm" && ov.base_model != "ae-arm" && ov.base_model != "dual")
-    rd.fail(root["model"] ? root["model"] : root, "model",
-            fmt::format("unknown model \"{}\" (htm, ae-arm or dual)", ov.base_model));
+  if (!model::parse_model_kind(ov.base_model))
+    rd.fail(
+        root["model"] ? root["model"] : root, "model",
+        fmt::format("unknown model \"{}\" ({})", ov.base_model, model::model_names_text(false)));
   if (root["machine"]) ov.machine = root["machine"].as<std::string>("");
   const YAML::Node effects = root["effects"];
   if (!effects) return ov;

@@ -6,13 +6,8 @@ namespace abbe::diagnose {
 namespace {
 
 model::ModelKind kind_of(const Overlay& overlay) {
-  // Overlay::parse accepts only htm, ae-arm and dual.
+  // Overlay::parse accepts only the model table's names.
   return model::parse_model_kind(overlay.base_model).value_or(model::ModelKind::ae_arm);
-}
-
-// model_choice compares htm with the Abbe-consistent ae-arm model (as ContextBuilder).
-model::ModelKind other_of(model::ModelKind k) {
-  return k == model::ModelKind::htm ? model::ModelKind::ae_arm : model::ModelKind::htm;
 }
 
 }  // namespace
@@ -22,7 +17,7 @@ OverlayExtension::OverlayExtension(Overlay overlay, const machine::Machine& mach
     : overlay_(std::move(overlay)),
       fixed_time_s_(fixed_time_s),
       base_(machine, kind_of(overlay_)),
-      other_(machine, other_of(kind_of(overlay_))) {
+      other_(machine, model::alternative_model(kind_of(overlay_))) {
   needs_models_ = std::any_of(overlay_.terms.begin(), overlay_.terms.end(),
                               [](const Term& t) { return t.kind == TermKind::model_choice; });
 }

@@ -30,14 +30,13 @@ Problem build_problem(const machine::Machine& machine, const io::MeasuredData& d
   ContextBuilder builder(machine, base);
   pb.base_model = model::to_string(base);
   pb.other_model = model::to_string(builder.other());
-  const std::array<model::ModelKind, 3> kinds{model::ModelKind::htm, model::ModelKind::ae_arm,
-                                              model::ModelKind::dual};
+  const std::vector<model::ModelKind> kinds = model::parse_model_list("all");
+  const std::size_t n_models = kinds.size();
   std::vector<model::ErrorModel> models;
-  std::array<model::ModelData, 3> mdata;
+  std::vector<model::ModelData> mdata(n_models);
   for (auto k : kinds) models.emplace_back(machine, k);
-  std::array<Eigen::VectorXd, 3> model_res;
   std::vector<double> ys;
-  std::array<std::vector<double>, 3> model_ys;
+  std::vector<std::vector<double>> model_ys(n_models);
 
   pb.points.reserve(data.rows.size());
   for (const io::MeasuredRow& row : data.rows) {
@@ -48,10 +47,10 @@ Problem build_problem(const machine::Machine& machine, const io::MeasuredData& d
     ep.time = row.t;
     Eigen::Vector3d pred;
     PointContext pc;
-    std::array<Eigen::Vector3d, 3> mp;
+    std::vector<Eigen::Vector3d> mp(n_models);
     try {
       pc = builder.make(ep, row.set, pred);
-      for (std::size_t m = 0; m < 3; ++m) mp[m] = models[m].evaluate(ep, mdata[m]).e_um;
+      for (std::size_t m = 0; m < n_models; ++m) mp[m] = models[m].evaluate(ep, mdata[m]).e_um;
     } catch (const InputError& e) {
       throw InputError({data.file, row.line, 0, e.where().field, ""}, e.message());
     }
@@ -67,7 +66,7 @@ Problem build_problem(const machine::Machine& machine, const io::MeasuredData& d
     auto add = [&](const Eigen::Vector3d& u, double meas) {
       pb.obs.push_back({ip, u});
       ys.push_back(meas - u.dot(pred));
-      for (std::size_t m = 0; m < 3; ++m) model_ys[m].push_back(meas - u.dot(mp[m]));
+      for (std::size_t m = 0; m < n_models; ++m) model_ys[m].push_back(meas - u.dot(mp[m]));
     };
     if (has[0] || has[1] || has[2]) {
       for (int k = 0; k < 3; ++k)
@@ -85,7 +84,7 @@ Problem build_problem(const machine::Machine& machine, const io::MeasuredData& d
     pb.points.push_back(std::move(pc));
   }
   pb.y = Eigen::Map<Eigen::VectorXd>(ys.data(), static_cast<Eigen::Index>(ys.size()));
-  for (std::size_t m = 0; m < 3; ++m) {
+  for (std::size_t m = 0; m < n_models; ++m) {
     Eigen::VectorXd r = Eigen::Map<Eigen::VectorXd>(model_ys[m].data(),
                                                     static_cast<Eigen::Index>(model_ys[m].size()));
     ResidualStats s = residual_stats(pb, r);

@@ -9,6 +9,7 @@
 #include <random>
 
 #include "abbe/diagnose/statistics.hpp"
+#include "abbe/io/units.hpp"
 
 namespace abbe::diagnose {
 namespace {
@@ -213,12 +214,12 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
           acc.assign(6 * nf, 0.0);
           const double f0 = 1.0 / f.grid.front();
           const double df = nf > 1 ? 1.0 / f.grid[1] - f0 : 0.0;
-          constexpr double kTwoPi = 6.283185307179586;
           for (std::size_t p = 0; p < np; p += stride) {
             const double s = pb.points[p].s[t.axis];
             // z = exp(i2πf s) stepped through the grid by the factor exp(i2π·df·s).
-            double zr = std::cos(kTwoPi * f0 * s), zi = std::sin(kTwoPi * f0 * s);
-            const double mr = std::cos(kTwoPi * df * s), mi = std::sin(kTwoPi * df * s);
+            double zr = std::cos(units::kTwoPi * f0 * s), zi = std::sin(units::kTwoPi * f0 * s);
+            const double mr = std::cos(units::kTwoPi * df * s),
+                         mi = std::sin(units::kTwoPi * df * s);
             const auto ip = static_cast<Eigen::Index>(p);
             const double r0 = R(ip, 0), r1 = R(ip, 1), r2 = R(ip, 2);
             double* a = acc.data();

@@ -1,15 +1,16 @@
 #include "abbe/diagnose/term.hpp"
 
-#include <Eigen/Geometry>  // cross()
-
 #include <fmt/format.h>
 
+#include <Eigen/Geometry>  // cross()
 #include <cmath>
+
+#include "abbe/io/units.hpp"
 
 namespace abbe::diagnose {
 namespace {
 
-constexpr double kTwoPi = 6.283185307179586476925286766559;
+using units::kTwoPi;
 
 // P_0..P_n of the Legendre polynomials at u.
 void legendre(double u, int n, double* out) {

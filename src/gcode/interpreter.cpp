@@ -129,6 +129,7 @@ bool Interpreter::inch() const { return state_->inch; }
 bool Interpreter::incremental() const { return state_->incremental; }
 bool Interpreter::arc_centre_absolute() const { return state_->arc_centre_absolute; }
 Plane Interpreter::plane() const { return state_->plane; }
+bool Interpreter::retract_to_r() const { return state_->retract_to_r; }
 Eigen::Vector3d Interpreter::program_position() const { return state_->pos; }
 Eigen::Vector3d Interpreter::position() const { return state_->tip(state_->pos); }
 

@@ -1,5 +1,6 @@
 #include "abbe/identify/chain_expansion.hpp"
 
+#include "abbe/io/units.hpp"
 #include "abbe/model/chain_composition.hpp"
 
 namespace abbe::identify {
@@ -43,7 +44,7 @@ std::string monomial_name(int k) {
 }
 
 ChainExpansion::ChainExpansion(const machine::Machine& machine)
-    : machine_(&machine), geometry_(machine, model::ModelKind::dual) {}
+    : machine_(&machine), geometry_(machine) {}
 
 void ChainExpansion::evaluate(const model::EvalPoint& point,
                               const std::array<model::AxisErrors, 3>& errors,
@@ -54,14 +55,15 @@ void ChainExpansion::evaluate(const model::EvalPoint& point,
         const machine::Axis axis = order[static_cast<std::size_t>(c)];
         const model::AxisErrors& err = errors[static_cast<std::size_t>(machine::index(axis))];
         for (int k = 0; k < 3; ++k) {
-          m.delta[k] = model::ErrorScalar<Dual2>::linear(1e-3 * err.delta_um[k]);
-          m.pivots.col(k) = geometry_.measurement_point(axis, k, point);
+          m.delta[k] = model::ErrorScalar<Dual2>::linear(units::kMmPerUm * err.delta_um[k]);
+          m.pivots.col(k) = geometry_.measurement_point(axis, k, axis_positions(point));
         }
-        model::ErrorScalar<Dual2>::rotation_minus_identity(1e-6 * err.theta_urad, m.r_minus_i);
+        model::ErrorScalar<Dual2>::rotation_minus_identity(units::kRadPerUrad * err.theta_urad,
+                                                           m.r_minus_i);
       });
   for (int k = 0; k < 3; ++k) {
-    first_um[k] = 1e3 * d[k].e1;
-    second_um[k] = 1e3 * d[k].e2;
+    first_um[k] = units::kUmPerMm * d[k].e1;
+    second_um[k] = units::kUmPerMm * d[k].e2;
   }
 }
 
@@ -73,10 +75,8 @@ Eigen::Vector3d ChainExpansion::deviation_um(const model::EvalPoint& point, cons
   return first + second;
 }
 
-// (−EC0Y·y + EB0Z·z, −EA0Z·z, 0), µrad × mm = nm.
 Eigen::Vector3d ChainExpansion::squareness_um(const Eigen::Vector3d& p) const {
-  const machine::Squareness& sq = machine_->squareness();
-  return 1e-3 * Eigen::Vector3d(-sq.ec0y * p.y() + sq.eb0z * p.z(), -sq.ea0z * p.z(), 0.0);
+  return geometry_.squareness_um(p);
 }
 
 MonomialRows ChainExpansion::monomials(const model::EvalPoint& point) const {

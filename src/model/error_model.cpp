@@ -12,9 +12,9 @@ using machine::Axis;
 
 ErrorModel::ErrorModel(const machine::Machine& machine, ModelKind kind)
     : kind_(kind),
+      formula_(descriptor(kind).formula),
       policy_(machine.out_of_range()),
-      order_(machine.chain().order()),
-      squareness_(machine.squareness()) {
+      geometry_(std::make_shared<const ModelGeometry>(machine)) {
   auto tables = std::make_shared<Tables>();
   tables->file = machine.spec().table_file;
   for (Axis a : machine::kAxes) {
@@ -22,13 +22,6 @@ ErrorModel::ErrorModel(const machine::Machine& machine, ModelKind kind)
     for (int dir = -1; dir <= 1; ++dir)
       tables->by_axis_dir[ai][static_cast<std::size_t>(dir + 1)] =
           AxisErrorTable::build(machine.table(), a, dir, policy_);
-    AxisGeometry& g = geometry_[ai];
-    auto mask = machine.chain().moves_mask(a);
-    g.moves = Eigen::Array3d(mask[0], mask[1], mask[2]);
-    const machine::AxisRecord& rec = machine.record(a);
-    Eigen::Array3d s_meas = rec.measured_axes().array();
-    for (int k = 0; k < 3; ++k)
-      g.m0.col(k) = (rec.point[static_cast<std::size_t>(k)].array() - g.moves * s_meas).matrix();
   }
   tables_ = std::move(tables);
 }
@@ -67,18 +60,9 @@ Deviation ErrorModel::evaluate(const EvalPoint& point, ModelData& data) const {
   const Eigen::Vector3d s = point.p + Eigen::Vector3d(0.0, 0.0, point.tool_length);
   lookup_at(s, point.dir, data);
   ++data.evaluations;
-  Deviation d;
-  switch (kind_) {
-    case ModelKind::ae_arm:
-      d = evaluate_ae_arm(point, s, data);
-      break;
-    case ModelKind::htm:
-      d = evaluate_htm(point, s, data);
-      break;
-    case ModelKind::dual:
-      d = evaluate_dual(point, s, data);
-      break;
-  }
+  // ae-arm, the default, inlined; every other model through its table row.
+  Deviation d = kind_ == ModelKind::ae_arm ? evaluate_ae_arm_inline(*geometry_, point, s, data)
+                                           : formula_(*geometry_, point, s, data);
   if (extension_) d.e_um += extension_->extra_um(point, d, data);
   return d;
 }
@@ -90,15 +74,11 @@ ErrorModel ErrorModel::with_extension(std::shared_ptr<const ErrorExtension> exte
 }
 
 Eigen::Vector3d ErrorModel::measurement_point(Axis j, int k, const EvalPoint& point) const {
-  const AxisGeometry& g = geometry_[static_cast<std::size_t>(machine::index(j))];
-  Eigen::Array3d s = (point.p + Eigen::Vector3d(0.0, 0.0, point.tool_length)).array();
-  return g.m0.col(k) + (g.moves * s).matrix();
+  return geometry_->measurement_point(j, k, point.p + Eigen::Vector3d(0.0, 0.0, point.tool_length));
 }
 
 Eigen::Vector3d ErrorModel::frame_origin(Axis j, const EvalPoint& point) const {
-  const AxisGeometry& g = geometry_[static_cast<std::size_t>(machine::index(j))];
-  Eigen::Array3d s = (point.p + Eigen::Vector3d(0.0, 0.0, point.tool_length)).array();
-  return (g.moves * s).matrix();
+  return geometry_->frame_origin(j, point.p + Eigen::Vector3d(0.0, 0.0, point.tool_length));
 }
 
 }  // namespace abbe::model

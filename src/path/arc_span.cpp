@@ -4,10 +4,11 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "abbe/io/units.hpp"
+
 namespace abbe::path {
 
 namespace {
-constexpr double kTwoPi = 6.283185307179586476925286766559;
 // Start and end closer than this (mm, in the plane) make a full circle.
 constexpr double kFullCircleTolerance = 1e-9;
 }  // namespace
@@ -33,13 +34,13 @@ ArcSpan::ArcSpan(const gcode::Motion& motion)
   const bool ccw = motion.rotation > 0;
   double sweep;
   if (std::hypot(ea - sa, eb - sb) < kFullCircleTolerance) {
-    sweep = kTwoPi;
+    sweep = units::kTwoPi;
   } else {
     sweep = ccw ? theta1 - theta0_ : theta0_ - theta1;  // in (-2π, 2π)
-    if (sweep <= 0.0) sweep += kTwoPi;
+    if (sweep <= 0.0) sweep += units::kTwoPi;
   }
   const int turns = std::abs(motion.rotation) - 1;
-  sweep += kTwoPi * turns;
+  sweep += units::kTwoPi * turns;
   sweep_ = ccw ? sweep : -sweep;
 }
 

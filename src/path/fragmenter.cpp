@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "abbe/io/units.hpp"
 #include "abbe/path/arc_span.hpp"
 #include "abbe/path/line_span.hpp"
 
@@ -71,7 +72,7 @@ namespace {
 // Seconds per mm at the motion's rate.
 double seconds_per_mm(const gcode::Motion& motion, double rapid_rate) {
   const bool rapid = motion.kind == gcode::MotionKind::rapid || !(motion.feed > 0.0);
-  return 60.0 / (rapid ? rapid_rate : motion.feed);
+  return units::kSecondsPerMinute / (rapid ? rapid_rate : motion.feed);
 }
 }  // namespace
 

@@ -8,8 +8,9 @@
 #include <sstream>
 
 #include "abbe/gcode/program.hpp"
-#include "abbe/machine/interpreter_setup.hpp"
 #include "abbe/path/fragmenter.hpp"
+#include "abbe/pipeline/interpreter_setup.hpp"
+#include "abbe/pipeline/program_path.hpp"
 #include "abbe/report/line_plot.hpp"
 #include "abbe/report/predict_section.hpp"
 
@@ -19,14 +20,12 @@ namespace {
 // The nominal path of a program fragmented at `step`.
 std::vector<Eigen::Vector3d> fine_path(const machine::Machine& machine, const std::string& text,
                                        const std::string& file, double step) {
-  const gcode::InterpreterConfig config = machine::interpreter_config(machine);
-  path::FragmentOptions fo;
-  fo.step = step;
-  path::Fragmenter fragmenter(fo);
+  pipeline::PathOptions po;
+  po.fragment.step = step;
   std::vector<Eigen::Vector3d> out;
-  const path::PointSink sink = [&](const path::PathPoint& p) { out.push_back(p.p); };
   std::istringstream in(text);
-  gcode::run_program(in, file, config, [&](const gcode::Motion& m) { fragmenter.add(m, sink); });
+  pipeline::run_path(in, file, pipeline::interpreter_config(machine), po,
+                     [&](const path::PathPoint& p) { out.push_back(p.p); });
   return out;
 }
 

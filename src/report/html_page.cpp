@@ -53,10 +53,6 @@ void HtmlPage::add_section(const std::string& id, const std::string& heading) {
   body_ += fmt::format("<h2 id=\"{}\">{}</h2>\n", escape_xml(id), escape_xml(heading));
 }
 
-void HtmlPage::add_subheading(const std::string& text) {
-  body_ += fmt::format("<h3>{}</h3>\n", escape_xml(text));
-}
-
 void HtmlPage::add_paragraph(const std::string& text) {
   body_ += fmt::format("<p>{}</p>\n", escape_xml(text));
 }

@@ -71,10 +71,11 @@ void render_map_report(HtmlPage& page, const identify::WorkspaceMap& map,
         fmt::format("{} table lookups lay outside the measured range.", map.out_of_range_lookups));
   if (map.xs.empty() || map.ys.empty() || map.zs.empty()) return;
 
-  // Models shown side by side: htm and ae-arm when both were mapped, else all.
+  // Models shown side by side: those without a second-order part (whose
+  // first order another model already shows) when there are any, else all.
   std::vector<std::size_t> shown;
   for (std::size_t m = 0; m < map.models.size(); ++m)
-    if (map.models[m] != model::ModelKind::dual) shown.push_back(m);
+    if (!model::descriptor(map.models[m]).second_order) shown.push_back(m);
   if (shown.empty())
     for (std::size_t m = 0; m < map.models.size(); ++m) shown.push_back(m);
 

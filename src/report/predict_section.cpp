@@ -10,17 +10,7 @@
 namespace abbe::report {
 namespace {
 
-const char* model_colour(model::ModelKind k) {
-  switch (k) {
-    case model::ModelKind::htm:
-      return "#d62728";
-    case model::ModelKind::ae_arm:
-      return "#1f77b4";
-    case model::ModelKind::dual:
-      return "#2ca02c";
-  }
-  return "#000000";
-}
+const char* model_colour(model::ModelKind k) { return model::descriptor(k).colour.c_str(); }
 
 std::string model_name(model::ModelKind k) { return model::to_string(k); }
 
@@ -76,7 +66,7 @@ LinePlot toolpath_plot(const PredictedPath& r, double k, const std::string& id,
     s.colour = model_colour(r.models[m]);
     s.width = 1.4;
     // dual's first order is ae-arm: dashed, so that both stay visible.
-    if (r.models[m] == model::ModelKind::dual) s.style = SeriesStyle::dashed;
+    if (model::descriptor(r.models[m]).dashed) s.style = SeriesStyle::dashed;
     for (std::size_t i = 0; i < r.nominal.size(); ++i) {
       const Eigen::Vector2d q = project(r.nominal[i] + k * 1e-3 * r.deviation_um[m][i]);
       s.x.push_back(q.x());
@@ -131,7 +121,7 @@ LinePlot comparison_plot(const PredictedPath& r) {
     Series s;
     s.name = model_name(r.models[m]);
     s.colour = model_colour(r.models[m]);
-    s.style = r.models[m] == model::ModelKind::dual ? SeriesStyle::dashed : SeriesStyle::line;
+    s.style = model::descriptor(r.models[m]).dashed ? SeriesStyle::dashed : SeriesStyle::line;
     for (std::size_t i = 0; i < r.nominal.size(); ++i) {
       s.x.push_back(r.path_length[i]);
       s.y.push_back(r.deviation_um[m][i].norm());

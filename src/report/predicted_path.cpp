@@ -1,17 +1,11 @@
 #include "abbe/report/predicted_path.hpp"
 
-#include "abbe/machine/interpreter_setup.hpp"
-
-#include <fmt/format.h>
-
-#include <array>
-#include <cmath>
+#include <algorithm>
 #include <sstream>
 
-#include "abbe/gcode/program.hpp"
-#include "abbe/io/input_error.hpp"
-#include "abbe/model/error_model.hpp"
-#include "abbe/path/fragmenter.hpp"
+#include "abbe/pipeline/interpreter_setup.hpp"
+#include "abbe/pipeline/model_set.hpp"
+#include "abbe/pipeline/program_path.hpp"
 
 namespace abbe::report {
 namespace {
@@ -42,76 +36,46 @@ PredictedPath predict_program(const machine::Machine& machine, std::istream& in,
   std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
   std::istringstream program(text);
 
-  std::vector<model::ErrorModel> models;
-  for (auto k : o.models) models.emplace_back(machine, k);
-  std::vector<model::ModelData> data(models.size());
-  std::vector<double> sum_d2(models.size(), 0.0);
-  r.stats.resize(models.size());
+  pipeline::ModelSet models(machine, o.models);
   r.deviation_um.resize(models.size());
-  for (std::size_t i = 0; i < models.size(); ++i) r.stats[i].model = o.models[i];
-
-  const gcode::InterpreterConfig config = machine::interpreter_config(machine);
-  path::FragmentOptions fo;
-  fo.step = o.step;
-  fo.rapid_rate = o.rapid_rate;
-  path::Fragmenter fragmenter(fo);
+  pipeline::PathOptions po;
+  po.fragment.step = o.step;
+  po.fragment.rapid_rate = o.rapid_rate;
+  po.min_reversal_mm = o.min_reversal_mm;
 
   double length = 0.0;
   Eigen::Vector3d previous = Eigen::Vector3d::Zero();
-  std::vector<Eigen::Vector3d> e(models.size());
   const std::size_t max_points = std::max<std::size_t>(o.max_points, 16);
-  std::array<bool, 3> hold{false, false, false};
-  std::array<std::int8_t, 3> dir{0, 0, 0};
-  const path::PointSink sink = [&](const path::PathPoint& pp) {
-    model::EvalPoint p;
-    p.p = pp.p;
-    p.tool_length = pp.tool_length;
-    for (std::size_t a = 0; a < 3; ++a)
-      if (!hold[a]) dir[a] = pp.dir[a];
-    p.dir = dir;
-    p.time = pp.time;
-    for (std::size_t i = 0; i < models.size(); ++i) {
-      try {
-        e[i] = models[i].evaluate(p, data[i]).e_um;
-      } catch (const InputError& err) {
-        throw InputError({file, pp.line, 0, err.where().field, ""},
-                         fmt::format("at the point ({:.4f}, {:.4f}, {:.4f}) mm: {}", p.p.x(),
-                                     p.p.y(), p.p.z(), err.message()));
-      }
-      const double d = e[i].norm();
-      ModelPathStats& s = r.stats[i];
-      s.max_abs_um = s.max_abs_um.cwiseMax(e[i].cwiseAbs());
-      sum_d2[i] += d * d;
-      if (d > s.max_um || r.total_points == 0) s.max_um = d, s.max_line = pp.line;
-    }
-    if (r.total_points > 0) length += (pp.p - previous).norm();
-    previous = pp.p;
-    if (r.total_points % r.stride == 0) {
-      r.nominal.push_back(pp.p);
-      r.line.push_back(pp.line);
-      r.path_length.push_back(length);
-      for (std::size_t i = 0; i < models.size(); ++i) r.deviation_um[i].push_back(e[i]);
-      if (r.nominal.size() >= max_points) thin(r);
-    }
-    ++r.total_points;
-    if (o.progress && (r.total_points & 1023) == 0) {
-      const auto pos = program.tellg();
-      if (pos >= 0) o.progress(static_cast<std::uint64_t>(pos));
-    }
-  };
-  gcode::run_program(program, file, config, [&](const gcode::Motion& m) {
-    for (Eigen::Index a = 0; a < 3; ++a)
-      hold[static_cast<std::size_t>(a)] = o.min_reversal_mm > 0.0 &&
-                                          m.kind != gcode::MotionKind::arc &&
-                                          std::abs(m.end[a] - m.start[a]) < o.min_reversal_mm;
-    fragmenter.add(m, sink);
-  });
+  pipeline::run_path(program, file, pipeline::interpreter_config(machine), po,
+                     [&](const path::PathPoint& pp) {
+                       models.evaluate(pipeline::eval_point(pp), file, pp.line);
+                       if (r.total_points > 0) length += (pp.p - previous).norm();
+                       previous = pp.p;
+                       if (r.total_points % r.stride == 0) {
+                         r.nominal.push_back(pp.p);
+                         r.line.push_back(pp.line);
+                         r.path_length.push_back(length);
+                         for (std::size_t i = 0; i < models.size(); ++i)
+                           r.deviation_um[i].push_back(models.deviations()[i].e_um);
+                         if (r.nominal.size() >= max_points) thin(r);
+                       }
+                       ++r.total_points;
+                       if (o.progress && (r.total_points & 1023) == 0) {
+                         const auto pos = program.tellg();
+                         if (pos >= 0) o.progress(static_cast<std::uint64_t>(pos));
+                       }
+                     });
   if (o.progress) o.progress(text.size());
 
   for (std::size_t i = 0; i < models.size(); ++i) {
-    r.stats[i].rms_um =
-        r.total_points ? std::sqrt(sum_d2[i] / static_cast<double>(r.total_points)) : 0.0;
-    r.stats[i].out_of_range_lookups = data[i].out_of_range_lookups;
+    const pipeline::ModelStats& s = models.stats()[i];
+    ModelPathStats& out = r.stats.emplace_back();
+    out.model = o.models[i];
+    out.max_abs_um = s.max_abs_um;
+    out.rms_um = s.rms_um();
+    out.max_um = s.max_um;
+    out.max_line = s.max_line;
+    out.out_of_range_lookups = models.out_of_range_lookups(i);
   }
 
   // Source text of the lines the kept points come from.

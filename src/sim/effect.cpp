@@ -8,13 +8,12 @@
 #include <stdexcept>
 #include <vector>
 
+#include "abbe/io/units.hpp"
 #include "abbe/sim/chain_layout.hpp"
 
 namespace abbe::sim {
 
 namespace {
-
-constexpr double kPi = 3.141592653589793238462643383279;
 
 std::vector<std::string> split(const std::string& s, char sep) {
   std::vector<std::string> parts;
@@ -148,7 +147,7 @@ Effect parse_effect(const std::string& text) {
         e.period_mm = parse_number(text, value, "period");
         if (e.period_mm <= 0.0) fail(text, "period must be > 0 mm");
       } else if (key == "phase" && e.kind == EffectKind::cyclic) {
-        e.phase_rad = parse_number(text, value, "phase") * kPi / 180.0;
+        e.phase_rad = parse_number(text, value, "phase") * units::kPi / 180.0;
       } else if (key == "with" && e.kind == EffectKind::coupling) {
         e.with_axis = parse_axis(text, value, "with");
       } else if (key == "set" && e.kind == EffectKind::setup) {

@@ -2,11 +2,11 @@
 
 #include <cmath>
 
+#include "abbe/io/units.hpp"
+
 namespace abbe::sim {
 
-namespace {
-constexpr double kTwoPi = 6.283185307179586476925286766559;
-}
+namespace {}
 
 double ErrorComponent::base(double s) const {
   const double u = (s - centre) / half_range;
@@ -16,20 +16,13 @@ double ErrorComponent::base(double s) const {
     value += c * un;
     un *= u;
   }
-  for (const Wave& w : waves) value += w.amplitude * std::sin(kTwoPi * s / w.wavelength + w.phase);
+  for (const Wave& w : waves)
+    value += w.amplitude * std::sin(units::kTwoPi * s / w.wavelength + w.phase);
   return value;
 }
 
 double ErrorComponent::reversal_at(double s) const {
   return reversal + reversal_slope * (s - centre) / half_range;
-}
-
-bool ErrorComponent::is_zero() const {
-  for (double c : poly)
-    if (c != 0.0) return false;
-  for (const Wave& w : waves)
-    if (w.amplitude != 0.0) return false;
-  return reversal == 0.0 && reversal_slope == 0.0;
 }
 
 std::string component_name(int j, int c) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "abbe/io/units.hpp"
 #include "abbe/sim/laser_campaign.hpp"
 #include "abbe/sim/random.hpp"
 
@@ -12,7 +13,6 @@ namespace abbe::sim {
 
 namespace {
 
-constexpr double kTwoPi = 6.283185307179586476925286766559;
 constexpr double kScrewPitchMm = 10.0;      // ballscrew pitch of every axis
 constexpr double kScrewAmplitudeUm = 0.25;  // ballscrew cycle on the positioning component
 // The magnitudes are calibrated on a fixed 25 mm grid, so a seed gives the same
@@ -87,7 +87,7 @@ ErrorComponent random_shape(Random& rng, const AxisTruth& axis) {
   e.poly = {0.3 * rng.normal(), rng.normal(), 0.7 * rng.normal(), 0.5 * rng.normal()};
   for (int m = 0; m < 2; ++m)
     e.waves.push_back(
-        {rng.uniform(0.1, 0.3), length * rng.uniform(0.3, 1.2), rng.uniform(0.0, kTwoPi)});
+        {rng.uniform(0.1, 0.3), length * rng.uniform(0.3, 1.2), rng.uniform(0.0, units::kTwoPi)});
   return e;
 }
 
@@ -259,8 +259,8 @@ GeneratedMachine generate_machine(const GeneratorOptions& options) {
                 g.truth.pivot(j, TruthMachine::axis_positions(rec.measured_at, rec.tool_length));
             const auto& comps = g.truth.axes[static_cast<std::size_t>(j)].components;
             for (int m = 0; m < 3; ++m) {
-              // (θ × D)_c = Σ_m θ_m·(e_m × D)_c; µrad·mm = 1e-3 µm.
-              const double f = Eigen::Vector3d::Unit(m).cross(d)[c] * 1e-3;
+              // (θ × D)_c = Σ_m θ_m·(e_m × D)_c, µrad·mm in µm.
+              const double f = Eigen::Vector3d::Unit(m).cross(d)[c] * units::kUmPerUradMm;
               add_scaled(fixed, comps[static_cast<std::size_t>(3 + m)], -cancel * f);
             }
           }
@@ -295,7 +295,7 @@ GeneratedMachine generate_machine(const GeneratorOptions& options) {
   for (int j = 0; j < 3; ++j)
     g.truth.axes[static_cast<std::size_t>(j)]
         .components[static_cast<std::size_t>(j)]
-        .waves.push_back({kScrewAmplitudeUm, kScrewPitchMm, rng.uniform(0.0, kTwoPi)});
+        .waves.push_back({kScrewAmplitudeUm, kScrewPitchMm, rng.uniform(0.0, units::kTwoPi)});
   if (options.angular_scale != 1.0)
     for (auto& axis : g.truth.axes)
       for (int c = 3; c < 6; ++c) {

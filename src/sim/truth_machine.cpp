@@ -1,13 +1,13 @@
 #include "abbe/sim/truth_machine.hpp"
 
 #include <Eigen/Geometry>  // cross()
-
 #include <cmath>
+
+#include "abbe/io/units.hpp"
 
 namespace abbe::sim {
 
 namespace {
-constexpr double kTwoPi = 6.283185307179586476925286766559;
 
 int sign_of(int v) { return (v > 0) - (v < 0); }
 }  // namespace
@@ -49,14 +49,14 @@ Eigen::Vector3d TruthMachine::pivot(int j, const Eigen::Vector3d& s) const {
 
 Eigen::Vector3d TruthMachine::axis_displacement_mm(int j, const Eigen::Vector3d& s, int dir,
                                                    const Eigen::Vector3d& p) const {
-  const Eigen::Vector3d t_mm = 1e-3 * translation_um(j, s[j], dir);
-  const Eigen::Vector3d theta = 1e-6 * rotation_urad(j, s[j], dir);
+  const Eigen::Vector3d t_mm = units::kMmPerUm * translation_um(j, s[j], dir);
+  const Eigen::Vector3d theta = units::kRadPerUrad * rotation_urad(j, s[j], dir);
   return rotation_minus_identity_times(theta, p - pivot(j, s)) + t_mm;
 }
 
 Eigen::Vector3d TruthMachine::laser_linear_reading_um(int j, const Eigen::Vector3d& s, int dir,
                                                       const Eigen::Vector3d& m) const {
-  return 1e3 * axis_displacement_mm(j, s, dir, m);
+  return units::kUmPerMm * axis_displacement_mm(j, s, dir, m);
 }
 
 Eigen::Vector3d TruthMachine::geometric_deviation_um(const TipState& tip) const {
@@ -68,11 +68,11 @@ Eigen::Vector3d TruthMachine::geometric_deviation_um(const TipState& tip) const 
     const int j = chain.order()[static_cast<std::size_t>(k)];
     d_mm += axis_displacement_mm(j, s, tip.dir[static_cast<std::size_t>(j)], tip.p + d_mm);
   }
-  Eigen::Vector3d d = 1e3 * d_mm;
-  // Squareness (first order, µrad·mm = 1e-3 µm).
+  Eigen::Vector3d d = units::kUmPerMm * d_mm;
+  // Squareness (first order, µrad·mm in µm).
   const Eigen::Vector3d& p = tip.p;
-  d.x() += 1e-3 * (-squareness.ec0y * p.y() + squareness.eb0z * p.z());
-  d.y() += 1e-3 * (-squareness.ea0z * p.z());
+  d.x() += units::kUmPerUradMm * (-squareness.ec0y * p.y() + squareness.eb0z * p.z());
+  d.y() += units::kUmPerUradMm * (-squareness.ea0z * p.z());
   return d;
 }
 
@@ -96,7 +96,7 @@ Eigen::Vector3d TruthMachine::effects_um(const TipState& tip) const {
         break;
       }
       case EffectKind::cyclic:
-        d[e.direction] += e.magnitude * std::sin(kTwoPi * sa / e.period_mm + e.phase_rad);
+        d[e.direction] += e.magnitude * std::sin(units::kTwoPi * sa / e.period_mm + e.phase_rad);
         break;
       case EffectKind::coupling: {
         auto normalised = [&](int i) {
@@ -110,7 +110,7 @@ Eigen::Vector3d TruthMachine::effects_um(const TipState& tip) const {
       }
       case EffectKind::arm_offset: {
         const Eigen::Vector3d delta = e.magnitude * Eigen::Vector3d::Unit(e.direction);
-        d += 1e-3 * rotation_urad(a, sa, dir_a).cross(delta);
+        d += units::kUmPerUradMm * rotation_urad(a, sa, dir_a).cross(delta);
         break;
       }
       case EffectKind::setup:
@@ -118,7 +118,7 @@ Eigen::Vector3d TruthMachine::effects_um(const TipState& tip) const {
         if (e.unit == "um")
           d[a] += e.magnitude;
         else
-          d += 1e-3 * e.magnitude * Eigen::Vector3d::Unit(a).cross(tip.p - e.centre);
+          d += units::kUmPerUradMm * e.magnitude * Eigen::Vector3d::Unit(a).cross(tip.p - e.centre);
         break;
     }
   }

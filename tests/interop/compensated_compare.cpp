@@ -38,9 +38,10 @@
 #include "abbe/gcode/motion.hpp"
 #include "abbe/gcode/program.hpp"
 #include "abbe/io/input_error.hpp"
-#include "abbe/machine/interpreter_setup.hpp"
 #include "abbe/machine/machine.hpp"
 #include "abbe/path/fragmenter.hpp"
+#include "abbe/pipeline/interpreter_setup.hpp"
+#include "abbe/pipeline/program_path.hpp"
 #include "canon_reader.hpp"
 
 namespace {
@@ -74,16 +75,6 @@ Kind kind_of(abbe::gcode::MotionKind k) {
   }
 }
 
-// The point the solver compensates: a path point with its direction signs.
-abbe::model::EvalPoint nominal(const abbe::path::PathPoint& pp) {
-  abbe::model::EvalPoint ep;
-  ep.p = pp.p;
-  ep.tool_length = pp.tool_length;
-  ep.dir = pp.dir;
-  ep.time = pp.time;
-  return ep;
-}
-
 // Compensation vectors at every motion end of the original (dwells left out).
 std::vector<Expected> compensation_vectors(const std::string& machine_file,
                                            const std::string& program) {
@@ -97,7 +88,7 @@ std::vector<Expected> compensation_vectors(const std::string& machine_file,
   Eigen::Vector3d d = Eigen::Vector3d::Zero();
   std::ifstream in(program, std::ios::binary);
   abbe::gcode::run_program(
-      in, program, abbe::machine::interpreter_config(m), [&](const abbe::gcode::Motion& mo) {
+      in, program, abbe::pipeline::interpreter_config(m), [&](const abbe::gcode::Motion& mo) {
         if (mo.kind == abbe::gcode::MotionKind::dwell) return;
         bool have = false;
         abbe::path::PathPoint last;
@@ -107,7 +98,7 @@ std::vector<Expected> compensation_vectors(const std::string& machine_file,
           last = pp;
           have = true;
         });
-        if (have) d = solver.solve(nominal(last), data).c - last.p;
+        if (have) d = solver.solve(abbe::pipeline::eval_point(last), data).c - last.p;
         Expected e;
         e.kind = kind_of(mo.kind);
         e.alt.push_back(d);
@@ -123,7 +114,7 @@ std::vector<Expected> compensation_vectors(const std::string& machine_file,
             if (std::abs(v[a]) <= 0.02 * v.norm()) open.push_back(a);
           const int combos = open.size() == 1 ? 3 : open.size() == 2 ? 9 : 1;
           for (int c = 0; c < combos && !open.empty(); ++c) {
-            abbe::model::EvalPoint ep = nominal(last);
+            abbe::model::EvalPoint ep = abbe::pipeline::eval_point(last);
             ep.dir[static_cast<std::size_t>(open[0])] = static_cast<std::int8_t>(c % 3 - 1);
             if (open.size() > 1)
               ep.dir[static_cast<std::size_t>(open[1])] = static_cast<std::int8_t>(c / 3 - 1);

@@ -8,13 +8,13 @@
 #include <regex>
 #include <sstream>
 
-#include "../../tools/gen/program_generator.hpp"
 #include "abbe/compensate/path_verifier.hpp"
 #include "abbe/compensate/program_compensator.hpp"
 #include "abbe/gcode/program.hpp"
 #include "abbe/io/input_error.hpp"
-#include "abbe/machine/interpreter_setup.hpp"
 #include "abbe/machine/machine.hpp"
+#include "abbe/pipeline/interpreter_setup.hpp"
+#include "tools/gen/program_generator.hpp"
 
 namespace abbe::compensate {
 namespace {
@@ -37,7 +37,7 @@ std::string read(const std::string& path) {
 }
 
 gcode::InterpreterConfig config_of(const machine::Machine& m) {
-  return machine::interpreter_config(m);
+  return pipeline::interpreter_config(m);
 }
 
 struct Compensated {
@@ -179,7 +179,9 @@ TEST(CompensateProgram, IncrementalArcsInAllPlanes) {
   // No N numbers on inserted pieces unless --renumber: the lines without one
   // are pieces (coordinates, G1 micro moves, G2/G3 arc pieces after them).
   for (const auto& l : lines_of(r.text))
-    if (!l.empty() && l[0] != '(' && l[0] != 'N') EXPECT_TRUE(inserted(l)) << l;
+    if (!l.empty() && l[0] != '(' && l[0] != 'N') {
+      EXPECT_TRUE(inserted(l)) << l;
+    }
 }
 
 TEST(CompensateProgram, InchProgramStaysInInches) {

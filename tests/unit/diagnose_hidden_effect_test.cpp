@@ -6,11 +6,11 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
 #include <random>
-#include <Eigen/Geometry>
 
 #include "abbe/sim/effect.hpp"
 #include "diagnose_vm_test.hpp"
@@ -234,7 +234,9 @@ TEST(DiagnoseHiddenEffect, TwoEffectsOfDifferentKindsAreBothNamed) {
     EXPECT_TRUE(named(o.d, t_cyc)) << report_text(o.d);
     EXPECT_GE(o.d.gain_percent / 100.0, 0.7 * o.oracle);
     for (const auto& st : o.d.effects)
-      if (st.term.kind == TermKind::cyclic) EXPECT_NEAR(st.term.period_mm, 18.0, 0.5);
+      if (st.term.kind == TermKind::cyclic) {
+        EXPECT_NEAR(st.term.period_mm, 18.0, 0.5);
+      }
   }
 }
 

@@ -13,8 +13,8 @@
 #include "abbe/compensate/program_compensator.hpp"
 #include "abbe/diagnose/context.hpp"
 #include "abbe/diagnose/overlay_extension.hpp"
-#include "abbe/machine/interpreter_setup.hpp"
 #include "abbe/machine/machine.hpp"
+#include "abbe/pipeline/interpreter_setup.hpp"
 
 namespace abbe {
 namespace {
@@ -224,7 +224,7 @@ effects:
   // extra = (+2, −1, +0.5) µm → c = n + (−0.002, +0.001, −0.0005) mm.
   std::istringstream in("G21 G90 G17\nG0 X-100 Y-100 Z-100\nG1 X-103 Y-101 Z-101 F500\nM2\n");
   std::string out;
-  compensate::compensate_program(in, "t.nc", machine::interpreter_config(m), em, {},
+  compensate::compensate_program(in, "t.nc", pipeline::interpreter_config(m), em, {},
                                  [&](const char* d, std::size_t n) { out.append(d, n); });
   const std::regex word("([XYZ])(-?[0-9.]+)");
   std::vector<double> values;

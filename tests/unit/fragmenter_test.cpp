@@ -229,7 +229,9 @@ TEST(Fragmenter, IncrementalArcSamplesMatchDirectSamples) {
     span.sample(static_cast<double>(i) / 1000.0, p_ref, v_ref);
     worst = std::max(worst, (p - p_ref).norm());
     EXPECT_TRUE(v.isApprox(v_ref, 1e-12)) << i;
-    if (i == 1000) EXPECT_EQ(p, Vector3d(-400, -250.01, -340));
+    if (i == 1000) {
+      EXPECT_EQ(p, Vector3d(-400, -250.01, -340));
+    }
   });
   EXPECT_EQ(calls, 1000u);
   EXPECT_LT(worst, 1e-10);
@@ -279,8 +281,12 @@ TEST(Fragmenter, DirectionsAreSignsOfTheLastMotionOfEachAxis) {
   fragmenter.add(arc(b, e, c, -1), [&](const PathPoint& p) { h.push_back(p); });
   for (std::size_t i = 1; i < q.size(); ++i) EXPECT_EQ(q[i].dir, (Dir{-1, 1, 0})) << i;
   for (std::size_t i = 0; i < h.size(); ++i) {
-    if (h[i].p.y() > 0.5) EXPECT_EQ(h[i].dir[0], 1) << i;
-    if (h[i].p.y() < -0.5) EXPECT_EQ(h[i].dir[0], -1) << i;
+    if (h[i].p.y() > 0.5) {
+      EXPECT_EQ(h[i].dir[0], 1) << i;
+    }
+    if (h[i].p.y() < -0.5) {
+      EXPECT_EQ(h[i].dir[0], -1) << i;
+    }
     EXPECT_EQ(h[i].dir[1], -1) << i;
   }
   // At (0, -10) the x velocity is -, the y velocity is zero: y keeps -1.
@@ -290,8 +296,12 @@ TEST(Fragmenter, DirectionsAreSignsOfTheLastMotionOfEachAxis) {
   auto half = run({arc(Vector3d(0, -10, 0), Vector3d(0, 10, 0), c, 1)});
   for (std::size_t i = 1; i < half.size(); ++i) {
     const double y = half[i].p.y();
-    if (y < -1.0) EXPECT_EQ(half[i].dir[0], 1) << i;
-    if (y > 1.0) EXPECT_EQ(half[i].dir[0], -1) << i;
+    if (y < -1.0) {
+      EXPECT_EQ(half[i].dir[0], 1) << i;
+    }
+    if (y > 1.0) {
+      EXPECT_EQ(half[i].dir[0], -1) << i;
+    }
     EXPECT_EQ(half[i].dir[1], 1) << i;
   }
 }

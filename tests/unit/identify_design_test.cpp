@@ -35,7 +35,9 @@ TEST(IdentifyDesign, MonomialNamesAndIndices) {
     int i = 0, j = 0;
     monomial_params(k, i, j);
     ASSERT_GE(i, 0);
-    if (j >= 0) EXPECT_EQ(product_index(i, j), k);
+    if (j >= 0) {
+      EXPECT_EQ(product_index(i, j), k);
+    }
   }
 }
 
@@ -179,7 +181,9 @@ TEST(IdentifyDesign, RollOfZWithoutArmIsReportedUnidentifiable) {
   EXPECT_NEAR(std::abs(r.final_fit.null_space[0].direction[static_cast<int>(Param::h3)]), 1.0,
               1e-9);
   for (int i = 0; i < kParamCount; ++i)
-    if (i != static_cast<int>(Param::h3)) EXPECT_NEAR(r.p[i], p[i], 1e-9 * std::abs(p[i]));
+    if (i != static_cast<int>(Param::h3)) {
+      EXPECT_NEAR(r.p[i], p[i], 1e-9 * std::abs(p[i]));
+    }
 }
 
 }  // namespace

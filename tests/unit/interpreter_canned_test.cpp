@@ -36,8 +36,12 @@ void expect_moves(const std::vector<Motion>& all, std::size_t line,
         << expected[i].end.transpose();
     EXPECT_NEAR((m[i].start - previous).norm(), 0.0, 1e-9) << "move " << i << " is not continuous";
     EXPECT_EQ(m[i].sub, i);
-    if (expected[i].kind == D) EXPECT_DOUBLE_EQ(m[i].dwell_seconds, expected[i].dwell);
-    if (expected[i].kind == F) EXPECT_DOUBLE_EQ(m[i].feed, 100.0);
+    if (expected[i].kind == D) {
+      EXPECT_DOUBLE_EQ(m[i].dwell_seconds, expected[i].dwell);
+    }
+    if (expected[i].kind == F) {
+      EXPECT_DOUBLE_EQ(m[i].feed, 100.0);
+    }
     previous = m[i].end;
   }
 }

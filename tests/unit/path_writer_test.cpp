@@ -1,5 +1,5 @@
 // PathWriter: number formatting, CSV and JSON streaming, chunking.
-#include "abbe/io/path_writer.hpp"
+#include "abbe/pipeline/path_writer.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,8 +11,10 @@
 
 #include "abbe/io/input_error.hpp"
 
-namespace abbe::io {
+namespace abbe::pipeline {
 namespace {
+
+using io::append_fixed6;
 
 std::string fixed(double v) {
   fmt::memory_buffer b;
@@ -163,4 +165,4 @@ TEST(PathWriter, ParsesFormatNames) {
 }
 
 }  // namespace
-}  // namespace abbe::io
+}  // namespace abbe::pipeline

@@ -12,7 +12,7 @@
 #include <random>
 #include <string>
 
-#include "abbe/io/path_writer.hpp"
+#include "abbe/pipeline/path_writer.hpp"
 
 namespace abbe::io {
 namespace {

@@ -6,9 +6,9 @@
 #include <sstream>
 #include <string>
 
-#include "abbe/io/progress.hpp"
+#include "tools/abbe/progress.hpp"
 
-namespace abbe::io {
+namespace abbe::cli {
 namespace {
 
 std::string text_of(std::size_t lines) {
@@ -60,4 +60,4 @@ TEST(ProgressStreambuf, SharedCounterOverTwoInputs) {
 }
 
 }  // namespace
-}  // namespace abbe::io
+}  // namespace abbe::cli

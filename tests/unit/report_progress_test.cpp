@@ -1,13 +1,13 @@
-// io::Progress: silent when stderr is not a terminal (tests, pipes), and
+// cli::Progress: silent when stderr is not a terminal (tests, pipes), and
 // the text of the bar.
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <fstream>
 
-#include "abbe/io/progress.hpp"
+#include "tools/abbe/progress.hpp"
 
-namespace abbe::io {
+namespace abbe::cli {
 namespace {
 
 TEST(ReportProgress, BarText) {
@@ -40,4 +40,4 @@ TEST(ReportProgress, FileSize) {
 }
 
 }  // namespace
-}  // namespace abbe::io
+}  // namespace abbe::cli

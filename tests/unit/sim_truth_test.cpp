@@ -181,7 +181,9 @@ TEST(SimTruth, FirstOrderErrorConvergesQuadratically) {
     const Eigen::Vector3d first = delta + 1e-3 * theta.cross(tip.p - m);
     const double err = (t.deviation_um(tip) - first).norm();
     EXPECT_GT(err, 0.0);
-    if (previous > 0.0) EXPECT_NEAR(previous / err, 4.0, 0.05) << lambda;
+    if (previous > 0.0) {
+      EXPECT_NEAR(previous / err, 4.0, 0.05) << lambda;
+    }
     previous = err;
   }
 }

@@ -57,7 +57,9 @@ TEST_P(TableRejects, NamesLineColumnAndField) {
   } catch (const InputError& e) {
     EXPECT_EQ(e.where().file, "errors.csv");
     EXPECT_EQ(e.where().line, b.line) << e.what();
-    if (b.column) EXPECT_EQ(e.where().column, b.column) << e.what();
+    if (b.column) {
+      EXPECT_EQ(e.where().column, b.column) << e.what();
+    }
     EXPECT_EQ(e.where().field, b.field) << e.what();
     EXPECT_NE(e.message().find(b.says), std::string::npos) << e.what();
   }

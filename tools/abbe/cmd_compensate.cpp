@@ -14,12 +14,12 @@
 #include "abbe/compensate/program_compensator.hpp"
 #include "abbe/io/atomic_file.hpp"
 #include "abbe/io/input_error.hpp"
-#include "abbe/io/progress.hpp"
-#include "abbe/machine/interpreter_setup.hpp"
 #include "abbe/machine/machine.hpp"
 #include "abbe/model/error_model.hpp"
+#include "abbe/pipeline/interpreter_setup.hpp"
 #include "command.hpp"
 #include "model_option.hpp"
+#include "progress.hpp"
 
 namespace abbe::cli {
 namespace {
@@ -54,7 +54,7 @@ int run_compensate(CompensateCliOptions o, const GlobalOptions& g) {
   }
   const machine::Machine machine = machine::Machine::load(o.m.machine);
   const model::ErrorModel model = make_model(o.m, machine);
-  const gcode::InterpreterConfig config = machine::interpreter_config(machine);
+  const gcode::InterpreterConfig config = pipeline::interpreter_config(machine);
 
   std::ifstream in(o.input, std::ios::binary);
   if (!in)
@@ -62,9 +62,9 @@ int run_compensate(CompensateCliOptions o, const GlobalOptions& g) {
                      std::string("cannot open the input: ") + std::strerror(errno));
   io::AtomicOutputFile out(o.output);
   // Progress on a terminal: bytes of the program read.
-  io::Progress progress("compensate", io::Progress::file_size(o.input), !g.quiet);
+  Progress progress("compensate", Progress::file_size(o.input), !g.quiet);
   std::uint64_t bytes_read = 0;
-  io::ProgressStreambuf counted(in.rdbuf(), progress, bytes_read);
+  ProgressStreambuf counted(in.rdbuf(), progress, bytes_read);
   std::istream program(&counted);
   const compensate::CompensateSummary s = compensate::compensate_program(
       program, o.input, config, model, o.c, [&](const char* d, std::size_t n) { out.write(d, n); });

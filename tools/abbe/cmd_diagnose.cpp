@@ -12,9 +12,9 @@
 #include "abbe/io/atomic_file.hpp"
 #include "abbe/io/input_error.hpp"
 #include "abbe/io/measured_data.hpp"
-#include "abbe/io/progress.hpp"
 #include "abbe/machine/machine.hpp"
 #include "command.hpp"
+#include "progress.hpp"
 
 namespace abbe::cli {
 namespace {
@@ -37,14 +37,15 @@ int run_diagnose(const DiagnoseCliOptions& o, const GlobalOptions& g) {
   // Progress on a terminal, in steps: reading the data, the residuals and
   // candidates, then each step of the effect selection (it may end early).
   const int steps = 2 + opt.selection.max_terms;
-  io::Progress progress("diagnose", static_cast<std::uint64_t>(steps), !g.quiet, "steps");
+  Progress progress("diagnose", static_cast<std::uint64_t>(steps), !g.quiet, "steps");
   progress.update(0);
   const io::MeasuredData data = io::load_measured_data(o.measured);
   progress.update(1);
   auto kind = model::parse_model_kind(o.model);
   if (!kind)
-    throw InputError({"<command line>", 0, 0, "--model", ""},
-                     fmt::format("unknown model \"{}\" (htm, ae-arm or dual)", o.model));
+    throw InputError(
+        {"<command line>", 0, 0, "--model", ""},
+        fmt::format("unknown model \"{}\" ({})", o.model, model::model_names_text(false)));
   opt.model = *kind;
   opt.selection.folds = o.folds;
   opt.selection.seed = o.seed;
@@ -92,8 +93,9 @@ const CommandRegistrar registrar(
           "--measured machines/sample/measured-grid.csv --out diagnosis.json");
       sub.add_option("--machine", o->machine, "Machine file (YAML, docs/formats.md)")->required();
       sub.add_option("--measured", o->measured, "Measured data (CSV, docs/formats.md)")->required();
-      sub.add_option("--model", o->model, "Error model diagnosed: htm, ae-arm or dual")
-          ->check(CLI::IsMember({"htm", "ae-arm", "dual"}))
+      sub.add_option("--model", o->model,
+                     "Error model diagnosed: " + model::model_names_text(false))
+          ->check(CLI::IsMember(model::model_names(false)))
           ->capture_default_str();
       sub.add_option("--out", o->out, "Write the JSON report to FILE (- for stdout)");
       sub.add_option("--overlay", o->overlay, "Write the extended model (overlay YAML) to FILE");

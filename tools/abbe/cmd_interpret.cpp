@@ -18,8 +18,8 @@
 
 #include "abbe/gcode/program.hpp"
 #include "abbe/io/input_error.hpp"
-#include "abbe/machine/interpreter_setup.hpp"
 #include "abbe/machine/machine.hpp"
+#include "abbe/pipeline/interpreter_setup.hpp"
 #include "command.hpp"
 #include "input_stream.hpp"
 #include "interpreter_options.hpp"
@@ -39,7 +39,7 @@ struct InterpretOptions {
 gcode::InterpreterConfig make_config(const InterpretOptions& o) {
   gcode::InterpreterConfig config;
   if (!o.machine.empty()) {
-    config = machine::interpreter_config(machine::Machine::load(o.machine));
+    config = pipeline::interpreter_config(machine::Machine::load(o.machine));
   }
   if (o.tool_length) {
     if (!std::isfinite(*o.tool_length))

@@ -15,10 +15,10 @@
 #include "abbe/identify/workspace_map.hpp"
 #include "abbe/io/atomic_file.hpp"
 #include "abbe/io/input_error.hpp"
-#include "abbe/io/progress.hpp"
 #include "abbe/machine/machine.hpp"
 #include "box_option.hpp"
 #include "command.hpp"
+#include "progress.hpp"
 
 namespace abbe::cli {
 namespace {
@@ -47,13 +47,7 @@ void write_file(const std::string& path, const std::string& text) {
 int run_map(const MapCliOptions& o, const GlobalOptions& g) {
   const machine::Machine machine = machine::Machine::load(o.machine);
   identify::MapOptions mo;
-  if (o.model == "all") {
-    mo.models = {model::ModelKind::htm, model::ModelKind::ae_arm, model::ModelKind::dual};
-  } else if (auto k = model::parse_model_kind(o.model)) {
-    mo.models = {*k};
-  } else {
-    bad_option("--model", fmt::format("unknown model \"{}\" (htm, ae-arm, dual or all)", o.model));
-  }
+  mo.models = model::parse_model_list(o.model);
   if (!(o.grid > 0.0)) bad_option("--grid", "grid spacing must be > 0 mm");
   mo.spacing_mm = o.grid;
   mo.tool_length = o.tool_length >= 0.0 ? o.tool_length : machine.tool_length();
@@ -67,7 +61,7 @@ int run_map(const MapCliOptions& o, const GlobalOptions& g) {
   std::uint64_t evaluations = 1;
   for (int i = 0; i < 3; ++i)
     evaluations *= identify::grid_axis(mo.lo[i], mo.hi[i], mo.spacing_mm).size();
-  io::Progress progress("map", evaluations * mo.models.size(), !g.quiet, "points");
+  Progress progress("map", evaluations * mo.models.size(), !g.quiet, "points");
   if (progress.active()) mo.progress = [&](std::size_t done) { progress.update(done); };
   const identify::WorkspaceMap map = identify::compute_map(machine, mo);
   progress.finish();
@@ -111,7 +105,7 @@ int run_map(const MapCliOptions& o, const GlobalOptions& g) {
                         {"mean_um", s.mean_um},
                         {"rms_um", s.rms_um},
                         {"max_um", s.max_um}};
-    if (s.model == model::ModelKind::dual) {
+    if (model::descriptor(s.model).second_order) {
       text += fmt::format("   second order: max {:.5f}, rms {:.5f}", s.second_order_max_um,
                           s.second_order_rms_um);
       m["second_order_max_um"] = s.second_order_max_um;
@@ -148,8 +142,8 @@ const CommandRegistrar registrar(
       sub.add_option("--box", o->box, std::string(kBoxHelp) + " (default: the travel)")
           ->delimiter(',')
           ->expected(6);
-      sub.add_option("--model", o->model, "htm, ae-arm, dual or all")
-          ->check(CLI::IsMember({"htm", "ae-arm", "dual", "all"}))
+      sub.add_option("--model", o->model, model::model_names_text(true))
+          ->check(CLI::IsMember(model::model_names(true)))
           ->capture_default_str();
       sub.add_option("--tool-length", o->tool_length, "Tool length, mm (default: the machine's)");
       sub.add_option("-o,--output", o->output, "CSV of the grid points (written atomically)");

@@ -15,14 +15,15 @@
 #include "abbe/gcode/program.hpp"
 #include "abbe/io/atomic_file.hpp"
 #include "abbe/io/input_error.hpp"
-#include "abbe/io/path_writer.hpp"
-#include "abbe/io/progress.hpp"
-#include "abbe/machine/interpreter_setup.hpp"
 #include "abbe/machine/machine.hpp"
 #include "abbe/path/fragmenter.hpp"
+#include "abbe/pipeline/interpreter_setup.hpp"
+#include "abbe/pipeline/path_writer.hpp"
+#include "abbe/pipeline/program_path.hpp"
 #include "command.hpp"
 #include "input_stream.hpp"
 #include "interpreter_options.hpp"
+#include "progress.hpp"
 
 namespace abbe::cli {
 namespace {
@@ -42,7 +43,7 @@ struct PathOptions {
 gcode::InterpreterConfig make_config(const PathOptions& o) {
   gcode::InterpreterConfig config;
   if (!o.machine.empty()) {
-    config = machine::interpreter_config(machine::Machine::load(o.machine));
+    config = pipeline::interpreter_config(machine::Machine::load(o.machine));
   }
   if (o.tool_length) {
     // With a machine the program starts at home (s = 0): keep P = −L·e_z for the new L.
@@ -58,19 +59,18 @@ gcode::InterpreterConfig make_config(const PathOptions& o) {
 
 int run_path(const PathOptions& o, const GlobalOptions& g) {
   const gcode::InterpreterConfig config = make_config(o);
-  const io::PathFormat format = io::parse_path_format(o.format);
+  const pipeline::PathFormat format = pipeline::parse_path_format(o.format);
 
   InputStream input(o.program, "NC program");
   std::istream& in = input.stream();
   const bool from_stdin = input.from_stdin();
 
-  path::FragmentOptions fragment_options;
-  fragment_options.step = o.step;
-  fragment_options.rapid_rate = o.rapid_rate;
-  path::Fragmenter fragmenter(fragment_options);
+  pipeline::PathOptions path_options;
+  path_options.fragment.step = o.step;
+  path_options.fragment.rapid_rate = o.rapid_rate;
   // Progress on a terminal: bytes of the program read (points from stdin).
-  io::Progress progress("path", from_stdin ? 0 : io::Progress::file_size(o.program), !g.quiet,
-                        from_stdin ? "points" : "bytes");
+  Progress progress("path", from_stdin ? 0 : Progress::file_size(o.program), !g.quiet,
+                    from_stdin ? "points" : "bytes");
   std::size_t seen = 0;
   auto tick = [&] {
     if (!progress.active() || (++seen & 4095) != 0) return;
@@ -81,32 +81,27 @@ int run_path(const PathOptions& o, const GlobalOptions& g) {
 
   if (o.count_only) {
     // Fragments everything but writes only a summary (benchmarks, checks).
-    std::size_t points = 0;
-    const path::PointSink count = [&](const path::PathPoint&) {
-      ++points;
-      tick();
-    };
-    const auto stats = gcode::run_program(
-        in, o.program, config, [&](const gcode::Motion& m) { fragmenter.add(m, count); });
+    const auto run = pipeline::run_path(in, o.program, config, path_options,
+                                        [&](const path::PathPoint&) { tick(); });
     progress.finish();
-    fmt::print("lines={} motions={} points={} time_s={:.3f}\n", stats.lines, stats.motions, points,
-               fragmenter.time());
+    fmt::print("lines={} motions={} points={} time_s={:.3f}\n", run.program.lines,
+               run.program.motions, run.points, run.time_s);
     return kOk;
   }
 
   io::AtomicOutputFile out(o.output);
-  io::PathWriter writer(format, [&](const char* data, std::size_t size) { out.write(data, size); });
-  const path::PointSink write = [&](const path::PathPoint& p) {
-    writer.write(p);
-    tick();
-  };
-  const auto stats = gcode::run_program(in, o.program, config,
-                                        [&](const gcode::Motion& m) { fragmenter.add(m, write); });
+  pipeline::PathWriter writer(format,
+                              [&](const char* data, std::size_t size) { out.write(data, size); });
+  const auto run =
+      pipeline::run_path(in, o.program, config, path_options, [&](const path::PathPoint& p) {
+        writer.write(p);
+        tick();
+      });
   progress.finish();
   writer.finish();
   out.commit();
-  spdlog::debug("{}: {} lines, {} motions, {} points, {:.1f} s estimated", o.program, stats.lines,
-                stats.motions, writer.points(), fragmenter.time());
+  spdlog::debug("{}: {} lines, {} motions, {} points, {:.1f} s estimated", o.program,
+                run.program.lines, run.program.motions, writer.points(), run.time_s);
   return kOk;
 }
 

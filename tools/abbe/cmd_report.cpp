@@ -17,7 +17,6 @@
 #include "abbe/io/atomic_file.hpp"
 #include "abbe/io/input_error.hpp"
 #include "abbe/io/measured_data.hpp"
-#include "abbe/io/progress.hpp"
 #include "abbe/machine/machine.hpp"
 #include "abbe/report/compensate_section.hpp"
 #include "abbe/report/diagnose_section.hpp"
@@ -27,6 +26,7 @@
 #include "abbe/report/predicted_path.hpp"
 #include "command.hpp"
 #include "input_stream.hpp"
+#include "progress.hpp"
 
 namespace abbe::cli {
 namespace {
@@ -45,10 +45,7 @@ struct ReportOptions {
 };
 
 std::vector<model::ModelKind> parse_models(const std::string& m) {
-  if (m == "all") return {model::ModelKind::htm, model::ModelKind::ae_arm, model::ModelKind::dual};
-  if (auto k = model::parse_model_kind(m)) return {*k};
-  throw InputError({"<command line>", 0, 0, "--model", ""},
-                   fmt::format("unknown model \"{}\" (htm, ae-arm, dual or all)", m));
+  return model::parse_model_list(m);
 }
 
 void write_page(const std::string& path, const report::HtmlPage& page) {
@@ -67,7 +64,7 @@ int run_report_predict(const ReportOptions& o, const GlobalOptions& g) {
   po.max_points = o.max_points;
   InputStream input(o.input, "the NC program");
   std::istream* in = &input.stream();
-  io::Progress progress("report: predict", io::Progress::file_size(o.input), !g.quiet);
+  Progress progress("report: predict", Progress::file_size(o.input), !g.quiet);
   po.progress = [&](std::uint64_t bytes) { progress.update(bytes); };
   const report::PredictedPath path = report::predict_program(machine, *in, o.input, po);
   progress.finish();
@@ -113,7 +110,7 @@ int run_report_compensate(const ReportOptions& o) {
   po.models = parse_models(o.model);
   if (po.models.size() != 1)
     throw InputError({"<command line>", 0, 0, "--model", ""},
-                     "report compensate takes one model (htm, ae-arm or dual)");
+                     "report compensate takes one model (" + model::model_names_text(false) + ")");
   po.step = o.step;
   po.max_points = o.max_points;
   const report::CompensationComparison c = report::compare_compensation(
@@ -131,7 +128,7 @@ int run_report_diagnose(const ReportOptions& o) {
   const auto kinds = parse_models(o.model);
   if (kinds.size() != 1)
     throw InputError({"<command line>", 0, 0, "--model", ""},
-                     "report diagnose takes one model (htm, ae-arm or dual)");
+                     "report diagnose takes one model (" + model::model_names_text(false) + ")");
   dopt.model = kinds.front();
   const report::DiagnosisForReport d = report::diagnose_for_report(machine, data, dopt);
   report::HtmlPage page(fmt::format("abbe: diagnosis of {}", o.input));
@@ -153,8 +150,8 @@ const CommandRegistrar registrar(
           "predict", "Toolpath (3-D and planes, deviation exaggerated), deviation along the path");
       predict->add_option("program", o->input, "NC program, - for stdin")->required();
       predict->add_option("--machine", o->machine, "Machine file (YAML)")->required();
-      predict->add_option("--model", o->model, "htm, ae-arm, dual or all")
-          ->check(CLI::IsMember({"htm", "ae-arm", "dual", "all"}))
+      predict->add_option("--model", o->model, model::model_names_text(true))
+          ->check(CLI::IsMember(model::model_names(true)))
           ->capture_default_str();
       predict->add_option("--exaggerate", o->exaggerate,
                           "Draw nominal + K·deviation (default: automatic)");
@@ -174,8 +171,8 @@ const CommandRegistrar registrar(
       map->add_option("--machine", o->machine, "Machine file (YAML)")->required();
       map->add_option("--grid", o->grid, "Grid spacing, mm")->capture_default_str();
       map->add_option("--tool-length", o->tool_length, "Tool length, mm (default: the machine's)");
-      map->add_option("--model", o->model, "htm, ae-arm, dual or all")
-          ->check(CLI::IsMember({"htm", "ae-arm", "dual", "all"}))
+      map->add_option("--model", o->model, model::model_names_text(true))
+          ->check(CLI::IsMember(model::model_names(true)))
           ->capture_default_str();
       map->add_option("-o,--output", o->output, "HTML file (written atomically), - for stdout")
           ->required();
@@ -188,8 +185,9 @@ const CommandRegistrar registrar(
                        "The compensated program (output of abbe compensate)")
           ->required();
       comp->add_option("--machine", o->machine, "Machine file (YAML)")->required();
-      comp->add_option("--model", o->model, "htm, ae-arm or dual (as given to abbe compensate)")
-          ->check(CLI::IsMember({"htm", "ae-arm", "dual"}))
+      comp->add_option("--model", o->model,
+                       model::model_names_text(false) + " (as given to abbe compensate)")
+          ->check(CLI::IsMember(model::model_names(false)))
           ->default_str("ae-arm");
       comp->add_option("--exaggerate", o->exaggerate, "Draw deviations × K (default: automatic)");
       comp->add_option("--step", o->step, "Largest distance between points, mm")
@@ -206,8 +204,8 @@ const CommandRegistrar registrar(
           "diagnose", "Residual against each variable before/after the extension, effect table");
       diag->add_option("--measured", o->input, "Measured data (CSV, docs/formats.md)")->required();
       diag->add_option("--machine", o->machine, "Machine file (YAML)")->required();
-      diag->add_option("--model", o->model, "htm, ae-arm or dual")
-          ->check(CLI::IsMember({"htm", "ae-arm", "dual"}))
+      diag->add_option("--model", o->model, model::model_names_text(false))
+          ->check(CLI::IsMember(model::model_names(false)))
           ->default_str("ae-arm");
       diag->add_option("-o,--output", o->output, "HTML file (written atomically), - for stdout")
           ->required();

@@ -14,7 +14,7 @@
 
 #include "abbe/gcode/program.hpp"
 #include "abbe/io/input_error.hpp"
-#include "abbe/path/fragmenter.hpp"
+#include "abbe/pipeline/program_path.hpp"
 #include "abbe/sim/laser_campaign.hpp"
 #include "abbe/sim/text_file.hpp"
 #include "abbe/sim/truth_file.hpp"
@@ -176,22 +176,18 @@ int run_measure(const MeasureOptions& o) {
       where.file = o.program;
       throw InputError(where, "cannot open the NC program");
     }
-    path::FragmentOptions fo;
+    pipeline::PathOptions po;
     if (!(o.step > 0.0)) bad_option("--step", "must be > 0 mm");
-    fo.step = o.step;
-    path::Fragmenter fragmenter(fo);
+    po.fragment.step = o.step;
     const std::string set = o.set.empty() ? "program" : o.set;
-    gcode::run_program(in, o.program, config, [&](const gcode::Motion& m) {
-      fragmenter.add(m, [&](const path::PathPoint& p) {
-        sim::TipState tip;
-        tip.p = p.p;
-        tip.tool_length = p.tool_length;
-        for (int i = 0; i < 3; ++i)
-          tip.dir[static_cast<std::size_t>(i)] = p.dir[static_cast<std::size_t>(i)];
-        tip.time = p.time;
-        tip.set = set;
-        tips.push_back(tip);
-      });
+    pipeline::run_path(in, o.program, config, po, [&](const path::PathPoint& p) {
+      sim::TipState tip;
+      tip.p = p.p;
+      tip.tool_length = p.tool_length;
+      for (std::size_t i = 0; i < 3; ++i) tip.dir[i] = p.dir[i];
+      tip.time = p.time;
+      tip.set = set;
+      tips.push_back(tip);
     });
   } else {
     sim::GridOptions go;

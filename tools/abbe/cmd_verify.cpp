@@ -11,12 +11,12 @@
 
 #include "abbe/compensate/path_verifier.hpp"
 #include "abbe/io/input_error.hpp"
-#include "abbe/io/progress.hpp"
-#include "abbe/machine/interpreter_setup.hpp"
 #include "abbe/machine/machine.hpp"
 #include "abbe/model/error_model.hpp"
+#include "abbe/pipeline/interpreter_setup.hpp"
 #include "command.hpp"
 #include "model_option.hpp"
+#include "progress.hpp"
 
 namespace abbe::cli {
 namespace {
@@ -41,19 +41,18 @@ std::ifstream open_input(const std::string& path) {
 int run_verify(const VerifyCliOptions& o, const GlobalOptions& g) {
   const machine::Machine machine = machine::Machine::load(o.m.machine);
   const model::ErrorModel model = make_model(o.m, machine);
-  const gcode::InterpreterConfig config = machine::interpreter_config(machine);
+  const gcode::InterpreterConfig config = pipeline::interpreter_config(machine);
   compensate::VerifyOptions vo = o.v;
   vo.tol_um = o.tol_um;
   std::ifstream comp_file = open_input(o.input);
   std::ifstream orig_file = open_input(o.against);
   // Progress on a terminal: bytes read of both programs, each read twice
   // (the forward and the backward pass).
-  io::Progress progress("verify",
-                        2 * (io::Progress::file_size(o.input) + io::Progress::file_size(o.against)),
-                        !g.quiet);
+  Progress progress("verify", 2 * (Progress::file_size(o.input) + Progress::file_size(o.against)),
+                    !g.quiet);
   std::uint64_t bytes_read = 0;
-  io::ProgressStreambuf comp_counted(comp_file.rdbuf(), progress, bytes_read);
-  io::ProgressStreambuf orig_counted(orig_file.rdbuf(), progress, bytes_read);
+  ProgressStreambuf comp_counted(comp_file.rdbuf(), progress, bytes_read);
+  ProgressStreambuf orig_counted(orig_file.rdbuf(), progress, bytes_read);
   std::istream comp(&comp_counted), orig(&orig_counted);
   const compensate::VerifyStats s =
       compensate::verify_program(comp, o.input, orig, o.against, config, model, vo);

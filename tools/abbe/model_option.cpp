@@ -10,8 +10,8 @@ namespace abbe::cli {
 
 void add_model_options(CLI::App& sub, ModelOptions& o, const char* extend_help) {
   sub.add_option("--machine", o.machine, "Machine file (YAML, docs/formats.md)")->required();
-  sub.add_option("--model", o.model, "Error model: htm, ae-arm or dual")
-      ->check(CLI::IsMember({"htm", "ae-arm", "dual"}))
+  sub.add_option("--model", o.model, "Error model: " + model::model_names_text(false))
+      ->check(CLI::IsMember(model::model_names(false)))
       ->capture_default_str();
   sub.add_option("--extend", o.extend, extend_help);
   sub.add_option("--extend-time", o.extend_time,
@@ -22,8 +22,9 @@ void add_model_options(CLI::App& sub, ModelOptions& o, const char* extend_help) 
 model::ErrorModel make_model(const ModelOptions& o, const machine::Machine& machine) {
   const auto kind = model::parse_model_kind(o.model);
   if (!kind)
-    throw InputError({"<command line>", 0, 0, "--model", ""},
-                     fmt::format("unknown model \"{}\" (htm, ae-arm or dual)", o.model));
+    throw InputError(
+        {"<command line>", 0, 0, "--model", ""},
+        fmt::format("unknown model \"{}\" ({})", o.model, model::model_names_text(false)));
   const model::ErrorModel base(machine, *kind);
   if (o.extend.empty()) return base;
   const model::ErrorModel extended = diagnose::extend_model(base, machine, o.extend, o.extend_time);

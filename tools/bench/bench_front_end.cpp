@@ -10,8 +10,8 @@
 
 #include "abbe/gcode/parser.hpp"
 #include "abbe/gcode/program.hpp"
-#include "abbe/io/path_writer.hpp"
-#include "abbe/path/fragmenter.hpp"
+#include "abbe/pipeline/path_writer.hpp"
+#include "abbe/pipeline/program_path.hpp"
 #include "tools/gen/program_generator.hpp"
 
 namespace {
@@ -90,12 +90,10 @@ void BM_InterpretFragment(benchmark::State& state) {
   std::size_t lines = 0, points = 0;
   for (auto _ : state) {
     std::istringstream in(program());
-    abbe::path::Fragmenter fragmenter({});
     points = 0;
-    const abbe::path::PointSink count = [&](const abbe::path::PathPoint&) { ++points; };
-    const auto stats = abbe::gcode::run_program(
-        in, "<bench>", {}, [&](const abbe::gcode::Motion& m) { fragmenter.add(m, count); });
-    lines = stats.lines;
+    const auto run = abbe::pipeline::run_path(in, "<bench>", {}, {},
+                                              [&](const abbe::path::PathPoint&) { ++points; });
+    lines = run.program.lines;
   }
   report(state, lines);
   state.counters["points"] = static_cast<double>(points);
@@ -106,15 +104,13 @@ void BM_InterpretFragmentCsv(benchmark::State& state) {
   std::size_t lines = 0, bytes = 0;
   for (auto _ : state) {
     std::istringstream in(program());
-    abbe::path::Fragmenter fragmenter({});
     bytes = 0;
-    abbe::io::PathWriter writer(abbe::io::PathFormat::csv,
-                                [&](const char*, std::size_t n) { bytes += n; });
-    const abbe::path::PointSink write = [&](const abbe::path::PathPoint& p) { writer.write(p); };
-    const auto stats = abbe::gcode::run_program(
-        in, "<bench>", {}, [&](const abbe::gcode::Motion& m) { fragmenter.add(m, write); });
+    abbe::pipeline::PathWriter writer(abbe::pipeline::PathFormat::csv,
+                                      [&](const char*, std::size_t n) { bytes += n; });
+    const auto run = abbe::pipeline::run_path(
+        in, "<bench>", {}, {}, [&](const abbe::path::PathPoint& p) { writer.write(p); });
     writer.finish();
-    lines = stats.lines;
+    lines = run.program.lines;
   }
   report(state, lines);
   state.counters["csv_bytes"] = static_cast<double>(bytes);

@@ -24,8 +24,7 @@ class MotionPath {
   Eigen::Vector3d at(double t) const;
   double length() const { return length_; }
   bool is_arc() const { return arc_; }
-  double sweep() const { return sweep_; }         // signed angle of an arc, rad
-  double start_angle() const { return theta0_; }  // of the start about the centre, rad
+  double sweep() const { return sweep_; }  // signed angle of an arc, rad
   // Parameters in (t_lo, t_hi), ascending, where an in-plane axis of an arc
   // reverses (its tangent component vanishes: every quarter turn). Calls
   // f(t) for each; none for a line.

@@ -40,7 +40,7 @@ struct Problem {
   std::array<bool, 3> direction_present{false, false, false};
   std::array<double, 4> var_lo{0, 0, 0, 0}, var_hi{0, 0, 0, 0};  // data range of s_x..s_z, t
   Eigen::Vector3d travel_mid = Eigen::Vector3d::Zero(), travel_half = Eigen::Vector3d::Ones();
-  std::vector<ResidualStats> models;  // htm, ae-arm, dual
+  std::vector<ResidualStats> models;  // the models of `--model all`, in table order
 };
 
 // Builds the residual of `base` (plus `extend` when given) at every row.

@@ -11,11 +11,11 @@
 namespace abbe::gcode {
 
 struct Word {
-  char letter = 0;             // upper-case letter
-  double value = 0.0;          // the number as written (program units)
-  std::uint32_t begin = 0;     // offset of the letter in the line
+  char letter = 0;                 // upper-case letter
+  double value = 0.0;              // the number as written (program units)
+  std::uint32_t begin = 0;         // offset of the letter in the line
   std::uint32_t number_begin = 0;  // offset of the first character of the number (sign included)
-  std::uint32_t end = 0;       // one past the last character of the number
+  std::uint32_t end = 0;           // one past the last character of the number
 };
 
 struct Comment {
@@ -25,15 +25,14 @@ struct Comment {
 };
 
 struct Block {
-  std::size_t line = 0;              // 1-based line number in the file
-  bool block_delete = false;         // leading '/'
-  bool percent = false;              // a '%' tape delimiter line
+  std::size_t line = 0;                // 1-based line number in the file
+  bool block_delete = false;           // leading '/'
+  bool percent = false;                // a '%' tape delimiter line
   std::optional<long> program_number;  // an O-number line (O1234), program number only
-  std::optional<Word> n;             // N line number, if any
-  std::vector<Word> words;           // all words but N, in the order written
+  std::optional<Word> n;               // N line number, if any
+  std::vector<Word> words;             // all words but N, in the order written
   std::vector<Comment> comments;
-  std::optional<int> checksum;       // *nn
-  bool has_words() const { return !words.empty(); }
+  std::optional<int> checksum;  // *nn
 };
 
 }  // namespace abbe::gcode

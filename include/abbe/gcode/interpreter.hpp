@@ -60,6 +60,7 @@ class Interpreter {
   bool incremental() const;                  // G91
   bool arc_centre_absolute() const;          // G90.1
   Plane plane() const;                       // G17/G18/G19
+  bool retract_to_r() const;                 // G99 (false: G98) for canned cycles
   Eigen::Vector3d program_position() const;  // current point in the program frame, program units
 
  private:

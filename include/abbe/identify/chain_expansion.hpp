@@ -58,7 +58,7 @@ class ChainExpansion {
 
  private:
   const machine::Machine* machine_;
-  model::ErrorModel geometry_;  // measurement points M_{j,k}(q) and the chain order
+  model::ModelGeometry geometry_;  // measurement points M_{j,k}(q), chain order, squareness
 };
 
 }  // namespace abbe::identify

@@ -18,7 +18,6 @@ std::optional<Axis> parse_axis(std::string_view text);  // "X", "Y", "Z" (upper 
 
 // The six components of one axis, in the order used everywhere: the linear
 // errors along X, Y, Z, then the rotations about X, Y, Z.
-enum class Direction : std::uint8_t { lin_x = 0, lin_y, lin_z, ang_a, ang_b, ang_c };
 constexpr int kComponentsPerAxis = 6;
 
 struct ComponentId {

@@ -14,6 +14,7 @@
 
 #include "abbe/machine/machine.hpp"
 #include "abbe/model/axis_error_table.hpp"
+#include "abbe/model/model_geometry.hpp"
 #include "abbe/model/model_kind.hpp"
 
 namespace abbe::model {
@@ -47,6 +48,7 @@ class ErrorModel {
   ErrorModel(const machine::Machine& machine, ModelKind kind);
 
   ModelKind kind() const { return kind_; }
+  const ModelGeometry& geometry() const { return *geometry_; }
   machine::OutOfRangePolicy policy() const { return policy_; }
 
   // Throws abbe::InputError (field "X", "Y" or "Z") when the policy is
@@ -67,11 +69,6 @@ class ErrorModel {
   Eigen::Vector3d frame_origin(machine::Axis j, const EvalPoint& point) const;
 
  private:
-  struct AxisGeometry {
-    Eigen::Array3d moves;  // 1 for i ∈ U(j)
-    // M_{j,k}(q) = m0_k + moves∘s (column k): m0_k = M_meas_k − moves∘s_meas.
-    Eigen::Matrix3d m0;
-  };
   struct Tables {
     std::array<std::array<AxisErrorTable, 3>, 3> by_axis_dir;  // [axis][0 rev,1 mean,2 fwd]
     std::string file;
@@ -80,23 +77,11 @@ class ErrorModel {
   // The lookup at axis positions s = P + L·e_z with the axes' directions of motion.
   void lookup_at(const Eigen::Vector3d& s, const std::array<std::int8_t, 3>& dirs,
                  ModelData& data) const;
-  // (−EC0Y·y + EB0Z·z, −EA0Z·z, 0): µrad × mm = nm, hence the 1e-3.
-  Eigen::Vector3d squareness_um(const Eigen::Vector3d& p) const {
-    return 1e-3 * Eigen::Vector3d(-squareness_.ec0y * p.y() + squareness_.eb0z * p.z(),
-                                  -squareness_.ea0z * p.z(), 0.0);
-  }
-  Deviation evaluate_ae_arm(const EvalPoint& point, const Eigen::Vector3d& s,
-                            const ModelData& data) const;
-  Deviation evaluate_htm(const EvalPoint& point, const Eigen::Vector3d& s,
-                         const ModelData& data) const;
-  Deviation evaluate_dual(const EvalPoint& point, const Eigen::Vector3d& s,
-                          const ModelData& data) const;
 
   ModelKind kind_;
+  ModelFormula formula_;  // the model table's row for kind_
   machine::OutOfRangePolicy policy_;
-  std::array<machine::Axis, 3> order_;  // chain order, w to t
-  std::array<AxisGeometry, 3> geometry_;
-  machine::Squareness squareness_;
+  std::shared_ptr<const ModelGeometry> geometry_;
   std::shared_ptr<const Tables> tables_;
   std::shared_ptr<const ErrorExtension> extension_;  // null: the plain model
 };

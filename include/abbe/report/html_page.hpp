@@ -23,9 +23,8 @@ class HtmlPage {
   // A section heading (h2), listed in the table of contents; `id` must be
   // unique in the page.
   void add_section(const std::string& id, const std::string& heading);
-  void add_subheading(const std::string& text);  // h3
-  void add_paragraph(const std::string& text);   // escaped text
-  void add_note(const std::string& text);        // a smaller, grey paragraph
+  void add_paragraph(const std::string& text);  // escaped text
+  void add_note(const std::string& text);       // a smaller, grey paragraph
   void add_table(const Table& table);
   // Figures (SVG elements from LinePlot/ColourMap) side by side, wrapping
   // to the next row when the window is narrow.

@@ -29,7 +29,6 @@ struct ErrorComponent {
   double base(double s) const;
   double reversal_at(double s) const;
   double value(double s, int dir) const { return base(s) + 0.5 * dir * reversal_at(s); }
-  bool is_zero() const;
 };
 
 // Component index c: 0..2 linear along X, Y, Z (µm), 3..5 angular about X, Y, Z (µrad).

@@ -6,8 +6,8 @@
 #include "abbe/gcode/interpreter.hpp"
 #include "abbe/machine/machine.hpp"
 
-namespace abbe::machine {
+namespace abbe::pipeline {
 
-gcode::InterpreterConfig interpreter_config(const Machine& machine);
+gcode::InterpreterConfig interpreter_config(const machine::Machine& machine);
 
-}  // namespace abbe::machine
+}  // namespace abbe::pipeline

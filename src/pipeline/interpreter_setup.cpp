@@ -1,8 +1,8 @@
-#include "abbe/machine/interpreter_setup.hpp"
+#include "abbe/pipeline/interpreter_setup.hpp"
 
-namespace abbe::machine {
+namespace abbe::pipeline {
 
-gcode::InterpreterConfig interpreter_config(const Machine& machine) {
+gcode::InterpreterConfig interpreter_config(const machine::Machine& machine) {
   gcode::InterpreterConfig config;
   config.default_tool_length = machine.tool_length();
   config.tool_lengths = machine.tool_table();
@@ -11,4 +11,4 @@ gcode::InterpreterConfig interpreter_config(const Machine& machine) {
   return config;
 }
 
-}  // namespace abbe::machine
+}  // namespace abbe::pipeline

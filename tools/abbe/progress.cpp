@@ -1,4 +1,4 @@
-#include "abbe/io/progress.hpp"
+#include "progress.hpp"
 
 #include <fmt/format.h>
 #include <sys/stat.h>
@@ -6,7 +6,7 @@
 
 #include <algorithm>
 
-namespace abbe::io {
+namespace abbe::cli {
 
 Progress::Progress(std::string label, std::uint64_t total, bool enabled, std::string unit)
     : label_(std::move(label)),
@@ -91,4 +91,4 @@ ProgressStreambuf::pos_type ProgressStreambuf::seekpos(pos_type pos,
   return source_->pubseekpos(pos, which);
 }
 
-}  // namespace abbe::io
+}  // namespace abbe::cli

@@ -1,4 +1,4 @@
-#include "abbe/io/path_writer.hpp"
+#include "abbe/pipeline/path_writer.hpp"
 
 #include <array>
 #include <cmath>
@@ -10,7 +10,12 @@
 #include "abbe/io/input_error.hpp"
 #include "abbe/io/row_text.hpp"
 
-namespace abbe::io {
+namespace abbe::pipeline {
+
+using io::AppendedRow;
+using io::fixed6_fits;
+using io::InPlaceRow;
+using io::kFixed6MaxChars;
 
 namespace {
 // Kind names padded to 8 bytes so that the fast path copies a fixed size.
@@ -190,4 +195,4 @@ void PathWriter::finish() {
   flush();
 }
 
-}  // namespace abbe::io
+}  // namespace abbe::pipeline

@@ -18,7 +18,7 @@
 #include "abbe/io/fixed6.hpp"
 #include "abbe/path/path_point.hpp"
 
-namespace abbe::io {
+namespace abbe::pipeline {
 
 enum class PathFormat { csv, json };
 
@@ -60,4 +60,4 @@ class PathWriter {
   double middle_feed_ = 0.0;
 };
 
-}  // namespace abbe::io
+}  // namespace abbe::pipeline

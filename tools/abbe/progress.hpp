@@ -11,7 +11,7 @@
 #include <streambuf>
 #include <string>
 
-namespace abbe::io {
+namespace abbe::cli {
 
 class Progress {
  public:
@@ -68,4 +68,4 @@ class ProgressStreambuf : public std::streambuf {
   std::array<char, 1 << 16> buf_{};
 };
 
-}  // namespace abbe::io
+}  // namespace abbe::cli

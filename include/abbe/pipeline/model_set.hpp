@@ -1,0 +1,60 @@
+#pragma once
+// ModelSet: the error models of one prediction, evaluated side by side at
+// each point (one model, or every model of the table for `--model all`),
+// with the running statistics of every model over all points.
+#include <Eigen/Core>
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "abbe/machine/machine.hpp"
+#include "abbe/model/error_extension.hpp"
+#include "abbe/model/error_model.hpp"
+#include "abbe/model/model_kind.hpp"
+
+namespace abbe::pipeline {
+
+// Running statistics of one model's |e| over all points.
+struct ModelStats {
+  std::size_t points = 0;
+  Eigen::Vector3d max_abs_um = Eigen::Vector3d::Zero();
+  double sum_d2 = 0.0;       // µm²
+  double max_um = 0.0;       // of |e|
+  std::size_t max_line = 0;  // source line of the largest |e| (first one)
+  void add(const Eigen::Vector3d& e_um, double d_um, std::size_t line);
+  double rms_um() const;
+};
+
+class ModelSet {
+ public:
+  // `extension`: an extra deviation every model carries (null: none).
+  ModelSet(const machine::Machine& machine, std::vector<model::ModelKind> kinds,
+           std::shared_ptr<const model::ErrorExtension> extension = nullptr);
+
+  // Evaluates every model at `point` and updates the statistics. A model's
+  // abbe::InputError (a lookup outside a table under the policy `error`) is
+  // re-thrown at `file`:`line`, naming the point.
+  void evaluate(const model::EvalPoint& point, const std::string& file, std::size_t line);
+
+  std::size_t size() const { return kinds_.size(); }
+  const std::vector<model::ModelKind>& kinds() const { return kinds_; }
+  // Of the last evaluated point, per model:
+  const std::vector<model::Deviation>& deviations() const { return deviations_; }
+  const std::vector<double>& norms_um() const { return norms_; }  // |e|
+  // Over all points, per model:
+  const std::vector<ModelStats>& stats() const { return stats_; }
+  std::size_t out_of_range_lookups(std::size_t model) const;
+  std::size_t points() const { return points_; }
+
+ private:
+  std::vector<model::ModelKind> kinds_;
+  std::vector<model::ErrorModel> models_;
+  std::vector<model::ModelData> data_;
+  std::vector<model::Deviation> deviations_;
+  std::vector<double> norms_;
+  std::vector<ModelStats> stats_;
+  std::size_t points_ = 0;
+};
+
+}  // namespace abbe::pipeline

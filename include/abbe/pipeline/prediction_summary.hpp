@@ -1,0 +1,41 @@
+#pragma once
+// The summary of a prediction: per model, the largest deviation per axis, the
+// RMS and the largest |e| over all points, and the table lookups outside the
+// measured range. Written as JSON (`--summary-json`, the "summary" member of
+// the JSON output) and as the text table `abbe predict` prints.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "abbe/machine/machine.hpp"
+#include "abbe/model/model_kind.hpp"
+#include "abbe/pipeline/model_set.hpp"
+
+namespace abbe::pipeline {
+
+struct ModelSummary {
+  model::ModelKind kind = model::ModelKind::ae_arm;
+  ModelStats stats;
+  std::size_t out_of_range_lookups = 0;
+};
+
+struct PredictionSummary {
+  std::string machine;  // machine name
+  std::string input;    // file name ("-" for stdin)
+  std::size_t points = 0;
+  machine::OutOfRangePolicy out_of_range = machine::OutOfRangePolicy::clamp;
+  std::vector<ModelSummary> models;
+};
+
+PredictionSummary summarize(const ModelSet& models, const machine::Machine& machine,
+                            const std::string& input);
+
+// JSON object (2-space indent, no trailing newline): machine, input, points,
+// out_of_range_policy, models[{model, points, max_abs_d{x,y,z}_um, rms_d_um,
+// max_d_um, out_of_range_lookups}].
+std::string summary_json(const PredictionSummary& summary);
+
+// The text table: a title line, then one row per model (µm).
+std::string summary_table(const PredictionSummary& summary);
+
+}  // namespace abbe::pipeline

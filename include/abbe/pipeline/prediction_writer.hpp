@@ -1,0 +1,59 @@
+#pragma once
+// PredictionWriter: the per-point output of a prediction (`abbe predict`),
+// CSV or JSON, formatted into a buffer handed to a byte sink in chunks.
+//
+// One model: CSV columns x,y,z,px,py,pz,dx,dy,dz,d[,dx2,dy2,dz2],line. Several
+// models: x,y,z,line then px_<suffix>,…,d_<suffix> per model (the suffix is
+// the model table's column_suffix; second-order models add dx2,dy2,dz2). JSON:
+// {"points": [{"x":…, "line":…, "<model>": {"px":…}}, …], "summary": {…}}.
+// Nominal and predicted points in mm, deviations in µm, 6 decimals.
+#include <fmt/format.h>
+
+#include <array>
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "abbe/model/error_model.hpp"
+#include "abbe/model/model_kind.hpp"
+#include "abbe/pipeline/model_set.hpp"
+#include "abbe/pipeline/path_writer.hpp"
+
+namespace abbe::pipeline {
+
+class PredictionWriter {
+ public:
+  PredictionWriter(PathFormat format, std::vector<model::ModelKind> kinds, ByteSink sink);
+  PredictionWriter(const PredictionWriter&) = delete;
+  PredictionWriter& operator=(const PredictionWriter&) = delete;
+
+  // One row: the point, its source line and the models' last evaluation.
+  void write(const model::EvalPoint& point, std::size_t line, const ModelSet& models);
+  // Writes the trailer (JSON: `summary_json` as the "summary" member) and
+  // hands on what is buffered.
+  void finish(std::string_view summary_json);
+  std::size_t points() const { return points_; }
+
+ private:
+  template <class Out>
+  void row(Out& out, const model::EvalPoint& p, const std::vector<model::Deviation>& devs,
+           const std::vector<double>& norms) const;
+  void put(std::string_view s) { buf_.append(s.data(), s.data() + s.size()); }
+  void flush();
+
+  PathFormat format_;
+  std::vector<model::ModelKind> kinds_;
+  std::vector<bool> second_order_;  // per model: writes dx2, dy2, dz2
+  ByteSink sink_;
+  std::vector<std::string> json_keys_;  // `, "<model>": {"px": ` per model
+  std::size_t row_max_ = 192;           // bytes an in-place row may take
+  std::vector<Eigen::Vector3d> pred_;   // predicted tool tip per model, mm
+  fmt::memory_buffer buf_;
+  std::size_t points_ = 0;
+  std::array<char, 24> line_text_{};
+  std::size_t line_size_ = 0;
+  std::size_t line_ = 0;
+};
+
+}  // namespace abbe::pipeline

@@ -1,0 +1,60 @@
+#include "abbe/pipeline/model_set.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "abbe/io/input_error.hpp"
+
+namespace abbe::pipeline {
+
+void ModelStats::add(const Eigen::Vector3d& e_um, double d_um, std::size_t line) {
+  max_abs_um = max_abs_um.cwiseMax(e_um.cwiseAbs());
+  sum_d2 += d_um * d_um;
+  if (d_um > max_um || points == 0) {
+    max_um = d_um;
+    max_line = line;
+  }
+  ++points;
+}
+
+double ModelStats::rms_um() const {
+  return points ? std::sqrt(sum_d2 / static_cast<double>(points)) : 0.0;
+}
+
+ModelSet::ModelSet(const machine::Machine& machine, std::vector<model::ModelKind> kinds,
+                   std::shared_ptr<const model::ErrorExtension> extension)
+    : kinds_(std::move(kinds)) {
+  for (auto k : kinds_) {
+    models_.emplace_back(machine, k);
+    if (extension) models_.back() = models_.back().with_extension(extension);
+  }
+  data_.resize(kinds_.size());
+  deviations_.resize(kinds_.size());
+  norms_.resize(kinds_.size());
+  stats_.resize(kinds_.size());
+}
+
+void ModelSet::evaluate(const model::EvalPoint& point, const std::string& file, std::size_t line) {
+  for (std::size_t i = 0; i < models_.size(); ++i) {
+    try {
+      deviations_[i] = models_[i].evaluate(point, data_[i]);
+    } catch (const InputError& e) {
+      throw InputError({file, line, 0, e.where().field, ""},
+                       fmt::format("at the point ({:.4f}, {:.4f}, {:.4f}) mm: {}", point.p.x(),
+                                   point.p.y(), point.p.z(), e.message()));
+    }
+  }
+  for (std::size_t i = 0; i < models_.size(); ++i) {
+    norms_[i] = deviations_[i].e_um.norm();
+    stats_[i].add(deviations_[i].e_um, norms_[i], line);
+  }
+  ++points_;
+}
+
+std::size_t ModelSet::out_of_range_lookups(std::size_t model) const {
+  return data_.at(model).out_of_range_lookups;
+}
+
+}  // namespace abbe::pipeline

@@ -1,0 +1,41 @@
+#include "abbe/pipeline/predict.hpp"
+
+#include "abbe/pipeline/interpreter_setup.hpp"
+#include "abbe/pipeline/point_reader.hpp"
+
+namespace abbe::pipeline {
+namespace {
+
+bool ends_with(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+}  // namespace
+
+PredictInput predict_input_of(const std::string& file, bool force_points) {
+  return force_points || ends_with(file, ".csv") || ends_with(file, ".CSV") ? PredictInput::points
+                                                                            : PredictInput::program;
+}
+
+PredictionSummary predict(std::istream& in, const std::string& file,
+                          const machine::Machine& machine, const PredictOptions& options,
+                          const PredictionSink& sink) {
+  ModelSet models(machine, options.models, options.extension);
+  auto evaluate = [&](const model::EvalPoint& p, std::size_t line) {
+    models.evaluate(p, file, line);
+    if (sink) sink(p, line, models);
+  };
+  if (options.input == PredictInput::points) {
+    PointReader reader(in, file, machine.tool_length());
+    model::EvalPoint p;
+    std::size_t line = 0;
+    while (reader.next(p, line)) evaluate(p, line);
+  } else {
+    run_path(in, file, interpreter_config(machine), options.path,
+             [&](const path::PathPoint& pp) { evaluate(eval_point(pp), pp.line); });
+  }
+  return summarize(models, machine, file);
+}
+
+}  // namespace abbe::pipeline

@@ -1,0 +1,149 @@
+#include "abbe/pipeline/prediction_writer.hpp"
+
+#include <cmath>
+
+#include "abbe/io/fixed6.hpp"
+#include "abbe/io/row_text.hpp"
+#include "abbe/io/units.hpp"
+
+namespace abbe::pipeline {
+namespace {
+
+constexpr std::size_t kChunk = std::size_t{1} << 16;
+
+double l1(const Eigen::Vector3d& v) { return std::abs(v.x()) + std::abs(v.y()) + std::abs(v.z()); }
+
+// Three numbers, each after its separator.
+template <class Out, std::size_t N0, std::size_t N1, std::size_t N2>
+void num3(Out& out, const Eigen::Vector3d& v, const char (&s0)[N0], const char (&s1)[N1],
+          const char (&s2)[N2]) {
+  out.text(s0);
+  out.num(v.x());
+  out.text(s1);
+  out.num(v.y());
+  out.text(s2);
+  out.num(v.z());
+}
+
+}  // namespace
+
+PredictionWriter::PredictionWriter(PathFormat format, std::vector<model::ModelKind> kinds,
+                                   ByteSink sink)
+    : format_(format), kinds_(std::move(kinds)), sink_(std::move(sink)) {
+  for (auto k : kinds_) {
+    const model::ModelDescriptor& d = model::descriptor(k);
+    second_order_.push_back(d.second_order);
+    json_keys_.push_back(fmt::format(", \"{}\": {{\"px\": ", d.name));
+    row_max_ += 16 * (io::kFixed6MaxChars + 8) + json_keys_.back().size();
+  }
+  pred_.resize(kinds_.size());
+  buf_.reserve(kChunk + row_max_);
+  const bool all = kinds_.size() > 1;
+  if (format_ == PathFormat::csv) {
+    std::string header = all ? "x,y,z,line" : "x,y,z,px,py,pz,dx,dy,dz,d";
+    for (std::size_t i = 0; i < kinds_.size(); ++i) {
+      const std::string s =
+          all ? "_" + std::string(model::descriptor(kinds_[i]).column_suffix) : "";
+      if (all) header += fmt::format(",px{0},py{0},pz{0},dx{0},dy{0},dz{0},d{0}", s);
+      if (second_order_[i]) header += fmt::format(",dx2{0},dy2{0},dz2{0}", s);
+    }
+    if (!all) header += ",line";
+    put(header + "\n");
+  } else {
+    put("{\"points\": [\n");
+  }
+}
+
+void PredictionWriter::write(const model::EvalPoint& p, std::size_t line, const ModelSet& models) {
+  const std::vector<model::Deviation>& devs = models.deviations();
+  const std::vector<double>& norms = models.norms_um();
+  if (line != line_ || line_size_ == 0) {
+    line_ = line;
+    line_size_ = static_cast<std::size_t>(
+        io::write_decimal(line_text_.data(), static_cast<unsigned long long>(line)) -
+        line_text_.data());
+  }
+  // The in-place formatter takes the row when every number fits; the sum of
+  // the magnitudes of the nominal point and the deviations bounds every
+  // number of the row (|p + 1e-3·e| and |e| are at most that sum), so it is a
+  // cheap sufficient test (NaN and infinity fail it, and a row that fails
+  // takes the appending path, which writes the same text).
+  double magnitude = l1(p.p);
+  for (std::size_t i = 0; i < kinds_.size(); ++i) {
+    const model::Deviation& d = devs[i];
+    pred_[i] = p.p + units::kMmPerUm * d.e_um;
+    magnitude += l1(d.e_um) + l1(d.second_order_um);
+  }
+  if (io::fixed6_fits(magnitude)) {
+    const std::size_t old_size = buf_.size();
+    buf_.resize(old_size + row_max_);
+    io::InPlaceRow out{buf_.data() + old_size};
+    row(out, p, devs, norms);
+    buf_.resize(static_cast<std::size_t>(out.p - buf_.data()));
+  } else {
+    io::AppendedRow out{buf_};
+    row(out, p, devs, norms);
+  }
+  ++points_;
+  if (buf_.size() >= kChunk) flush();
+}
+
+void PredictionWriter::finish(std::string_view summary_json) {
+  if (format_ == PathFormat::json) {
+    put("\n],\n\"summary\": ");
+    put(summary_json);
+    put("}\n");
+  }
+  flush();
+}
+
+template <class Out>
+void PredictionWriter::row(Out& out, const model::EvalPoint& p,
+                           const std::vector<model::Deviation>& devs,
+                           const std::vector<double>& norms) const {
+  const bool all = kinds_.size() > 1;
+  if (format_ == PathFormat::csv) {
+    num3(out, p.p, "", ",", ",");
+    if (all) {
+      out.ch(',');
+      out.block(line_text_, line_size_);
+    }
+    for (std::size_t i = 0; i < kinds_.size(); ++i) {
+      const model::Deviation& d = devs[i];
+      num3(out, pred_[i], ",", ",", ",");
+      num3(out, d.e_um, ",", ",", ",");
+      out.ch(',');
+      out.num(norms[i]);
+      if (second_order_[i]) num3(out, d.second_order_um, ",", ",", ",");
+    }
+    if (!all) {
+      out.ch(',');
+      out.block(line_text_, line_size_);
+    }
+    out.ch('\n');
+  } else {
+    out.text(points_ ? ",\n{\"x\": " : "{\"x\": ");
+    num3(out, p.p, "", ", \"y\": ", ", \"z\": ");
+    out.text(", \"line\": ");
+    out.block(line_text_, line_size_);
+    for (std::size_t i = 0; i < kinds_.size(); ++i) {
+      const model::Deviation& d = devs[i];
+      out.text(json_keys_[i]);
+      num3(out, pred_[i], "", ", \"py\": ", ", \"pz\": ");
+      num3(out, d.e_um, ", \"dx\": ", ", \"dy\": ", ", \"dz\": ");
+      out.text(", \"d\": ");
+      out.num(norms[i]);
+      if (second_order_[i])
+        num3(out, d.second_order_um, ", \"dx2\": ", ", \"dy2\": ", ", \"dz2\": ");
+      out.ch('}');
+    }
+    out.ch('}');
+  }
+}
+
+void PredictionWriter::flush() {
+  sink_(buf_.data(), buf_.size());
+  buf_.clear();
+}
+
+}  // namespace abbe::pipeline
