@@ -203,11 +203,12 @@ class Compensator {
   }
 
   void process(const gcode::Block& block, const std::string& raw) {
-    if (has_g(block, 80)) in_cycle_ = false;
     motions_.clear();
     interp_.execute(block, raw, [&](const gcode::Motion& m) {
       if (m.kind != gcode::MotionKind::dwell) motions_.push_back(m);
     });
+    // G80 (or no cycle since) ends a series of cycles: the interpreter's modal state says so.
+    if (interp_.modal().motion_mode == gcode::gcode_id(80)) in_cycle_ = false;
     if (motions_.empty()) {
       if (has_g(block, 92) && 1e3 * delta_.norm() > 1e-3)
         throw InputError({file_, block.line, 1, "G92", raw},

@@ -7,27 +7,12 @@
 #include <fstream>
 #include <sstream>
 
+#include "abbe/diagnose/effect_catalogue.hpp"
 #include "abbe/io/input_error.hpp"
 #include "abbe/model/model_kind.hpp"
 
 namespace abbe::diagnose {
 namespace {
-
-const char* term_id(TermKind k) {
-  switch (k) {
-    case TermKind::setup_offset:
-      return "setup_offset";
-    case TermKind::setup_rotation:
-      return "setup_rotation";
-    default:
-      return kind_id(k);
-  }
-}
-
-constexpr TermKind kKinds[] = {
-    TermKind::model_choice,  TermKind::scale,          TermKind::squareness, TermKind::reversal,
-    TermKind::thermal_drift, TermKind::cyclic,         TermKind::coupling,   TermKind::arm_offset,
-    TermKind::setup_offset,  TermKind::setup_rotation, TermKind::unexplained};
 
 class Reader {
  public:
@@ -71,6 +56,47 @@ class Reader {
   std::string file_;
 };
 
+// An overlay entry's fields for the catalogue's readers.
+class YamlFields : public OverlayFields {
+ public:
+  YamlFields(const Reader& rd, const YAML::Node& entry, std::string term)
+      : rd_(rd), e_(entry), term_(std::move(term)) {}
+  bool has(const char* key) const override { return static_cast<bool>(e_[key]); }
+  int axis(const char* key) const override { return rd_.axis(need(key), key); }
+  double number(const char* key) const override { return rd_.number(need(key), key); }
+  std::vector<double> numbers(const char* key) const override {
+    return rd_.numbers(need(key), key);
+  }
+  std::string text(const char* key) const override { return need(key).as<std::string>(""); }
+  std::vector<std::string> texts(const char* key) const override {
+    const YAML::Node n = need(key);
+    std::vector<std::string> out;
+    if (n.IsSequence())
+      for (const auto& x : n) out.push_back(x.as<std::string>(""));
+    return out;
+  }
+  [[noreturn]] void fail(const char* key, const std::string& message) const override {
+    rd_.fail(e_[key] ? e_[key] : e_, key, message);
+  }
+  [[noreturn]] void fail_entry(const char* key, const std::string& message) const override {
+    rd_.fail(e_, key, message);
+  }
+  [[noreturn]] void fail_item(const char* key, std::size_t index,
+                              const std::string& message) const override {
+    const YAML::Node n = e_[key];
+    rd_.fail(n && n.IsSequence() && index < n.size() ? n[index] : e_, key, message);
+  }
+
+ private:
+  YAML::Node need(const char* key) const {
+    if (!e_[key]) rd_.fail(e_, key, fmt::format("a {} effect needs `{}`", term_, key));
+    return e_[key];
+  }
+  const Reader& rd_;
+  const YAML::Node& e_;
+  std::string term_;
+};
+
 }  // namespace
 
 Eigen::Vector3d Overlay::evaluate(const PointContext& pc) const {
@@ -108,72 +134,18 @@ Overlay Overlay::parse(const std::string& text, const std::string& file) {
     const YAML::Node term = e["term"] ? e["term"] : e["kind"];
     if (!term) rd.fail(e, "term", "an effect needs `term` (or `kind`)");
     const std::string id = term.as<std::string>("");
-    bool found = false;
-    for (TermKind k : kKinds)
-      if (id == term_id(k)) {
-        t.kind = k;
-        found = true;
-      }
-    if (!found) rd.fail(term, "term", fmt::format("unknown effect term \"{}\"", id));
+    const EffectDescriptor* kind = find_effect(id);
+    if (!kind) rd.fail(term, "term", fmt::format("unknown effect term \"{}\"", id));
+    t.kind = kind->kind;
+    const YamlFields fields(rd, e, id);
+    if (kind->reads_axis) t.axis = fields.axis("axis");
+    if (kind->reads_direction) t.direction = fields.axis("direction");
+    if (kind->axis_is_direction) t.axis = t.direction;
+    if (kind->read_fields) kind->read_fields(t, fields);
     auto need = [&](const char* key) {
       if (!e[key]) rd.fail(e, key, fmt::format("a {} effect needs `{}`", id, key));
       return e[key];
     };
-    const bool needs_axis = t.kind != TermKind::model_choice && t.kind != TermKind::unexplained &&
-                            t.kind != TermKind::setup_offset;
-    if (needs_axis) t.axis = rd.axis(need("axis"), "axis");
-    if (t.kind != TermKind::model_choice && t.kind != TermKind::setup_rotation)
-      t.direction = rd.axis(need("direction"), "direction");
-    if (t.kind == TermKind::setup_offset) t.axis = t.direction;
-    if (t.kind == TermKind::model_choice) t.other_model = need("other_model").as<std::string>("");
-    if (t.kind == TermKind::coupling) {
-      t.with_axis = rd.axis(need("with"), "with");
-      if (t.with_axis == t.axis) rd.fail(e["with"], "with", "coupling needs two different axes");
-      const auto c = rd.numbers(need("centre"), "centre");
-      const auto h = rd.numbers(need("half"), "half");
-      if (c.size() != 3 || h.size() != 3) rd.fail(e, "centre", "centre and half need 3 numbers");
-      for (int k = 0; k < 3; ++k) {
-        t.centre[k] = c[static_cast<std::size_t>(k)];
-        t.half[k] = h[static_cast<std::size_t>(k)];
-        if (!(t.half[k] > 0.0)) rd.fail(e["half"], "half", "half ranges must be positive");
-      }
-    }
-    if (t.kind == TermKind::thermal_drift) {
-      t.tau_s = rd.number(need("tau_s"), "tau_s");
-      if (t.tau_s < 0.0) rd.fail(e["tau_s"], "tau_s", "tau_s must be ≥ 0 (0: linear in t)");
-      if (e["with"]) t.with_axis = rd.axis(e["with"], "with");
-    }
-    if (t.kind == TermKind::cyclic) {
-      t.period_mm = rd.number(need("period_mm"), "period_mm");
-      if (!(t.period_mm > 0.0)) rd.fail(e["period_mm"], "period_mm", "period must be positive");
-    }
-    if (t.kind == TermKind::setup_offset || t.kind == TermKind::setup_rotation)
-      t.set = need("set").as<std::string>("");
-    if (t.kind == TermKind::setup_rotation) {
-      const auto c = rd.numbers(need("centre"), "centre");
-      if (c.size() != 3) rd.fail(e["centre"], "centre", "centre needs 3 numbers");
-      t.centre = Eigen::Vector3d(c[0], c[1], c[2]);
-    }
-    if (t.kind == TermKind::unexplained) {
-      const YAML::Node vars = need("vars");
-      if (!vars.IsSequence() || vars.size() < 1 || vars.size() > 2)
-        rd.fail(vars, "vars", "vars: one or two of x, y, z, t");
-      for (const auto& v : vars) {
-        const std::string s = v.as<std::string>("");
-        int idx = s == "x" ? 0 : s == "y" ? 1 : s == "z" ? 2 : s == "t" ? 3 : -1;
-        if (idx < 0) rd.fail(v, "vars", fmt::format("unknown variable \"{}\"", s));
-        t.vars.push_back(idx);
-      }
-      t.degree = static_cast<int>(rd.number(need("degree"), "degree"));
-      if (t.degree < 1 || t.degree > 12) rd.fail(e["degree"], "degree", "degree must be 1..12");
-      const auto lo = rd.numbers(need("lo"), "lo"), hi = rd.numbers(need("hi"), "hi");
-      if (lo.size() != 4 || hi.size() != 4) rd.fail(e, "lo", "lo and hi need 4 numbers (x y z t)");
-      for (std::size_t k = 0; k < 4; ++k) {
-        t.lo[k] = lo[k];
-        t.hi[k] = hi[k];
-        if (!(hi[k] > lo[k])) rd.fail(e["hi"], "hi", "hi must be greater than lo");
-      }
-    }
     t.coef = rd.numbers(need("coef"), "coef");
     if (static_cast<int>(t.coef.size()) != t.columns())
       rd.fail(
@@ -207,30 +179,13 @@ std::string Overlay::to_yaml() const {
   y += "effects:\n";
   if (terms.empty()) y = y.substr(0, y.size() - 1) + " []\n";
   for (const Term& t : terms) {
-    y += fmt::format("  - kind: {}\n    term: {}\n", kind_id(t.kind), term_id(t.kind));
+    const EffectDescriptor& kind = effect_descriptor(t.kind);
+    y += fmt::format("  - kind: {}\n    term: {}\n", kind.id, kind.term_name);
     y += fmt::format("    description: \"{}\"\n", t.description());
-    if (t.axis >= 0 && t.kind != TermKind::model_choice && t.kind != TermKind::unexplained)
-      y += fmt::format("    axis: {}\n", axis_name(t.axis));
+    if (t.axis >= 0 && kind.writes_axis) y += fmt::format("    axis: {}\n", axis_name(t.axis));
     if (t.direction >= 0) y += fmt::format("    direction: {}\n", axis_name(t.direction));
-    if (t.kind == TermKind::model_choice) y += fmt::format("    other_model: {}\n", t.other_model);
     if (t.with_axis >= 0) y += fmt::format("    with: {}\n", axis_name(t.with_axis));
-    if (t.kind == TermKind::coupling)
-      y += fmt::format("    centre: {}\n    half: {}\n",
-                       list(std::array<double, 3>{t.centre[0], t.centre[1], t.centre[2]}),
-                       list(std::array<double, 3>{t.half[0], t.half[1], t.half[2]}));
-    if (t.kind == TermKind::thermal_drift) y += fmt::format("    tau_s: {:.17g}\n", t.tau_s);
-    if (t.kind == TermKind::cyclic) y += fmt::format("    period_mm: {:.17g}\n", t.period_mm);
-    if (t.kind == TermKind::setup_offset || t.kind == TermKind::setup_rotation)
-      y += fmt::format("    set: \"{}\"\n", t.set);
-    if (t.kind == TermKind::setup_rotation)
-      y += fmt::format("    centre: {}\n",
-                       list(std::array<double, 3>{t.centre[0], t.centre[1], t.centre[2]}));
-    if (t.kind == TermKind::unexplained) {
-      std::string v;
-      for (int x : t.vars) v += std::string(v.empty() ? "" : ", ") + variable_name(x);
-      y += fmt::format("    vars: [{}]\n    degree: {}\n    lo: {}\n    hi: {}\n", v, t.degree,
-                       list(t.lo), list(t.hi));
-    }
+    if (kind.write_fields) kind.write_fields(t, y);
     y += fmt::format("    coef: {}\n", list(t.coef));
     if (!t.stderr_.empty()) y += fmt::format("    stderr: {}\n", list(t.stderr_));
   }

@@ -23,7 +23,8 @@ struct PointContext {
   Eigen::Vector3d model_delta_um = Eigen::Vector3d::Zero();  // other model − base model, µm
 };
 
-enum class TermKind {
+// The built-in kinds; effect_catalogue.hpp registers more (values ≥ 100).
+enum class TermKind : int {
   model_choice,
   scale,
   squareness,
@@ -39,6 +40,8 @@ enum class TermKind {
 
 // The catalogue id of DESIGN.md §5 ("setup" for both setup terms).
 const char* kind_id(TermKind k);
+// The overlay's `term:` name ("setup_offset", "setup_rotation", else the id).
+const char* term_name(TermKind k);
 
 struct Term {
   TermKind kind = TermKind::scale;
@@ -72,6 +75,7 @@ struct Term {
   std::string label() const;        // e.g. "reversal Y→Y", "cyclic X→Z (16.0 mm)"
   std::string description() const;  // one plain-language line with the numbers
   // Named parameters (values, and their standard errors) for the report.
+  // All of these go through the kind's descriptor (effect_catalogue.hpp).
   std::vector<std::pair<std::string, double>> params() const;
   std::vector<std::pair<std::string, double>> param_stderr() const;
 };

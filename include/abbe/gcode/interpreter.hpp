@@ -22,9 +22,14 @@
 #include <string_view>
 
 #include "abbe/gcode/block.hpp"
+#include "abbe/gcode/modal_state.hpp"
 #include "abbe/gcode/motion.hpp"
 
 namespace abbe::gcode {
+
+namespace detail {
+struct ExecState;  // the modal state with its configuration (src/gcode)
+}  // namespace detail
 
 struct InterpreterConfig {
   std::array<Eigen::Vector3d, 6> work_offsets{// G54..G59, mm
@@ -56,6 +61,7 @@ class Interpreter {
 
   // Modal state after the last executed block (for post-processors that
   // write coordinates back in the program's own frame and units).
+  const ModalState& modal() const;
   bool inch() const;                         // G20
   bool incremental() const;                  // G91
   bool arc_centre_absolute() const;          // G90.1
@@ -64,8 +70,7 @@ class Interpreter {
   Eigen::Vector3d program_position() const;  // current point in the program frame, program units
 
  private:
-  struct State;
-  std::unique_ptr<State> state_;
+  std::unique_ptr<detail::ExecState> state_;
 };
 
 }  // namespace abbe::gcode

@@ -1,0 +1,55 @@
+// thermal_drift: a deviation growing with time (1 − e^(−t/τ), or t per hour
+// for τ = 0), optionally in proportion to an axis position.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "abbe/io/units.hpp"
+#include "builtin_effects.hpp"
+
+namespace abbe::diagnose::effects {
+
+EffectDescriptor thermal_drift() {
+  EffectDescriptor d;
+  d.kind = TermKind::thermal_drift;
+  d.id = d.term_name = "thermal_drift";
+  d.basis = [](const Term& t, const PointContext& pc, BasisOut out) {
+    const double time = std::max(pc.t, 0.0);
+    double f = t.tau_s > 0.0 ? 1.0 - std::exp(-time / t.tau_s) : time / units::kSecondsPerHour;
+    if (t.with_axis >= 0) f *= units::kMmPerUm * pc.s[t.with_axis];
+    out(t.direction, 0) = f;
+  };
+  d.label = [](const Term& t) {
+    const char dir = axis_name(t.direction);
+    return t.with_axis >= 0 ? fmt::format("thermal_drift {}·t→{} (τ {:.0f} s)",
+                                          variable_name(t.with_axis), dir, t.tau_s)
+                            : fmt::format("thermal_drift t→{} (τ {:.0f} s)", dir, t.tau_s);
+  };
+  d.description = [](const Term& t) {
+    const char dir = axis_name(t.direction);
+    return t.with_axis >= 0 ? fmt::format(
+                                  "{} grows with time ∝ {} ({:+.2f} ppm, τ {:.0f} s): thermal "
+                                  "expansion during warm-up",
+                                  dir, variable_name(t.with_axis), coef_or_zero(t, 0), t.tau_s)
+                            : fmt::format(
+                                  "{} drifts with time ({:+.2f} µm, τ {:.0f} s): warm-up, spindle "
+                                  "growth",
+                                  dir, coef_or_zero(t, 0), t.tau_s);
+  };
+  d.params = [](const Term& t) -> NamedValues {
+    return {{t.with_axis >= 0 ? "ppm" : (t.tau_s > 0.0 ? "um" : "um_per_h"), coef_or_zero(t, 0)},
+            {"tau_s", t.tau_s}};
+  };
+  d.read_fields = [](Term& t, const OverlayFields& in) {
+    t.tau_s = in.number("tau_s");
+    if (t.tau_s < 0.0) in.fail("tau_s", "tau_s must be ≥ 0 (0: linear in t)");
+    if (in.has("with")) t.with_axis = in.axis("with");
+  };
+  d.write_fields = [](const Term& t, std::string& y) {
+    y += fmt::format("    tau_s: {:.17g}\n", t.tau_s);
+  };
+  return d;
+}
+
+}  // namespace abbe::diagnose::effects

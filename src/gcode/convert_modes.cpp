@@ -1,0 +1,139 @@
+// The convert_* steps that change modes and the frame (no motion but G4).
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "interpreter_steps.hpp"
+
+namespace abbe::gcode::detail {
+
+void convert_feed_speed_tool(ExecState& st, const BlockPlan& b) {
+  const BlockCodes& c = b.codes;
+  if (const Word* f = c.word('F')) {
+    if (f->value < 0) b.ctx.fail(f, "negative feed rate (F)");
+    st.feed_mm = f->value * st.unit();
+  }
+  if (const Word* s = c.word('S')) {
+    if (s->value < 0) b.ctx.fail(s, "negative spindle speed (S)");
+    st.spindle = s->value;
+  }
+  if (const Word* t = c.word('T')) {
+    if (t->value < 0 || !is_integer(t->value))
+      b.ctx.fail(t, "T word must be a non-negative integer");
+    st.selected_tool = static_cast<int>(std::lround(t->value));
+  }
+  if (c.group(MGroup::tool_change)) st.tool_in_spindle = st.selected_tool;
+}
+
+void convert_dwell(ExecState& st, const BlockPlan& b, const Emit& emit) {
+  if (b.non_modal != gcode_id(4)) return;
+  const Word* p = b.codes.word('P');
+  if (!p)
+    b.ctx.fail(b.codes.group(GGroup::non_modal)->word, "dwell (G4) without a P word (seconds)");
+  if (p->value < 0) b.ctx.fail(p, "negative dwell time (G4 P)");
+  Motion m;
+  m.kind = MotionKind::dwell;
+  m.start = m.end = st.tip(st.pos);
+  m.dwell_seconds = p->value;
+  emit(m);
+}
+
+void convert_plane(ExecState& st, const BlockPlan& b) {
+  if (const auto& g = b.codes.group(GGroup::plane)) {
+    st.plane = g->code == gcode_id(17)   ? Plane::xy
+               : g->code == gcode_id(18) ? Plane::xz
+                                         : Plane::yz;
+  }
+}
+
+// Everything held in program units is converted.
+void convert_units(ExecState& st, const BlockPlan& b) {
+  const auto& g = b.codes.group(GGroup::units);
+  if (!g) return;
+  const bool inch = g->code == gcode_id(20);
+  if (inch == st.inch) return;
+  const double k = inch ? 1.0 / units::kMmPerInch : units::kMmPerInch;
+  st.pos *= k;
+  st.g92 *= k;
+  st.g92_saved *= k;
+  st.tlo *= k;
+  st.cycle_r *= k;
+  st.cycle_cc *= k;
+  st.cycle_q *= k;
+  st.cycle_initial_level *= k;
+  st.inch = inch;
+}
+
+// The spindle does not move, the program frame does.
+void convert_tool_length(ExecState& st, const BlockPlan& b) {
+  const BlockCodes& c = b.codes;
+  const auto& tool_length = c.group(GGroup::tool_length);
+  if (!tool_length) return;
+  double new_tlo = 0.0;
+  if (tool_length->code == gcode_id(43)) {
+    int h = st.tool_in_spindle;
+    if (const Word* hw = c.word('H')) {
+      if (hw->value < 0 || !is_integer(hw->value))
+        b.ctx.fail(hw, "H word must be a non-negative integer");
+      h = static_cast<int>(std::lround(hw->value));
+    }
+    double length = 0.0;
+    if (h != 0) {
+      const auto it = st.config.tool_lengths.find(h);
+      if (it == st.config.tool_lengths.end())
+        b.ctx.fail(c.has('H') ? c.word('H') : tool_length->word,
+                   fmt::format("tool {} has no length in the tool table (G43 H{})", h, h));
+      length = it->second;
+    }
+    st.g43 = true;
+    st.tool_length_mm = length;
+    new_tlo = length / st.unit();
+  } else {
+    st.g43 = false;
+    st.tool_length_mm = 0.0;
+  }
+  st.pos.z() -= new_tlo - st.tlo;
+  st.tlo = new_tlo;
+}
+
+void convert_coord_system(ExecState& st, const BlockPlan& b) {
+  if (const auto& g = b.codes.group(GGroup::coord_system)) {
+    const Eigen::Vector3d old = st.g5x();
+    st.coord_index = (g->code - gcode_id(54)) / 10;
+    st.pos += old - st.g5x();
+  }
+}
+
+void convert_distance_modes(ExecState& st, const BlockPlan& b) {
+  const BlockCodes& c = b.codes;
+  if (const auto& g = c.group(GGroup::distance)) st.incremental = g->code == gcode_id(91);
+  if (const auto& g = c.group(GGroup::arc_distance))
+    st.arc_centre_absolute = g->code == gcode_id(90, 1);
+  if (const auto& g = c.group(GGroup::retract)) st.retract_to_r = g->code == gcode_id(99);
+}
+
+void convert_axis_offsets(ExecState& st, const BlockPlan& b) {
+  static constexpr char kAxisLetters[3] = {'X', 'Y', 'Z'};
+  if (b.non_modal == gcode_id(92)) {
+    for (int a = 0; a < 3; ++a)
+      if (const Word* w = b.codes.word(kAxisLetters[a])) {
+        st.g92[a] += st.pos[a] - w->value;
+        st.pos[a] = w->value;
+      }
+    st.g92_saved = st.g92;
+  } else if (b.non_modal == gcode_id(92, 1) || b.non_modal == gcode_id(92, 2)) {
+    st.pos += st.g92;
+    st.g92.setZero();
+    if (b.non_modal == gcode_id(92, 1)) st.g92_saved.setZero();
+  } else if (b.non_modal == gcode_id(92, 3)) {
+    st.pos += st.g92 - st.g92_saved;
+    st.g92 = st.g92_saved;
+  }
+}
+
+void convert_stop(ExecState& st, const BlockPlan& b) {
+  if (const auto& m = b.codes.group(MGroup::stopping))
+    if (m->code == 2 || m->code == 30) st.ended = true;
+}
+
+}  // namespace abbe::gcode::detail

@@ -1,0 +1,263 @@
+// convert_motion: the end point of the block (rs274ngc's find_ends) and the
+// straight, arc and canned-cycle motions.
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "abbe/gcode/arc_geometry.hpp"
+#include "abbe/gcode/canned_cycle.hpp"
+#include "interpreter_steps.hpp"
+
+namespace abbe::gcode::detail {
+namespace {
+
+// Limits that keep one block from expanding into an unbounded number of
+// motions (a typo such as L70000000 must be an error, not a hang).
+constexpr double kMaxCycleRepeats = 100000;
+constexpr double kMaxArcTurns = 10000;
+constexpr double kMaxPecks = 100000;
+
+constexpr char kAxisLetter[3] = {'X', 'Y', 'Z'};
+constexpr char kCentreLetter[3] = {'I', 'J', 'K'};
+
+// gcode::plane_axes with names: the (first, second, normal) axes of the arc
+// and canned-cycle plane.
+struct PlaneAxes {
+  int first, second, normal;
+};
+
+PlaneAxes named_axes(Plane plane) {
+  const std::array<int, 3> a = plane_axes(plane);
+  return {a[0], a[1], a[2]};
+}
+
+}  // namespace
+
+void convert_motion(ExecState& st, const BlockPlan& b, const Emit& emit) {
+  const int motion = b.motion;
+  if (motion == -1) return;
+  const BlockCodes& c = b.codes;
+  const bool g53 = b.non_modal == gcode_id(53);
+  if (!is_cycle(motion)) st.cycle_initial_level_set = false;
+  if (g53) {
+    const Word* at = c.group(GGroup::non_modal)->word;
+    if (motion != gcode_id(0) && motion != gcode_id(1))
+      b.ctx.fail(at, fmt::format("G53 needs G0 or G1, not {}", gcode_name(motion)));
+    if (st.incremental) b.ctx.fail(at, "G53 in incremental distance mode (G91)");
+  }
+  // End point in the program frame (rs274ngc's find_ends).
+  Eigen::Vector3d end = st.pos;
+  for (int a = 0; a < 3; ++a) {
+    const Word* w = c.word(kAxisLetter[a]);
+    if (!w) continue;
+    if (g53) {
+      const Eigen::Vector3d frame = st.g5x() + st.g92 + Eigen::Vector3d(0, 0, st.tlo);
+      end[a] = w->value - frame[a];
+    } else {
+      end[a] = st.incremental ? st.pos[a] + w->value : w->value;
+    }
+  }
+
+  if (motion == gcode_id(0) || motion == gcode_id(1)) {
+    convert_straight(st, b, end, emit);
+  } else if (motion == gcode_id(2) || motion == gcode_id(3)) {
+    convert_arc(st, b, end, emit);
+  } else if (is_cycle(motion)) {
+    convert_cycle(st, b, emit);
+  } else if (motion == gcode_id(80)) {
+    st.motion_mode = motion;
+  }
+}
+
+void convert_straight(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& end,
+                      const Emit& emit) {
+  const bool rapid = b.motion == gcode_id(0);
+  if (!rapid && st.feed_mm == 0.0)
+    b.ctx.fail(b.motion_word, "G1 with zero feed rate (no F word yet)");
+  Motion m;
+  m.kind = rapid ? MotionKind::rapid : MotionKind::linear;
+  m.start = st.tip(st.pos);
+  m.end = st.tip(end);
+  m.feed = rapid ? 0.0 : st.feed_mm;
+  st.pos = end;
+  st.motion_mode = b.motion;
+  emit(m);
+}
+
+void convert_arc(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& end, const Emit& emit) {
+  const BlockCodes& c = b.codes;
+  const BlockContext& ctx = b.ctx;
+  const int motion = b.motion;
+  const Word* motion_word = b.motion_word;
+  const char* gname = motion == gcode_id(2) ? "G2" : "G3";
+  if (st.feed_mm == 0.0)
+    ctx.fail(motion_word, fmt::format("arc ({}) with zero feed rate (no F word yet)", gname));
+  const PlaneAxes ax = named_axes(st.plane);
+  const bool ijk = c.has('I') || c.has('J') || c.has('K');
+  if (!c.has('R') && !ijk)
+    ctx.fail(motion_word, fmt::format("arc ({}) without I, J, K or R", gname));
+  if (c.has('R') && ijk)
+    ctx.fail(c.word('R'), fmt::format("arc ({}) with both R and I/J/K", gname));
+  if (ijk) {
+    const char off_plane = kCentreLetter[ax.normal];
+    if (c.has(off_plane))
+      ctx.fail(c.word(off_plane), fmt::format("{} word given for an arc in the {} plane", off_plane,
+                                              plane_name(st.plane)));
+    if (st.arc_centre_absolute)
+      for (int a : {ax.first, ax.second})
+        if (!c.has(kCentreLetter[a]))
+          ctx.fail(motion_word,
+                   fmt::format("{} word missing in absolute-centre arc (G90.1)", kCentreLetter[a]));
+  } else if (!c.has(kAxisLetter[ax.first]) && !c.has(kAxisLetter[ax.second])) {
+    ctx.fail(motion_word,
+             fmt::format("arc with no end point: {} and {} words missing for an "
+                         "R-format arc in the {} plane",
+                         kAxisLetter[ax.first], kAxisLetter[ax.second], plane_name(st.plane)));
+  }
+  int turns = 1;
+  if (const Word* p = c.word('P')) {
+    if (!is_integer(p->value))
+      ctx.fail(p, fmt::format("P word (turns) of {} is not an integer", gname));
+    if (p->value < 1.0) ctx.fail(p, fmt::format("P word (turns) of {} must be 1 or more", gname));
+    if (p->value > kMaxArcTurns)
+      ctx.fail(p, fmt::format("P word (turns) of {} is larger than {}", gname, kMaxArcTurns));
+    turns = static_cast<int>(std::lround(p->value));
+  }
+  const Eigen::Vector2d start2(st.pos[ax.first], st.pos[ax.second]);
+  const Eigen::Vector2d end2(end[ax.first], end[ax.second]);
+  const ArcTolerances tol = arc_tolerances(st.inch);
+  ArcCentre centre;
+  if (ijk) {
+    auto value = [&](int a) {
+      return c.has(kCentreLetter[a]) ? c.word(kCentreLetter[a])->value : 0.0;
+    };
+    centre = arc_centre_ijk(start2, end2, Eigen::Vector2d(value(ax.first), value(ax.second)),
+                            st.arc_centre_absolute, tol);
+  } else {
+    centre = arc_centre_r(start2, end2, c.word('R')->value, motion == gcode_id(2), tol);
+  }
+  if (!centre.error.empty()) ctx.fail(c.has('R') ? c.word('R') : motion_word, centre.error);
+  Eigen::Vector3d centre3 = st.pos;
+  centre3[ax.first] = centre.centre.x();
+  centre3[ax.second] = centre.centre.y();
+  Motion m;
+  m.kind = MotionKind::arc;
+  m.plane = st.plane;
+  m.start = st.tip(st.pos);
+  m.end = st.tip(end);
+  m.center = st.tip(centre3);
+  m.rotation = (motion == gcode_id(2) ? -1 : 1) * turns;
+  m.feed = st.feed_mm;
+  st.pos = end;
+  st.motion_mode = motion;
+  emit(m);
+}
+
+void convert_cycle(ExecState& st, const BlockPlan& b, const Emit& emit) {
+  const BlockCodes& c = b.codes;
+  const BlockContext& ctx = b.ctx;
+  const int motion = b.motion;
+  const Word* motion_word = b.motion_word;
+  const std::string gname = gcode_name(motion);
+  if (st.feed_mm == 0.0)
+    ctx.fail(motion_word, fmt::format("canned cycle ({}) with zero feed rate", gname));
+  const PlaneAxes ax = named_axes(st.plane);
+  const bool continued = st.motion_mode == motion;
+  double r_value = st.cycle_r;
+  if (const Word* r = c.word('R'))
+    r_value = r->value;
+  else if (!continued)
+    ctx.fail(motion_word, fmt::format("R plane missing for canned cycle {}", gname));
+  int repeats = 1;
+  if (const Word* l = c.word('L')) {
+    if (!is_integer(l->value) || l->value < 1.0)
+      ctx.fail(l, fmt::format("L (repeats) of canned cycle {} must be a positive integer", gname));
+    if (l->value > kMaxCycleRepeats)
+      ctx.fail(l, fmt::format("L (repeats) of canned cycle {} is larger than {}", gname,
+                              kMaxCycleRepeats));
+    repeats = static_cast<int>(std::lround(l->value));
+  }
+  const char cc_letter = kAxisLetter[ax.normal];
+  if (!continued && !c.has(cc_letter))
+    ctx.fail(motion_word, fmt::format("{} value missing for canned cycle {} in the {} plane",
+                                      cc_letter, gname, plane_name(st.plane)));
+  const double cc_value = c.has(cc_letter) ? c.word(cc_letter)->value : st.cycle_cc;
+  CannedCycle cyc;
+  cyc.code = motion;
+  cyc.current = Eigen::Vector3d(st.pos[ax.first], st.pos[ax.second], st.pos[ax.normal]);
+  if (!st.cycle_initial_level_set) {
+    st.cycle_initial_level = cyc.current.z();
+    st.cycle_initial_level_set = true;
+  }
+  cyc.initial_level = st.cycle_initial_level;
+  const Word* wa = c.word(kAxisLetter[ax.first]);
+  const Word* wb = c.word(kAxisLetter[ax.second]);
+  if (st.incremental) {
+    cyc.hole = cyc.current.head<2>();
+    cyc.increment = Eigen::Vector2d(wa ? wa->value : 0.0, wb ? wb->value : 0.0);
+    cyc.r = r_value + cyc.initial_level;
+    cyc.bottom = cyc.r + cc_value;
+  } else {
+    cyc.hole = Eigen::Vector2d(wa ? wa->value : cyc.current.x(), wb ? wb->value : cyc.current.y());
+    cyc.r = r_value;
+    cyc.bottom = cc_value;
+  }
+  if (cyc.r < cyc.bottom)
+    ctx.fail(
+        c.has('R') ? c.word('R') : motion_word,
+        fmt::format("R plane below the hole bottom in canned cycle {} (R < {})", gname, cc_letter));
+  cyc.retract_to_r = st.retract_to_r;
+  cyc.repeats = repeats;
+  if (motion == gcode_id(82) || motion == gcode_id(89)) {
+    if (!continued && !c.has('P'))
+      ctx.fail(motion_word, fmt::format("dwell time (P) missing for canned cycle {}", gname));
+    cyc.dwell = c.has('P') ? c.word('P')->value : st.cycle_p;
+    st.cycle_p = cyc.dwell;
+  }
+  if (motion == gcode_id(73) || motion == gcode_id(83)) {
+    if (!continued && !c.has('Q'))
+      ctx.fail(motion_word, fmt::format("peck depth (Q) missing for canned cycle {}", gname));
+    cyc.peck = c.has('Q') ? c.word('Q')->value : st.cycle_q;
+    if (cyc.peck <= 0.0)
+      ctx.fail(c.has('Q') ? c.word('Q') : motion_word,
+               fmt::format("peck depth (Q) of canned cycle {} must be positive", gname));
+    st.cycle_q = cyc.peck;
+    if ((cyc.r - cyc.bottom) / cyc.peck > kMaxPecks)
+      ctx.fail(c.has('Q') ? c.word('Q') : motion_word,
+               fmt::format("peck depth (Q) of canned cycle {} is so small that the hole "
+                           "would take more than {} pecks",
+                           gname, kMaxPecks));
+  }
+  // rs274ngc's G73/G83 retract: 0.010 inch.
+  cyc.peck_clearance = st.inch ? 0.010 : 0.010 * units::kMmPerInch;
+
+  auto to_program = [&](const Eigen::Vector3d& abc) {
+    Eigen::Vector3d p;
+    p[ax.first] = abc.x();
+    p[ax.second] = abc.y();
+    p[ax.normal] = abc.z();
+    return p;
+  };
+  const Eigen::Vector3d final_abc = expand_canned_cycle(cyc, [&](const CycleStep& step) {
+    const Eigen::Vector3d target = to_program(step.target);
+    Motion m;
+    if (step.kind == CycleStep::Kind::dwell) {
+      m.kind = MotionKind::dwell;
+      m.start = m.end = st.tip(target);
+      m.dwell_seconds = step.seconds;
+    } else {
+      m.kind = step.kind == CycleStep::Kind::feed ? MotionKind::linear : MotionKind::rapid;
+      m.start = st.tip(st.pos);
+      m.end = st.tip(target);
+      m.feed = step.kind == CycleStep::Kind::feed ? st.feed_mm : 0.0;
+      st.pos = target;
+    }
+    emit(m);
+  });
+  st.pos = to_program(final_abc);
+  st.cycle_cc = cc_value;
+  st.cycle_r = r_value;
+  st.motion_mode = motion;
+}
+
+}  // namespace abbe::gcode::detail

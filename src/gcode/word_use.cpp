@@ -1,0 +1,55 @@
+#include "word_use.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "interpreter_steps.hpp"
+
+namespace abbe::gcode::detail {
+
+const std::vector<WordUse>& word_use_table() {
+  static const std::vector<WordUse> table{
+      {'I', {gcode_id(2), gcode_id(3)}, false},
+      {'J', {gcode_id(2), gcode_id(3)}, false},
+      {'K', {gcode_id(2), gcode_id(3)}, false},
+      {'R', {gcode_id(2), gcode_id(3)}, true},
+      {'P',
+       {gcode_id(2), gcode_id(3), gcode_id(4), gcode_id(64), gcode_id(82), gcode_id(89)},
+       false},
+      {'Q', {gcode_id(64), gcode_id(73), gcode_id(83)}, false},
+      {'L', {}, true},
+      {'H', {gcode_id(43)}, false},
+  };
+  return table;
+}
+
+std::string word_users(const WordUse& use) {
+  std::vector<std::string> names;
+  for (int code : use.codes) names.push_back(gcode_name(code));
+  if (use.canned_cycles) names.emplace_back("canned cycle");
+  std::string text;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (i > 0) text += i + 1 == names.size() ? " or " : ", ";
+    text += names[i];
+  }
+  return text;
+}
+
+void check_word_use(const BlockCodes& codes, const BlockContext& ctx,
+                    std::initializer_list<int> active) {
+  for (const WordUse& use : word_use_table()) {
+    if (!codes.has(use.letter)) continue;
+    bool used = false;
+    for (int code : active) {
+      if (code < 0) continue;
+      used = used || (use.canned_cycles && is_cycle(code)) ||
+             std::find(use.codes.begin(), use.codes.end(), code) != use.codes.end();
+    }
+    if (!used)
+      ctx.fail(codes.word(use.letter),
+               fmt::format("{} word with no {} to use it", use.letter, word_users(use)));
+  }
+}
+
+}  // namespace abbe::gcode::detail
