@@ -10,51 +10,21 @@
 #include "abbe/diagnose/effect_catalogue.hpp"
 #include "abbe/io/input_error.hpp"
 #include "abbe/model/model_kind.hpp"
+#include "src/io/yaml_reader.hpp"
 
 namespace abbe::diagnose {
 namespace {
 
-class Reader {
- public:
-  explicit Reader(std::string file) : file_(std::move(file)) {}
-  [[noreturn]] void fail(const YAML::Node& n, const std::string& field,
-                         const std::string& msg) const {
-    const YAML::Mark m = n.Mark();
-    throw InputError({file_, m.line >= 0 ? static_cast<std::size_t>(m.line + 1) : 0,
-                      m.column >= 0 ? static_cast<std::size_t>(m.column + 1) : 0, field, ""},
-                     msg);
-  }
-  double number(const YAML::Node& n, const std::string& field) const {
-    try {
-      const double v = n.as<double>();
-      if (!std::isfinite(v)) fail(n, field, "not a finite number");
-      return v;
-    } catch (const YAML::Exception&) {
-      fail(n, field, "expected a number");
-    }
-  }
-  int axis(const YAML::Node& n, const std::string& field) const {
-    std::string s;
-    try {
-      s = n.as<std::string>();
-    } catch (const YAML::Exception&) {
-      fail(n, field, "expected an axis letter X, Y or Z");
-    }
-    if (s == "X" || s == "x") return 0;
-    if (s == "Y" || s == "y") return 1;
-    if (s == "Z" || s == "z") return 2;
-    fail(n, field, fmt::format("\"{}\" is not an axis (X, Y or Z)", s));
-  }
-  std::vector<double> numbers(const YAML::Node& n, const std::string& field) const {
-    if (!n.IsSequence()) fail(n, field, "expected a list of numbers");
-    std::vector<double> v;
-    for (const auto& x : n) v.push_back(number(x, field));
-    return v;
-  }
+using Reader = io::YamlReader;
 
- private:
-  std::string file_;
-};
+int read_axis(const Reader& rd, const YAML::Node& n, const std::string& field) {
+  if (!n.IsScalar()) rd.fail(n, field, "expected an axis letter X, Y or Z");
+  const std::string s = n.Scalar();
+  if (s == "X" || s == "x") return 0;
+  if (s == "Y" || s == "y") return 1;
+  if (s == "Z" || s == "z") return 2;
+  rd.fail(n, field, fmt::format("\"{}\" is not an axis (X, Y or Z)", s));
+}
 
 // An overlay entry's fields for the catalogue's readers.
 class YamlFields : public OverlayFields {
@@ -62,7 +32,7 @@ class YamlFields : public OverlayFields {
   YamlFields(const Reader& rd, const YAML::Node& entry, std::string term)
       : rd_(rd), e_(entry), term_(std::move(term)) {}
   bool has(const char* key) const override { return static_cast<bool>(e_[key]); }
-  int axis(const char* key) const override { return rd_.axis(need(key), key); }
+  int axis(const char* key) const override { return read_axis(rd_, need(key), key); }
   double number(const char* key) const override { return rd_.number(need(key), key); }
   std::vector<double> numbers(const char* key) const override {
     return rd_.numbers(need(key), key);
@@ -106,15 +76,8 @@ Eigen::Vector3d Overlay::evaluate(const PointContext& pc) const {
 }
 
 Overlay Overlay::parse(const std::string& text, const std::string& file) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::ParserException& e) {
-    throw InputError({file, static_cast<std::size_t>(e.mark.line + 1),
-                      static_cast<std::size_t>(e.mark.column + 1), "", ""},
-                     e.msg);
-  }
-  Reader rd(file);
+  const Reader rd(file, text);
+  const YAML::Node root = rd.load(text);
   if (!root.IsMap()) rd.fail(root, "", "an overlay is a YAML mapping (docs/formats.md)");
   if (!root["format"] || root["format"].as<std::string>("") != "abbe-overlay-1")
     rd.fail(root, "format", "missing or unknown `format` (expected abbe-overlay-1)");

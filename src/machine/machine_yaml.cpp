@@ -14,103 +14,13 @@
 
 #include "abbe/io/input_error.hpp"
 #include "abbe/machine/machine.hpp"
+#include "src/io/yaml_reader.hpp"
 
 namespace abbe::machine {
 
 namespace {
 
-class Reader {
- public:
-  Reader(const std::string& text, std::string file) : file_(std::move(file)) {
-    std::istringstream in(text);
-    std::string l;
-    while (std::getline(in, l)) lines_.push_back(l);
-  }
-
-  [[noreturn]] void fail(const YAML::Mark& mark, const std::string& field,
-                         const std::string& msg) const {
-    SourceLocation where{file_, 0, 0, field, ""};
-    if (mark.line >= 0) {
-      where.line = static_cast<std::size_t>(mark.line) + 1;
-      where.column = static_cast<std::size_t>(mark.column) + 1;
-      if (static_cast<std::size_t>(mark.line) < lines_.size())
-        where.source_line = lines_[static_cast<std::size_t>(mark.line)];
-    }
-    throw InputError(where, msg);
-  }
-  [[noreturn]] void fail(const YAML::Node& node, const std::string& field,
-                         const std::string& msg) const {
-    fail(node.Mark(), field, msg);
-  }
-
-  void expect_map(const YAML::Node& node, const std::string& field) const {
-    if (!node.IsMap()) fail(node, field, fmt::format("`{}` must be a mapping", field));
-  }
-
-  // Every key of `node` must be in `allowed`.
-  void check_keys(const YAML::Node& node, const std::string& field,
-                  const std::set<std::string>& allowed) const {
-    expect_map(node, field);
-    for (const auto& kv : node) {
-      std::string key = scalar_key(kv.first, field);
-      if (!allowed.count(key))
-        fail(kv.first, join(field, key),
-             fmt::format("unknown key `{}` (allowed: {})", key, fmt::join(allowed, ", ")));
-    }
-  }
-
-  std::string scalar_key(const YAML::Node& key, const std::string& field) const {
-    if (!key.IsScalar()) fail(key, field, "keys must be plain scalars");
-    return key.Scalar();
-  }
-
-  YAML::Node required(const YAML::Node& parent, const std::string& key,
-                      const std::string& field) const {
-    const YAML::Node n = parent[key];
-    if (!n) fail(parent, join(field, key), fmt::format("missing key `{}`", key));
-    return n;
-  }
-
-  double number(const YAML::Node& node, const std::string& field) const {
-    if (!node.IsScalar()) fail(node, field, "expected a number");
-    double v = 0.0;
-    try {
-      v = node.as<double>();
-    } catch (const YAML::Exception&) {
-      fail(node, field, fmt::format("\"{}\" is not a number", node.Scalar()));
-    }
-    if (!std::isfinite(v)) fail(node, field, "the value must be finite (no NaN or inf)");
-    return v;
-  }
-
-  std::string string(const YAML::Node& node, const std::string& field) const {
-    if (!node.IsScalar()) fail(node, field, "expected a string");
-    return node.Scalar();
-  }
-
-  std::vector<double> numbers(const YAML::Node& node, const std::string& field,
-                              std::size_t n) const {
-    if (!node.IsSequence() || node.size() != n)
-      fail(node, field, fmt::format("expected a list of {} numbers", n));
-    std::vector<double> out;
-    for (std::size_t i = 0; i < n; ++i)
-      out.push_back(number(node[i], fmt::format("{}[{}]", field, i)));
-    return out;
-  }
-
-  Eigen::Vector3d vec3(const YAML::Node& node, const std::string& field) const {
-    auto v = numbers(node, field, 3);
-    return {v[0], v[1], v[2]};
-  }
-
-  static std::string join(const std::string& a, const std::string& b) {
-    return a.empty() ? b : a + "." + b;
-  }
-
- private:
-  std::string file_;
-  std::vector<std::string> lines_;
-};
+using Reader = io::YamlReader;
 
 AxisRecord read_record(const Reader& r, const YAML::Node& node, Axis axis,
                        const std::string& field) {
@@ -170,14 +80,8 @@ Machine Machine::load(const std::string& yaml_path) {
 
 Machine Machine::parse(const std::string& yaml_text, const std::string& file,
                        const std::string& base_dir) {
-  Reader r(yaml_text, file);
-  YAML::Node loaded;
-  try {
-    loaded = YAML::Load(yaml_text);
-  } catch (const YAML::ParserException& e) {
-    r.fail(e.mark, "", fmt::format("YAML syntax error: {}", e.msg));
-  }
-  const YAML::Node root = loaded;  // const: lookups never insert keys
+  const Reader r(file, yaml_text);
+  const YAML::Node root = r.load(yaml_text);  // const: lookups never insert keys
   if (!root.IsMap()) r.fail(root, "", "a machine file is a YAML mapping (see docs/formats.md)");
   r.check_keys(root, "",
                {"name", "chain", "travel", "tool_length", "tool_table", "work_offsets",

@@ -7,6 +7,7 @@
 
 #include "abbe/io/input_error.hpp"
 #include "abbe/sim/text_file.hpp"
+#include "src/io/yaml_reader.hpp"
 
 namespace abbe::sim {
 
@@ -17,61 +18,6 @@ constexpr int kFormatVersion = 1;
 void emit_vector(YAML::Emitter& y, const Eigen::Vector3d& v) {
   y << YAML::Flow << YAML::BeginSeq << v.x() << v.y() << v.z() << YAML::EndSeq;
 }
-
-// Reading side: every failure names the file, the line and the field path.
-class Reader {
- public:
-  explicit Reader(std::string file) : file_(std::move(file)) {}
-
-  [[noreturn]] void fail(const YAML::Node& node, const std::string& field,
-                         const std::string& message) const {
-    SourceLocation where;
-    where.file = file_;
-    where.field = field;
-    if (node.IsDefined() && node.Mark().line >= 0) {
-      where.line = static_cast<std::size_t>(node.Mark().line) + 1;
-      where.column = static_cast<std::size_t>(node.Mark().column) + 1;
-    }
-    throw InputError(where, message);
-  }
-
-  YAML::Node need(const YAML::Node& parent, const std::string& key, const std::string& path) const {
-    if (!parent.IsMap()) fail(parent, path, "expected a mapping");
-    YAML::Node n = parent[key];
-    if (!n.IsDefined()) fail(parent, path + "." + key, "missing field '" + key + "'");
-    return n;
-  }
-
-  template <typename T>
-  T as(const YAML::Node& n, const std::string& field) const {
-    try {
-      return n.as<T>();
-    } catch (const YAML::Exception&) {
-      fail(n, field, "not a valid value");
-    }
-  }
-
-  double number(const YAML::Node& n, const std::string& field) const {
-    const double v = as<double>(n, field);
-    if (!std::isfinite(v)) fail(n, field, "not a finite number");
-    return v;
-  }
-
-  Eigen::Vector3d vector(const YAML::Node& n, const std::string& field) const {
-    if (!n.IsSequence() || n.size() != 3) fail(n, field, "expected [x, y, z]");
-    return {number(n[0], field), number(n[1], field), number(n[2], field)};
-  }
-
-  std::vector<double> numbers(const YAML::Node& n, const std::string& field) const {
-    if (!n.IsSequence()) fail(n, field, "expected a list of numbers");
-    std::vector<double> v;
-    for (std::size_t i = 0; i < n.size(); ++i) v.push_back(number(n[i], field));
-    return v;
-  }
-
- private:
-  std::string file_;
-};
 
 }  // namespace
 
@@ -149,64 +95,56 @@ std::string truth_to_yaml(const GeneratedMachine& machine) {
 }
 
 GeneratedMachine truth_from_yaml(const std::string& text, const std::string& file) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::ParserException& e) {
-    SourceLocation where;
-    where.file = file;
-    where.line = static_cast<std::size_t>(e.mark.line) + 1;
-    where.column = static_cast<std::size_t>(e.mark.column) + 1;
-    throw InputError(where, "not valid YAML: " + e.msg);
-  }
-  Reader r(file);
+  const io::YamlReader r(file, text);
+  const YAML::Node root = r.load(text);
   if (!root.IsMap()) r.fail(root, "", "a truth file is a YAML mapping");
-  const int version = r.as<int>(r.need(root, "abbe_truth", ""), "abbe_truth");
+  const auto version = r.integer(r.required(root, "abbe_truth", ""), "abbe_truth");
   if (version != kFormatVersion)
     r.fail(root["abbe_truth"], "abbe_truth", "unsupported truth file version");
   GeneratedMachine g;
   TruthMachine& t = g.truth;
-  t.name = r.as<std::string>(r.need(root, "name", ""), "name");
-  const YAML::Node chain = r.need(root, "chain", "");
+  t.name = r.string(r.required(root, "name", ""), "name");
+  const YAML::Node chain = r.required(root, "chain", "");
   try {
-    t.chain = ChainLayout::parse(r.as<std::string>(chain, "chain"));
+    t.chain = ChainLayout::parse(r.string(chain, "chain"));
   } catch (const std::invalid_argument& e) {
     r.fail(chain, "chain", e.what());
   }
-  t.tool_length = r.number(r.need(root, "tool_length", ""), "tool_length");
+  t.tool_length = r.number(r.required(root, "tool_length", ""), "tool_length");
   if (const YAML::Node tt = root["tool_table"]; tt.IsDefined() && !tt.IsNull()) {
     if (!tt.IsMap()) r.fail(tt, "tool_table", "expected H: length");
     for (const auto& kv : tt)
-      t.tool_table[r.as<int>(kv.first, "tool_table")] = r.number(kv.second, "tool_table");
+      t.tool_table[static_cast<int>(r.integer(kv.first, "tool_table"))] =
+          r.number(kv.second, "tool_table");
   }
-  const YAML::Node sq = r.need(root, "squareness", "");
-  t.squareness.ec0y = r.number(r.need(sq, "EC0Y", "squareness"), "squareness.EC0Y");
-  t.squareness.eb0z = r.number(r.need(sq, "EB0Z", "squareness"), "squareness.EB0Z");
-  t.squareness.ea0z = r.number(r.need(sq, "EA0Z", "squareness"), "squareness.EA0Z");
-  const YAML::Node axes = r.need(root, "axes", "");
+  const YAML::Node sq = r.required(root, "squareness", "");
+  t.squareness.ec0y = r.number(r.required(sq, "EC0Y", "squareness"), "squareness.EC0Y");
+  t.squareness.eb0z = r.number(r.required(sq, "EB0Z", "squareness"), "squareness.EB0Z");
+  t.squareness.ea0z = r.number(r.required(sq, "EA0Z", "squareness"), "squareness.EA0Z");
+  const YAML::Node axes = r.required(root, "axes", "");
   for (int j = 0; j < 3; ++j) {
     const std::string an(1, axis_letter(j));
-    const YAML::Node a = r.need(axes, an, "axes");
+    const YAML::Node a = r.required(axes, an, "axes");
     const std::string path = "axes." + an;
     AxisTruth& ax = t.axes[static_cast<std::size_t>(j)];
-    const auto travel = r.numbers(r.need(a, "travel", path), path + ".travel");
+    const auto travel = r.numbers(r.required(a, "travel", path), path + ".travel");
     if (travel.size() != 2 || !(travel[0] < travel[1]))
       r.fail(a["travel"], path + ".travel", "expected [min, max] with min < max");
     ax.travel_min = travel[0];
     ax.travel_max = travel[1];
-    ax.pivot0 = r.vector(r.need(a, "pivot", path), path + ".pivot");
-    const YAML::Node comps = r.need(a, "components", path);
+    ax.pivot0 = r.vec3(r.required(a, "pivot", path), path + ".pivot");
+    const YAML::Node comps = r.required(a, "components", path);
     for (int k = 0; k < 6; ++k) {
       const std::string cn = component_name(j, k);
       const std::string cp = path + ".components." + cn;
       const YAML::Node cnode = comps[cn];
       if (!cnode.IsDefined()) continue;  // missing component: zero
       ErrorComponent& e = ax.components[static_cast<std::size_t>(k)];
-      e.centre = r.number(r.need(cnode, "centre", cp), cp + ".centre");
-      e.half_range = r.number(r.need(cnode, "half_range", cp), cp + ".half_range");
+      e.centre = r.number(r.required(cnode, "centre", cp), cp + ".centre");
+      e.half_range = r.number(r.required(cnode, "half_range", cp), cp + ".half_range");
       if (!(e.half_range > 0.0)) r.fail(cnode["half_range"], cp + ".half_range", "must be > 0");
-      e.poly = r.numbers(r.need(cnode, "poly", cp), cp + ".poly");
-      const YAML::Node waves = r.need(cnode, "waves", cp);
+      e.poly = r.numbers(r.required(cnode, "poly", cp), cp + ".poly");
+      const YAML::Node waves = r.required(cnode, "waves", cp);
       if (!waves.IsSequence()) r.fail(waves, cp + ".waves", "expected a list of [a, λ, φ]");
       for (std::size_t w = 0; w < waves.size(); ++w) {
         const auto v = r.numbers(waves[w], cp + ".waves");
@@ -214,44 +152,49 @@ GeneratedMachine truth_from_yaml(const std::string& text, const std::string& fil
           r.fail(waves[w], cp + ".waves", "expected [amplitude, wavelength > 0, phase]");
         e.waves.push_back({v[0], v[1], v[2]});
       }
-      e.reversal = r.number(r.need(cnode, "reversal", cp), cp + ".reversal");
-      e.reversal_slope = r.number(r.need(cnode, "reversal_slope", cp), cp + ".reversal_slope");
+      e.reversal = r.number(r.required(cnode, "reversal", cp), cp + ".reversal");
+      e.reversal_slope = r.number(r.required(cnode, "reversal_slope", cp), cp + ".reversal_slope");
     }
   }
   if (const YAML::Node effects = root["effects"]; effects.IsDefined() && !effects.IsNull()) {
     if (!effects.IsSequence()) r.fail(effects, "effects", "expected a list of effect strings");
     for (std::size_t i = 0; i < effects.size(); ++i) {
       try {
-        t.effects.push_back(parse_effect(r.as<std::string>(effects[i], "effects")));
+        t.effects.push_back(parse_effect(r.string(effects[i], "effects")));
       } catch (const std::invalid_argument& e) {
         r.fail(effects[i], "effects", e.what());
       }
     }
   }
-  const YAML::Node c = r.need(root, "campaign", "");
+  const YAML::Node c = r.required(root, "campaign", "");
   CampaignSetup& cs = g.campaign;
-  cs.spacing_mm = r.number(r.need(c, "spacing_mm", "campaign"), "campaign.spacing_mm");
+  cs.spacing_mm = r.number(r.required(c, "spacing_mm", "campaign"), "campaign.spacing_mm");
   if (!(cs.spacing_mm > 0.0)) r.fail(c["spacing_mm"], "campaign.spacing_mm", "must be > 0");
-  cs.runs = r.as<int>(r.need(c, "runs", "campaign"), "campaign.runs");
+  cs.runs = static_cast<int>(r.integer(r.required(c, "runs", "campaign"), "campaign.runs"));
   if (cs.runs < 2) r.fail(c["runs"], "campaign.runs", "must be ≥ 2");
-  cs.seed = r.as<std::uint64_t>(r.need(c, "seed", "campaign"), "campaign.seed");
-  cs.squareness_sigma_urad =
-      r.number(r.need(c, "squareness_sigma_urad", "campaign"), "campaign.squareness_sigma_urad");
+  const YAML::Node seed = r.required(c, "seed", "campaign");
+  try {
+    cs.seed = seed.as<std::uint64_t>();
+  } catch (const YAML::Exception&) {
+    r.fail(seed, "campaign.seed", "expected a non-negative integer");
+  }
+  cs.squareness_sigma_urad = r.number(r.required(c, "squareness_sigma_urad", "campaign"),
+                                      "campaign.squareness_sigma_urad");
   if (cs.squareness_sigma_urad < 0.0)
     r.fail(c["squareness_sigma_urad"], "campaign.squareness_sigma_urad", "must be ≥ 0");
-  const YAML::Node caxes = r.need(c, "axes", "campaign");
+  const YAML::Node caxes = r.required(c, "axes", "campaign");
   for (int j = 0; j < 3; ++j) {
     const std::string an(1, axis_letter(j));
     const std::string path = "campaign.axes." + an;
-    const YAML::Node a = r.need(caxes, an, "campaign.axes");
+    const YAML::Node a = r.required(caxes, an, "campaign.axes");
     AxisRecord& rec = cs.axes[static_cast<std::size_t>(j)];
-    rec.measured_at = r.vector(r.need(a, "measured_at", path), path + ".measured_at");
-    rec.tool_length = r.number(r.need(a, "tool_length", path), path + ".tool_length");
-    rec.point = r.vector(r.need(a, "point", path), path + ".point");
-    const YAML::Node sig = r.need(a, "sigma", path);
+    rec.measured_at = r.vec3(r.required(a, "measured_at", path), path + ".measured_at");
+    rec.tool_length = r.number(r.required(a, "tool_length", path), path + ".tool_length");
+    rec.point = r.vec3(r.required(a, "point", path), path + ".point");
+    const YAML::Node sig = r.required(a, "sigma", path);
     for (int k = 0; k < 6; ++k) {
       const std::string cn = component_name(j, k);
-      const double v = r.number(r.need(sig, cn, path + ".sigma"), path + ".sigma." + cn);
+      const double v = r.number(r.required(sig, cn, path + ".sigma"), path + ".sigma." + cn);
       if (v < 0.0) r.fail(sig[cn], path + ".sigma." + cn, "must be ≥ 0");
       rec.sigma[static_cast<std::size_t>(k)] = v;
     }

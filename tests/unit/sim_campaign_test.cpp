@@ -281,7 +281,7 @@ TEST(SimTruthFile, BadFilesNameLineAndField) {
   EXPECT_NE(error_of(bad).find("[campaign.squareness_sigma_urad]: error: must be ≥ 0"),
             std::string::npos)
       << error_of(bad);
-  EXPECT_NE(error_of("abbe_truth: 1\nname: x\n").find("missing field 'chain'"), std::string::npos);
+  EXPECT_NE(error_of("abbe_truth: 1\nname: x\n").find("missing key `chain`"), std::string::npos);
   EXPECT_NE(error_of("a: [\n").find("t.yaml:"), std::string::npos);
   EXPECT_NE(error_of("abbe_truth: 2\n").find("version"), std::string::npos);
 }
