@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "abbe/path/arc_span.hpp"
+
 namespace abbe::compensate {
 
 MotionPath::MotionPath(const gcode::Motion& m)
@@ -18,19 +20,8 @@ MotionPath::MotionPath(const gcode::Motion& m)
   r0_ = std::sqrt(us * us + vs * vs);  // no overflow at machine sizes: no hypot
   r1_ = std::sqrt(ue * ue + ve * ve);
   theta0_ = std::atan2(vs, us);
-  const double two_pi = 2.0 * M_PI;
-  double d = std::atan2(ve, ue) - theta0_;
-  const int turns = std::abs(m.rotation);
-  if (m.rotation >= 0) {
-    while (d <= 1e-12) d += two_pi;
-    while (d > two_pi + 1e-12) d -= two_pi;
-    d += two_pi * (turns - 1);
-  } else {
-    while (d >= -1e-12) d -= two_pi;
-    while (d < -two_pi - 1e-12) d += two_pi;
-    d -= two_pi * (turns - 1);
-  }
-  sweep_ = d;
+  // The fragmenter's rule for full circles and turns (path::arc_sweep).
+  sweep_ = path::arc_sweep(theta0_, std::atan2(ve, ue), std::hypot(ue - us, ve - vs), m.rotation);
   const double planar = std::abs(sweep_) * 0.5 * (r0_ + r1_);
   const double h = end_[n] - start_[n];
   length_ = std::sqrt(planar * planar + h * h);
@@ -63,14 +54,14 @@ double MotionPath::near_lo(double near) const {
 }
 
 double MotionPath::distance_near(const Eigen::Vector3d& q) const {
-  if (!arc_ || std::abs(sweep_) > 2.0 * M_PI) return distance(q);
+  if (!arc_ || std::abs(sweep_) > units::kTwoPi) return distance(q);
   const int a = ax_[0], b = ax_[1], n = ax_[2];
   const double ua = q[a] - center_[a], ub = q[b] - center_[b];
   // Angle from the start in the direction of the sweep, in [0, 2π).
   double phi = std::atan2(ub, ua) - theta0_;
   if (sweep_ < 0.0) phi = -phi;
-  phi = std::fmod(phi, 2.0 * M_PI);
-  if (phi < 0.0) phi += 2.0 * M_PI;
+  phi = std::fmod(phi, units::kTwoPi);
+  if (phi < 0.0) phi += units::kTwoPi;
   double t = phi / std::abs(sweep_);
   if (t > 1.0) return std::min((q - start_).norm(), (q - end_).norm());
   const double h = end_[n] - start_[n];
@@ -115,7 +106,7 @@ double MotionPath::closest(const Eigen::Vector3d& q) const {
   // take the radius blend and the helix travel into account. The ends are
   // candidates too.
   const int a = ax_[0], b = ax_[1], n = ax_[2];
-  const double two_pi = 2.0 * M_PI;
+  const double two_pi = units::kTwoPi;
   const double h = end_[n] - start_[n];
   const double dr = r1_ - r0_;
   const double alpha = std::atan2(q[b] - center_[b], q[a] - center_[a]);

@@ -8,10 +8,19 @@
 
 namespace abbe::path {
 
-namespace {
-// Start and end closer than this (mm, in the plane) make a full circle.
-constexpr double kFullCircleTolerance = 1e-9;
-}  // namespace
+double arc_sweep(double theta_start, double theta_end, double chord, int rotation) {
+  const bool ccw = rotation > 0;
+  double sweep;
+  if (chord < kFullCircleChord) {
+    sweep = units::kTwoPi;
+  } else {
+    sweep = ccw ? theta_end - theta_start : theta_start - theta_end;  // in (-2π, 2π)
+    if (sweep <= 0.0) sweep += units::kTwoPi;
+  }
+  const int turns = std::abs(rotation) - 1;
+  sweep += units::kTwoPi * turns;
+  return ccw ? sweep : -sweep;
+}
 
 ArcSpan::ArcSpan(const gcode::Motion& motion)
     : axes_(plane_axes(motion.plane)),
@@ -30,18 +39,7 @@ ArcSpan::ArcSpan(const gcode::Motion& motion)
   r0_ = std::hypot(sa, sb);
   r1_ = std::hypot(ea, eb);
   theta0_ = std::atan2(sb, sa);
-  const double theta1 = std::atan2(eb, ea);
-  const bool ccw = motion.rotation > 0;
-  double sweep;
-  if (std::hypot(ea - sa, eb - sb) < kFullCircleTolerance) {
-    sweep = units::kTwoPi;
-  } else {
-    sweep = ccw ? theta1 - theta0_ : theta0_ - theta1;  // in (-2π, 2π)
-    if (sweep <= 0.0) sweep += units::kTwoPi;
-  }
-  const int turns = std::abs(motion.rotation) - 1;
-  sweep += units::kTwoPi * turns;
-  sweep_ = ccw ? sweep : -sweep;
+  sweep_ = arc_sweep(theta0_, std::atan2(eb, ea), std::hypot(ea - sa, eb - sb), motion.rotation);
 }
 
 double ArcSpan::length() const {

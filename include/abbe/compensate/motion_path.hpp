@@ -10,6 +10,7 @@
 #include <cstdint>
 
 #include "abbe/gcode/motion.hpp"
+#include "abbe/io/units.hpp"
 
 namespace abbe::compensate {
 
@@ -67,7 +68,7 @@ class MotionPath {
 template <class F>
 void MotionPath::for_each_reversal(double t_lo, double t_hi, F&& f) const {
   if (!arc_ || sweep_ == 0.0) return;
-  const double half_pi = 0.5 * M_PI;
+  const double half_pi = 0.5 * units::kPi;
   const double a0 = theta0_ + t_lo * sweep_, a1 = theta0_ + t_hi * sweep_;
   if (sweep_ > 0.0) {
     for (double k = std::floor(a0 / half_pi) + 1.0; k * half_pi < a1; k += 1.0) {
