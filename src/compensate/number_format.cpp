@@ -71,7 +71,7 @@ void append_number(std::string& out, double value, const NumberStyle& style, int
     const bool bare = !style.leading_zero && shown > 0 && n - 1 == shown && digits[shown] == '0';
     for (int i = n - 1; i >= shown; --i)
       if (!bare) out += digits[i];
-    if (shown > 0) out += '.';
+    if (shown > 0 || style.point_always) out += '.';
     for (int i = shown - 1; i >= 0; --i) out += digits[i];
     return;
   }
@@ -79,7 +79,7 @@ void append_number(std::string& out, double value, const NumberStyle& style, int
   if (t.find('.') != std::string::npos) {
     std::size_t keep = t.find('.') + static_cast<std::size_t>(style.decimals);
     while (t.size() - 1 > keep && t.back() == '0') t.pop_back();
-    if (t.back() == '.' && style.decimals == 0) t.pop_back();
+    if (t.back() == '.' && style.decimals == 0 && !style.point_always) t.pop_back();
   }
   if (t == "-0" || t.find_first_not_of("-0.") == std::string::npos) {
     if (t[0] == '-') t.erase(0, 1);  // no negative zero

@@ -10,6 +10,7 @@
 
 #include "abbe/compensate/motion_path.hpp"
 #include "abbe/gcode/parser.hpp"
+#include "abbe/io/input_error.hpp"
 #include "abbe/path/fragmenter.hpp"
 
 namespace abbe::compensate {
@@ -25,11 +26,19 @@ using Dir = std::array<std::int8_t, 3>;
 class MotionStream {
  public:
   MotionStream(std::istream& in, const std::string& file, const gcode::InterpreterConfig& config)
-      : reader_(in, file), interp_(config, file) {}
+      : reader_(in, file),
+        interp_(config, file),
+        fanuc_(config.dialect.dialect == gcode::Dialect::fanuc) {}
   // `skip`: a motion of a canned cycle that is not a hole bottom.
   bool next(gcode::Motion& m, bool& skip) {
     while (head_ == skip_.size()) {
       if (interp_.program_ended() || !reader_.next(block_)) return false;
+      if (fanuc_)
+        if (const gcode::Word* w = gcode::subprogram_flow_word(block_))
+          throw InputError({reader_.file(), block_.line, static_cast<std::size_t>(w->begin) + 1,
+                            "", reader_.raw_line()},
+                           "subprogram calls (M98/M99) are not followed by verify, as compensate "
+                           "does not compensate them");
       block_motions_.clear();
       head_ = 0;
       interp_.execute(block_, reader_.line_text(), [&](const gcode::Motion& x) {
@@ -71,6 +80,7 @@ class MotionStream {
  private:
   gcode::BlockReader reader_;
   gcode::Interpreter interp_;
+  bool fanuc_ = false;
   gcode::Block block_;
   std::vector<gcode::Motion> block_motions_;
   std::vector<bool> skip_;  // per motion of the block: `skip` of next()

@@ -32,11 +32,12 @@ bool has_g(const gcode::Block& b, double code) {
   return false;
 }
 
-// Appends "<sep><letter><value>" in the default number style.
-void append_word(std::string& line, const char* sep, char letter, double value, int decimals) {
+// Appends "<sep><letter><value>" in the given style (a new word: the default style).
+void append_word(std::string& line, const char* sep, char letter, double value,
+                 const NumberStyle& style, int decimals) {
   line += sep;
   line += letter;
-  append_number(line, value, NumberStyle{}, decimals);
+  append_number(line, value, style, decimals);
 }
 
 const gcode::Word* find_word(const gcode::Block& b, char letter) {
@@ -48,8 +49,9 @@ const gcode::Word* find_word(const gcode::Block& b, char letter) {
 // Rewrites one block: edits of written numbers and insertions of words.
 class BlockEditor {
  public:
-  BlockEditor(const gcode::Block& block, const std::string& raw, int decimals)
-      : block_(block), raw_(raw), decimals_(decimals) {
+  BlockEditor(const gcode::Block& block, const std::string& raw, int decimals,
+              const NumberStyle& plain)
+      : block_(block), raw_(raw), decimals_(decimals), plain_(plain) {
     // Inserted words go right after the last axis/centre/radius word, or the last word.
     for (const auto& w : block.words) {
       if (std::string_view("XYZIJKR").find(w.letter) != std::string_view::npos) anchor_ = w.end;
@@ -66,7 +68,8 @@ class BlockEditor {
   double set(char letter, double target, double baseline, bool may_insert) {
     if (const gcode::Word* w = find_word(block_, letter)) {
       const std::string_view text(raw_.data() + w->number_begin, w->end - w->number_begin);
-      const NumberStyle style = number_style(text);
+      NumberStyle style = number_style(text);
+      style.point_always = plain_.point_always;
       const int d = std::max(style.decimals, decimals_);
       if (round_to(target, d) == round_to(w->value, d)) return w->value;
       edits_.push_back({w->number_begin, w->end, format_number(target, style, decimals_)});
@@ -76,7 +79,7 @@ class BlockEditor {
       return baseline;
     edits_.push_back({anchor_, anchor_,
                       fmt::format("{}{}{}", spaced_ ? " " : "", letter,
-                                  format_number(target, NumberStyle{}, decimals_))});
+                                  format_number(target, plain_, decimals_))});
     return round_to(target, decimals_);
   }
 
@@ -122,6 +125,7 @@ class BlockEditor {
   const gcode::Block& block_;
   const std::string& raw_;
   int decimals_;
+  NumberStyle plain_;
   std::uint32_t anchor_ = 0, anchor_any_ = 0;
   bool spaced_ = true;
   std::vector<Edit> edits_;
@@ -147,7 +151,12 @@ class Compensator {
         fragmenter_(path::FragmentOptions{o.step, 10000.0}),
         solver_(model, o.solver),
         o_(o),
-        out_(out) {}
+        out_(out) {
+    // Fanuc reads "X5" as 5 least increments (0.005 mm): every number
+    // abbe writes there carries a decimal point ("X5.").
+    fanuc_ = config.dialect.dialect == gcode::Dialect::fanuc;
+    plain_.point_always = fanuc_;
+  }
 
   CompensateSummary run(std::istream& in) {
     gcode::BlockReader reader(in, file_);
@@ -171,6 +180,17 @@ class Compensator {
   }
 
  private:
+  // A line that M98 repeats or that M99 returns from runs more than once
+  // with one text: it cannot carry a correction for each pass.
+  void refuse_subprogram_flow(const gcode::Block& block, const std::string& raw) {
+    if (const gcode::Word* w = gcode::subprogram_flow_word(block))
+      throw InputError({file_, block.line, static_cast<std::size_t>(w->begin) + 1, "", raw},
+                       fmt::format("subprogram calls (M{}) are not compensated: the lines of a "
+                                   "subprogram run once per call and one text cannot carry "
+                                   "each pass's correction",
+                                   static_cast<int>(w->value)));
+  }
+
   void put(std::string_view s) { buf_.append(s.data(), s.size()); }
   void flush() {
     out_(buf_.data(), buf_.size());
@@ -202,11 +222,15 @@ class Compensator {
     return d;
   }
 
-  void process(const gcode::Block& block, const std::string& raw) {
+  void process(const gcode::Block& written, const std::string& raw) {
+    if (fanuc_) refuse_subprogram_flow(written, raw);
     motions_.clear();
-    interp_.execute(block, raw, [&](const gcode::Motion& m) {
+    interp_.execute(written, raw, [&](const gcode::Motion& m) {
       if (m.kind != gcode::MotionKind::dwell) motions_.push_back(m);
     });
+    // What the interpreter read: the block itself, or its RS274/NGC form
+    // (numbers in program units) for a program in another dialect.
+    const gcode::Block& block = interp_.block_read();
     // G80 (or no cycle since) ends a series of cycles: the interpreter's modal state says so.
     if (interp_.modal().motion_mode == gcode::gcode_id(80)) in_cycle_ = false;
     if (motions_.empty()) {
@@ -234,7 +258,7 @@ class Compensator {
       });
     }
     cmd_ = prog(motions_.front().start) + delta_ / unit_;
-    BlockEditor editor(block, raw, decimals_);
+    BlockEditor editor(block, raw, decimals_, plain_);
     std::vector<std::string> pieces;
     std::string before;  // a micro move written before the block
     const bool g53 = has_g(block, 53);
@@ -426,12 +450,12 @@ class Compensator {
         for (int i = 0; i < 2; ++i) {
           const int a = ax[static_cast<std::size_t>(i)];
           const double v = round_to(h[a] - cmd_[a], decimals_);
-          append_word(line, line.empty() ? "" : sep, kAxis[a], v, decimals_);
+          append_word(line, line.empty() ? "" : sep, kAxis[a], v, plain_, decimals_);
           cmd_[a] += v;
         }
         const double z = round_to(cc_k, decimals_);
         if (z != round_to(cc_written, decimals_)) {
-          append_word(line, sep, kAxis[n], z, decimals_);
+          append_word(line, sep, kAxis[n], z, plain_, decimals_);
           cc_written = z;
         }
         pieces.push_back(line);
@@ -680,7 +704,7 @@ class Compensator {
       const bool write = incremental_ ? v != 0.0 : v != round_to(cmd_[k], decimals_);
       if (!write && !(always & (1 << k))) continue;
       any = true;
-      append_word(line, line.empty() || !spaced ? "" : " ", kAxis[k], v, decimals_);
+      append_word(line, line.empty() || !spaced ? "" : " ", kAxis[k], v, plain_, decimals_);
       cmd_[k] = incremental_ ? cmd_[k] + v : v;
     }
     return any;
@@ -713,7 +737,7 @@ class Compensator {
         const gcode::Word* w = find_word(block, 'R');
         ed.set('R', rv, w->value, false);
       } else {
-        append_word(*line, sep, 'R', rv, decimals_);
+        append_word(*line, sep, 'R', rv, plain_, decimals_);
       }
       return;
     }
@@ -724,7 +748,7 @@ class Compensator {
       if (!line) {
         ed.set(kCentre[i], value, 0.0, true);
       } else {
-        append_word(*line, sep, kCentre[i], value, decimals_);
+        append_word(*line, sep, kCentre[i], value, plain_, decimals_);
       }
     }
   }
@@ -749,6 +773,8 @@ class Compensator {
   Vector3d pos_after_ = Vector3d::Zero(), p_after_ = Vector3d::Zero();
   double unit_ = 1.0;
   int decimals_ = 4;
+  bool fanuc_ = false;
+  NumberStyle plain_;  // of the words abbe writes anew
   bool incremental_ = false;
   // Directions with which delta_ was solved when the previous block was a
   // feed ending at last_end_ (else empty): a feed starting there with the

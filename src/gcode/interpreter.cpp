@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "fanuc_dialect.hpp"
 #include "interpreter_steps.hpp"
 #include "word_use.hpp"
 
@@ -96,6 +97,10 @@ Interpreter::Interpreter(Interpreter&&) noexcept = default;
 Interpreter& Interpreter::operator=(Interpreter&&) noexcept = default;
 
 const ModalState& Interpreter::modal() const { return *state_; }
+const Block& Interpreter::block_read() const {
+  static const Block kNone;
+  return state_->read_block ? *state_->read_block : kNone;
+}
 bool Interpreter::program_ended() const { return state_->ended; }
 bool Interpreter::inch() const { return state_->inch; }
 bool Interpreter::incremental() const { return state_->incremental; }
@@ -105,11 +110,19 @@ bool Interpreter::retract_to_r() const { return state_->retract_to_r; }
 Eigen::Vector3d Interpreter::program_position() const { return state_->pos; }
 Eigen::Vector3d Interpreter::position() const { return state_->tip(state_->pos); }
 
-void Interpreter::execute(const Block& block, std::string_view raw_line, const MotionSink& sink) {
+void Interpreter::execute(const Block& written, std::string_view raw_line, const MotionSink& sink) {
   detail::ExecState& st = *state_;
-  if (st.ended || block.words.empty()) return;
+  if (st.ended || written.words.empty()) return;
   // read
-  const BlockContext ctx{st.file, block.line, raw_line};
+  const BlockContext ctx{st.file, written.line, raw_line};
+  const Block* source = &written;
+  if (st.config.dialect.dialect == Dialect::fanuc) {
+    st.adapted = written;
+    detail::adapt_fanuc_block(st.adapted, raw_line, st.inch, st.config.dialect.integers, ctx);
+    source = &st.adapted;
+  }
+  const Block& block = *source;
+  st.read_block = source;
   const BlockCodes codes = classify_block(block, ctx);
   // check
   const detail::BlockPlan b = detail::plan_block(st, codes, ctx);

@@ -18,6 +18,8 @@ namespace abbe::gcode::detail {
 struct ExecState : ModalState {
   InterpreterConfig config;
   std::string file;
+  Block adapted;                     // the block in RS274/NGC when the program is in another dialect
+  const Block* read_block = nullptr;  // what the last execute() read
 
   double unit() const { return inch ? units::kMmPerInch : 1.0; }
   Eigen::Vector3d g5x() const {

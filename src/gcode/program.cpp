@@ -1,11 +1,14 @@
 #include "abbe/gcode/program.hpp"
 
 #include "abbe/gcode/parser.hpp"
+#include "fanuc_program.hpp"
 
 namespace abbe::gcode {
 
 ProgramStats run_program(std::istream& in, const std::string& file, const InterpreterConfig& config,
                          const MotionSink& sink) {
+  if (config.dialect.dialect == Dialect::fanuc)
+    return detail::run_fanuc_program(in, file, config, sink);
   ProgramStats stats;
   BlockReader reader(in, file);
   Interpreter interpreter(config, file);

@@ -5,8 +5,11 @@
 
 namespace abbe::pipeline {
 
-PathRun run_path(std::istream& in, const std::string& file, const gcode::InterpreterConfig& config,
-                 const PathOptions& options, const path::PointSink& sink) {
+PathRun run_path(std::istream& in, const std::string& file,
+                 const gcode::InterpreterConfig& machine_config, const PathOptions& options,
+                 const path::PointSink& sink) {
+  gcode::InterpreterConfig config = machine_config;
+  config.dialect = options.dialect;
   path::Fragmenter fragmenter(options.fragment);
   PathRun run;
   if (!(options.min_reversal_mm > 0.0)) {

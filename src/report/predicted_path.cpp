@@ -42,6 +42,7 @@ PredictedPath predict_program(const machine::Machine& machine, std::istream& in,
   po.fragment.step = o.step;
   po.fragment.rapid_rate = o.rapid_rate;
   po.min_reversal_mm = o.min_reversal_mm;
+  po.dialect = o.dialect;
 
   double length = 0.0;
   Eigen::Vector3d previous = Eigen::Vector3d::Zero();

@@ -17,6 +17,7 @@
 #include "abbe/machine/machine.hpp"
 #include "abbe/model/error_model.hpp"
 #include "abbe/pipeline/interpreter_setup.hpp"
+#include "dialect_option.hpp"
 #include "command.hpp"
 #include "model_option.hpp"
 #include "progress.hpp"
@@ -31,6 +32,7 @@ struct CompensateCliOptions {
   compensate::CompensateOptions c;
   bool in_place = false;
   bool allow_unconverged = false;
+  gcode::DialectOptions dialect;
 };
 
 bool same_file(const std::string& a, const std::string& b) {
@@ -54,7 +56,8 @@ int run_compensate(CompensateCliOptions o, const GlobalOptions& g) {
   }
   const machine::Machine machine = machine::Machine::load(o.m.machine);
   const model::ErrorModel model = make_model(o.m, machine);
-  const gcode::InterpreterConfig config = pipeline::interpreter_config(machine);
+  gcode::InterpreterConfig config = pipeline::interpreter_config(machine);
+  config.dialect = o.dialect;
 
   std::ifstream in(o.input, std::ios::binary);
   if (!in)
@@ -105,6 +108,7 @@ const CommandRegistrar registrar(
       auto o = std::make_shared<CompensateCliOptions>();
       sub.add_option("input", o->input, "NC program")->required();
       sub.add_option("-o,--output", o->output, "Output program (written atomically), - for stdout");
+      add_dialect_options(sub, o->dialect);
       add_model_options(sub, o->m,
                         "Compensate the extended model: add the effects of an overlay written by "
                         "`abbe diagnose --overlay`");

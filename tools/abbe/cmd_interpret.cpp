@@ -20,6 +20,7 @@
 #include "abbe/io/input_error.hpp"
 #include "abbe/machine/machine.hpp"
 #include "abbe/pipeline/interpreter_setup.hpp"
+#include "dialect_option.hpp"
 #include "command.hpp"
 #include "input_stream.hpp"
 #include "interpreter_options.hpp"
@@ -34,6 +35,7 @@ struct InterpretOptions {
   std::optional<double> tool_length;
   std::vector<std::string> tools;         // "H=L"
   std::vector<std::string> work_offsets;  // "G55=x,y,z"
+  gcode::DialectOptions dialect;
 };
 
 gcode::InterpreterConfig make_config(const InterpretOptions& o) {
@@ -41,6 +43,7 @@ gcode::InterpreterConfig make_config(const InterpretOptions& o) {
   if (!o.machine.empty()) {
     config = pipeline::interpreter_config(machine::Machine::load(o.machine));
   }
+  config.dialect = o.dialect;
   if (o.tool_length) {
     if (!std::isfinite(*o.tool_length))
       bad_option("--tool-length", "must be a finite number of mm");
@@ -157,6 +160,7 @@ const CommandRegistrar registrar(
       sub.add_option("--tool", o->tools, "Tool length for G43 Hn as n=L (mm), repeatable");
       sub.add_option("--work-offset", o->work_offsets,
                      "Work offset as G54..G59=x,y,z (mm, overrides the machine file), repeatable");
+      add_dialect_options(sub, o->dialect);
       return [o] { return run_interpret(*o); };
     });
 

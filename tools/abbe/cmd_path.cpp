@@ -20,6 +20,7 @@
 #include "abbe/pipeline/interpreter_setup.hpp"
 #include "abbe/pipeline/path_writer.hpp"
 #include "abbe/pipeline/program_path.hpp"
+#include "dialect_option.hpp"
 #include "command.hpp"
 #include "input_stream.hpp"
 #include "interpreter_options.hpp"
@@ -38,6 +39,7 @@ struct PathOptions {
   std::vector<std::string> tools;  // "H=L"
   std::string machine;
   bool count_only = false;
+  gcode::DialectOptions dialect;
 };
 
 gcode::InterpreterConfig make_config(const PathOptions& o) {
@@ -68,6 +70,7 @@ int run_path(const PathOptions& o, const GlobalOptions& g) {
   pipeline::PathOptions path_options;
   path_options.fragment.step = o.step;
   path_options.fragment.rapid_rate = o.rapid_rate;
+  path_options.dialect = o.dialect;
   // Progress on a terminal: bytes of the program read (points from stdin).
   Progress progress("path", from_stdin ? 0 : Progress::file_size(o.program), !g.quiet,
                     from_stdin ? "points" : "bytes");
@@ -133,6 +136,7 @@ const CommandRegistrar registrar(
       sub.add_option("--tool", o->tools, "Tool length for G43 Hn as n=L (mm), repeatable");
       sub.add_option("--machine", o->machine,
                      "Machine file (YAML): tool length, tool table and work offsets");
+      add_dialect_options(sub, o->dialect);
       sub.add_flag("--count,--null", o->count_only,
                    "Fragment but write only a one-line summary to stdout (no points)");
       return [o, gp] { return run_path(*o, *gp); };

@@ -18,6 +18,7 @@
 #include "abbe/pipeline/predict.hpp"
 #include "abbe/pipeline/prediction_summary.hpp"
 #include "abbe/pipeline/prediction_writer.hpp"
+#include "dialect_option.hpp"
 #include "command.hpp"
 #include "input_stream.hpp"
 #include "progress.hpp"
@@ -37,6 +38,7 @@ struct PredictOptions {
   double rapid_rate = 10000.0;
   bool points = false;  // input is a CSV of points even without the .csv extension
   bool summary_only = false;
+  gcode::DialectOptions dialect;
 };
 
 int run_predict(const PredictOptions& o, const GlobalOptions& g) {
@@ -46,6 +48,7 @@ int run_predict(const PredictOptions& o, const GlobalOptions& g) {
   po.input = pipeline::predict_input_of(o.input, o.points);
   po.path.fragment.step = o.step;
   po.path.fragment.rapid_rate = o.rapid_rate;
+  po.path.dialect = o.dialect;
   const pipeline::PathFormat format = pipeline::parse_path_format(o.format);
   // --extend: every model carries the overlay's extra deviation.
   if (!o.extend.empty())
@@ -120,6 +123,7 @@ const CommandRegistrar registrar(
       sub.add_option("--rapid-rate", o->rapid_rate, "Rate of rapid motions for the time, mm/min")
           ->check(CLI::PositiveNumber)
           ->capture_default_str();
+      add_dialect_options(sub, o->dialect);
       sub.add_flag("--points", o->points, "The input is a CSV of points (also for non-.csv names)");
       sub.add_flag("--summary-only", o->summary_only, "Write no points, only the summary");
       sub.add_option("--summary-json", o->summary_json, "Also write the summary as JSON to FILE");

@@ -24,6 +24,7 @@
 #include "abbe/report/map_section.hpp"
 #include "abbe/report/predict_section.hpp"
 #include "abbe/report/predicted_path.hpp"
+#include "dialect_option.hpp"
 #include "command.hpp"
 #include "input_stream.hpp"
 #include "progress.hpp"
@@ -42,6 +43,7 @@ struct ReportOptions {
   double grid = 50.0;
   double tool_length = -1.0;
   std::size_t max_points = 20000;
+  gcode::DialectOptions dialect;
 };
 
 std::vector<model::ModelKind> parse_models(const std::string& m) {
@@ -62,6 +64,7 @@ int run_report_predict(const ReportOptions& o, const GlobalOptions& g) {
   po.models = parse_models(o.model);
   po.step = o.step;
   po.max_points = o.max_points;
+  po.dialect = o.dialect;
   InputStream input(o.input, "the NC program");
   std::istream* in = &input.stream();
   Progress progress("report: predict", Progress::file_size(o.input), !g.quiet);
@@ -150,6 +153,7 @@ const CommandRegistrar registrar(
           "predict", "Toolpath (3-D and planes, deviation exaggerated), deviation along the path");
       predict->add_option("program", o->input, "NC program, - for stdin")->required();
       predict->add_option("--machine", o->machine, "Machine file (YAML)")->required();
+      add_dialect_options(*predict, o->dialect);
       predict->add_option("--model", o->model, model::model_names_text(true))
           ->check(CLI::IsMember(model::model_names(true)))
           ->capture_default_str();

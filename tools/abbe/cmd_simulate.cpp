@@ -19,6 +19,7 @@
 #include "abbe/sim/text_file.hpp"
 #include "abbe/sim/truth_file.hpp"
 #include "abbe/sim/validation_measurement.hpp"
+#include "dialect_option.hpp"
 #include "box_option.hpp"
 #include "command.hpp"
 
@@ -113,6 +114,7 @@ struct MeasureOptions {
   int repeat = 1;
   std::string set;
   double step = 5.0;
+  gcode::DialectOptions dialect;
 };
 
 int run_machine(const MachineOptions& o) {
@@ -179,6 +181,7 @@ int run_measure(const MeasureOptions& o) {
     pipeline::PathOptions po;
     if (!(o.step > 0.0)) bad_option("--step", "must be > 0 mm");
     po.fragment.step = o.step;
+    po.dialect = o.dialect;
     const std::string set = o.set.empty() ? "program" : o.set;
     pipeline::run_path(in, o.program, config, po, [&](const path::PathPoint& p) {
       sim::TipState tip;
@@ -268,6 +271,7 @@ const CommandRegistrar registrar(
       auto* program =
           measure->add_option("--program", me->program, "NC program: measure its fragmented path");
       grid->excludes(program);
+      add_dialect_options(*measure, me->dialect);
       measure->add_option("--box", me->box, std::string("Grid only. ") + kBoxHelp)
           ->delimiter(',')
           ->expected(6);

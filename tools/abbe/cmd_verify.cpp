@@ -14,6 +14,7 @@
 #include "abbe/machine/machine.hpp"
 #include "abbe/model/error_model.hpp"
 #include "abbe/pipeline/interpreter_setup.hpp"
+#include "dialect_option.hpp"
 #include "command.hpp"
 #include "model_option.hpp"
 #include "progress.hpp"
@@ -28,6 +29,7 @@ struct VerifyCliOptions {
   double tol_um = 1.0;
   bool check = false;
   compensate::VerifyOptions v;
+  gcode::DialectOptions dialect;
 };
 
 std::ifstream open_input(const std::string& path) {
@@ -41,7 +43,8 @@ std::ifstream open_input(const std::string& path) {
 int run_verify(const VerifyCliOptions& o, const GlobalOptions& g) {
   const machine::Machine machine = machine::Machine::load(o.m.machine);
   const model::ErrorModel model = make_model(o.m, machine);
-  const gcode::InterpreterConfig config = pipeline::interpreter_config(machine);
+  gcode::InterpreterConfig config = pipeline::interpreter_config(machine);
+  config.dialect = o.dialect;
   compensate::VerifyOptions vo = o.v;
   vo.tol_um = o.tol_um;
   std::ifstream comp_file = open_input(o.input);
@@ -82,6 +85,7 @@ const CommandRegistrar registrar(
       auto o = std::make_shared<VerifyCliOptions>();
       sub.add_option("input", o->input, "Compensated NC program")->required();
       sub.add_option("--against", o->against, "The original NC program")->required();
+      add_dialect_options(sub, o->dialect);
       add_model_options(sub, o->m,
                         "Predict with the extended model: add the effects of an overlay written by "
                         "`abbe diagnose --overlay`");

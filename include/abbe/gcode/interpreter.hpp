@@ -12,7 +12,9 @@
 // series of cycles. Supported: G0-G3 (IJK, R, P turns, helices), G4, G17-G19,
 // G20/G21, G40, G43/G49, G53, G54-G59, G61/G61.1/G64 (ignored), G80, G90/G91,
 // G90.1/G91.1, G92/G92.1/G92.2/G92.3, G94, G97, G98/G99; M0 M1 M2 M3 M4 M5
-// M6 M7 M8 M9 M30 M48 M49 M60. Everything else is refused.
+// M6 M7 M8 M9 M30 M48 M49 M60. Everything else is refused. A program in the
+// Fanuc/Haas dialect (InterpreterConfig::dialect) is read through an adapter
+// that turns each block into its RS274/NGC equivalent (docs/fanuc.md).
 #include <Eigen/Core>
 #include <array>
 #include <functional>
@@ -22,6 +24,7 @@
 #include <string_view>
 
 #include "abbe/gcode/block.hpp"
+#include "abbe/gcode/dialect.hpp"
 #include "abbe/gcode/modal_state.hpp"
 #include "abbe/gcode/motion.hpp"
 
@@ -41,6 +44,7 @@ struct InterpreterConfig {
   // drives the spindle nose s directly and P = s - L·e_z), mm.
   double default_tool_length = 0.0;
   Eigen::Vector3d initial_position = Eigen::Vector3d::Zero();  // tool tip at program start, mm
+  DialectOptions dialect;  // LinuxCNC (default) or Fanuc/Haas (gcode/dialect.hpp)
 };
 
 using MotionSink = std::function<void(const Motion&)>;
@@ -55,6 +59,12 @@ class Interpreter {
   // Executes one block; every motion it makes goes to `sink` in order.
   // `raw_line` is used for error messages (caret display). Throws InputError.
   void execute(const Block& block, std::string_view raw_line, const MotionSink& sink);
+
+  // The last executed block as the interpreter read it: the caller's block,
+  // or its RS274/NGC form for a program in another dialect (numbers in
+  // program units, offsets still into the caller's line). A post-processor
+  // decides on this what to rewrite. Valid until the next execute().
+  const Block& block_read() const;
 
   bool program_ended() const;        // M2 / M30 seen
   Eigen::Vector3d position() const;  // current tool tip, mm

@@ -23,6 +23,9 @@ struct PathOptions {
   // adds to an axis at rest are no reversals, as in `abbe verify`). 0: every
   // motion counts (as `abbe predict`).
   double min_reversal_mm = 0.0;
+  // How the program is written (LinuxCNC or Fanuc/Haas); replaces the
+  // dialect of the interpreter configuration handed to run_path.
+  gcode::DialectOptions dialect;
 };
 
 struct PathRun {

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "abbe/gcode/dialect.hpp"
 #include "abbe/gcode/interpreter.hpp"
 #include "abbe/machine/machine.hpp"
 #include "abbe/model/model_kind.hpp"
@@ -29,6 +30,7 @@ struct PredictPathOptions {
   // correction adds to an axis at rest are no reversals, as in `abbe
   // verify`). 0: every motion counts (as `abbe predict`).
   double min_reversal_mm = 0.0;
+  gcode::DialectOptions dialect;  // how the program is written
   // Called now and then with the bytes of the input consumed so far.
   std::function<void(std::uint64_t)> progress;
 };

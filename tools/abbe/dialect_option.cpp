@@ -1,0 +1,31 @@
+#include "dialect_option.hpp"
+
+#include <string>
+
+namespace abbe::cli {
+
+void add_dialect_options(CLI::App& sub, gcode::DialectOptions& dialect) {
+  sub.add_option_function<std::string>(
+         "--dialect",
+         [&dialect](const std::string& name) { dialect.dialect = *gcode::dialect_from_name(name); },
+         "How the program is written: linuxcnc (RS274/NGC as LinuxCNC reads it) or "
+         "fanuc (Fanuc/Haas posts: O-numbered programs with M98 P L / M99 "
+         "subprograms in the same file, lengths without a decimal point in least "
+         "increments, G04 P in ms, cycle repeats K; the look-ahead and smoothing codes "
+         "G05 G05.1 G08 G103 G187 are carried, not motion; G68 rotation, G51 "
+         "scaling, G54.1/G154 and macro calls are refused by name; docs/fanuc.md)")
+      ->check(CLI::IsMember({"linuxcnc", "fanuc"}))
+      ->default_str("linuxcnc");
+  sub.add_option_function<std::string>(
+         "--integers",
+         [&dialect](const std::string& name) {
+           dialect.integers = *gcode::integer_numbers_from_name(name);
+         },
+         "fanuc: a length written without a decimal point (X100) counts least "
+         "increments of 0.001 mm / 0.0001 in (increment, Fanuc's default) or whole "
+         "mm / in (units, calculator-type input)")
+      ->check(CLI::IsMember({"increment", "units"}))
+      ->default_str("increment");
+}
+
+}  // namespace abbe::cli
