@@ -56,6 +56,21 @@ struct Line {
 
   NumberError error = NumberError::none;
   Iterator error_at = nullptr;
+
+  // Expressions: where the code of the item being parsed begins in
+  // block->code, where the index of a parameter setting ends, and the name
+  // of a setting's #<name> (-1 for #n).
+  std::uint32_t code_mark = 0;
+  std::uint32_t target_end = 0;
+  std::int32_t target_name = -1;
+  // The furthest column an expression was read up to (for the message of a
+  // line whose expression is malformed), or nullptr.
+  Iterator expression_reach = nullptr;
 };
+
+// The tag under which the grammar's context carries the Line being filled
+// (x3::with, see src/gcode/parser.cpp): actions inside the nested rules of
+// expressions reach it through the context.
+struct line_tag;
 
 }  // namespace abbe::gcode::ast

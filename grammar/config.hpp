@@ -11,6 +11,8 @@ namespace abbe::gcode::grammar {
 namespace x3 = boost::spirit::x3;
 
 using iterator_type = ast::Iterator;  // const char*
-using context_type = x3::unused_type;
+// The Line being filled travels in the context (x3::with<ast::line_tag>),
+// so that the actions of nested rules (expressions) reach it.
+using context_type = x3::context<ast::line_tag, ast::Line>;
 
 }  // namespace abbe::gcode::grammar

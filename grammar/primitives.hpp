@@ -10,6 +10,8 @@
 //                    parser of a line: after every item).
 // Like every X3 parser they leave `first` unchanged when they fail.
 #include <boost/spirit/home/x3.hpp>
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <type_traits>
 
@@ -118,6 +120,58 @@ struct blanks_parser : x3::parser<blanks_parser> {
   template <typename It, typename Context, typename RContext, typename Attribute>
   bool parse(It& first, It const& last, Context const&, RContext&, Attribute&) const {
     while (first != last && (*first == ' ' || *first == '\t')) ++first;
+    return true;
+  }
+};
+
+}  // namespace abbe::gcode::grammar
+
+namespace abbe::gcode::grammar {
+
+// One of a fixed list of case-insensitive ASCII keywords (operators and
+// function names of expressions, O-word keywords); the longest one that
+// matches wins (ELSEIF over ELSE, ** over *). Its attribute is the value
+// listed with the keyword. A keyword made of letters must not run on into
+// another letter when `whole_word` is set (O-word keywords).
+template <typename T>
+struct Keyword {
+  const char* text;
+  T value;
+};
+
+template <typename T, std::size_t N, bool WholeWord = false>
+struct keyword_parser : x3::parser<keyword_parser<T, N, WholeWord>> {
+  using attribute_type = T;
+  static bool const has_attribute = true;
+
+  const std::array<Keyword<T>, N>* table;
+
+  explicit keyword_parser(const std::array<Keyword<T>, N>& t) : table(&t) {}
+
+  template <typename It, typename Context, typename RContext, typename Attribute>
+  bool parse(It& first, It const& last, Context const&, RContext&, Attribute& attribute) const {
+    std::size_t best = 0;
+    const Keyword<T>* found = nullptr;
+    for (const Keyword<T>& k : *table) {
+      std::size_t n = 0;
+      for (; k.text[n] != '\0'; ++n) {
+        if (first + static_cast<std::ptrdiff_t>(n) == last) break;
+        char c = first[n];
+        if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+        if (c != k.text[n]) break;
+      }
+      if (k.text[n] != '\0' || n <= best) continue;
+      if constexpr (WholeWord) {
+        const It after = first + static_cast<std::ptrdiff_t>(n);
+        if (after != last && ((*after >= 'a' && *after <= 'z') || (*after >= 'A' && *after <= 'Z')))
+          continue;
+      }
+      best = n;
+      found = &k;
+    }
+    if (found == nullptr) return false;
+    first += static_cast<std::ptrdiff_t>(best);
+    x3::traits::move_to(found->value, attribute);
     return true;
   }
 };

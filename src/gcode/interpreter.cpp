@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "abbe/io/input_error.hpp"
 #include "fanuc_dialect.hpp"
 #include "interpreter_steps.hpp"
 #include "word_use.hpp"
@@ -111,6 +112,20 @@ Eigen::Vector3d Interpreter::program_position() const { return state_->pos; }
 Eigen::Vector3d Interpreter::position() const { return state_->tip(state_->pos); }
 
 void Interpreter::execute(const Block& written, std::string_view raw_line, const MotionSink& sink) {
+  if (written.has_code()) {
+    std::uint32_t column = written.o.keyword != OKeyword::none ? written.o.column
+                           : !written.code.empty()             ? written.code.front().column
+                                                               : 0;
+    throw InputError(SourceLocation{state_->file, written.line, std::size_t{column} + 1, "",
+                                    std::string(raw_line)},
+                     "parameters, expressions and O-words are not supported by a command that "
+                     "rewrites the program line by line");
+  }
+  execute_evaluated(written, raw_line, sink);
+}
+
+void Interpreter::execute_evaluated(const Block& written, std::string_view raw_line,
+                                    const MotionSink& sink) {
   detail::ExecState& st = *state_;
   if (st.ended || written.words.empty()) return;
   // read

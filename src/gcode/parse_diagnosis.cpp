@@ -62,11 +62,11 @@ std::string explain_word_number(std::string_view line, std::size_t at, std::size
     after_sign = skip_blanks(line, after_sign + 1);
   if (after_sign < line.size() && line[after_sign] == '#') {
     column = after_sign;
-    return "parameters (#) are not supported";
+    return fmt::format("bad parameter in word '{}' (#n, #<name> or #[expression])", letter);
   }
   if (after_sign < line.size() && line[after_sign] == '[') {
     column = after_sign;
-    return "expressions ([...]) are not supported";
+    return fmt::format("bad expression in word '{}'", letter);
   }
   if (starts_with_nocase(line, after_sign, "nan") || starts_with_nocase(line, after_sign, "inf")) {
     column = after_sign;
@@ -119,9 +119,11 @@ std::string explain_letter(std::string_view line, std::size_t stop, const ast::L
     case 'O': {
       const std::size_t i = skip_blanks(line, stop + 1);
       if (!only_block_delete_before(items))
-        return "an O-word must be the first word of its line (O-word control flow is not "
-               "supported)";
-      if (i < line.size() && line[i] == '<') return "O-word control flow is not supported";
+        return "an O-word must be the first word of its line";
+      if (i < line.size() && line[i] == '<')
+        return "bad O-word: o<name> must be followed by sub, endsub, return, call, if, elseif, "
+               "else, endif, do, while, endwhile, repeat, endrepeat, break or continue and its "
+               "[...] arguments";
       if (i < line.size() && is_digit(line[i])) {
         column = i;
         return "bad program number: the O-number must be an integer";
@@ -162,12 +164,14 @@ InputError explain_parse_stop(std::string_view line, std::size_t stop, const ast
     message = "the checksum (*nn) must be the last thing on its line";
   } else if (previous == '%') {
     message = "only a comment may follow '%' (tape delimiter) on its line";
+  } else if (items.block != nullptr && items.block->o.keyword != OKeyword::none) {
+    message = "bad O-word line: only [...] arguments and a comment may follow its keyword";
   } else if (items.program_number_head != nullptr) {
     std::size_t end = stop;
     while (end < line.size() && is_alpha(line[end])) ++end;
     if (is_o_word_keyword(line.substr(stop, end - stop)) || c == '<' || c == '[') {
       column = static_cast<std::size_t>(items.program_number_head - line.data());
-      message = "O-word control flow is not supported";
+      message = "bad O-word line: only [...] arguments and a comment may follow its keyword";
     } else {
       message = "a program number line (O...) may carry only a comment";
     }
@@ -187,10 +191,10 @@ InputError explain_parse_stop(std::string_view line, std::size_t stop, const ast
   } else {
     switch (c) {
       case '#':
-        message = "parameters (#) are not supported";
+        message = "bad parameter setting (#n = value or #<name> = value)";
         break;
       case '[':
-        message = "expressions ([...]) are not supported";
+        message = "an expression ([...]) must be the value of a word";
         break;
       case '(': {
         const std::size_t next = line.find_first_of("()", stop + 1);

@@ -31,6 +31,12 @@ void reset(Block& block, std::size_t line_number) {
   block.n.reset();
   block.words.clear();
   block.checksum.reset();
+  block.code.clear();
+  block.names.clear();
+  block.word_expressions.clear();
+  block.settings.clear();
+  block.o.keyword = OKeyword::none;
+  block.o.args.clear();
 }
 
 std::string number_error_message(ast::NumberError error) {
@@ -64,7 +70,8 @@ void parse_line(std::string_view line, std::size_t line_number, const std::strin
   parsed.line_begin = line.data();
   ast::Iterator first = line.data();
   const ast::Iterator last = line.data() + line.size();
-  boost::spirit::x3::parse(first, last, grammar::line(), parsed);
+  namespace x3 = boost::spirit::x3;
+  x3::parse(first, last, x3::with<ast::line_tag>(parsed)[grammar::line()], parsed);
   // Comment strings beyond this line's comments are dropped only now, so
   // that the kept ones reuse their capacity.
   block.comments.resize(parsed.n_comments);

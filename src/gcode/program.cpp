@@ -1,7 +1,7 @@
 #include "abbe/gcode/program.hpp"
 
-#include "abbe/gcode/parser.hpp"
 #include "fanuc_program.hpp"
+#include "program_runner.hpp"
 
 namespace abbe::gcode {
 
@@ -9,19 +9,9 @@ ProgramStats run_program(std::istream& in, const std::string& file, const Interp
                          const MotionSink& sink) {
   if (config.dialect.dialect == Dialect::fanuc)
     return detail::run_fanuc_program(in, file, config, sink);
-  ProgramStats stats;
-  BlockReader reader(in, file);
-  Interpreter interpreter(config, file);
-  Block block;
-  const MotionSink counting_sink = [&](const Motion& m) {  // built once, not per block
-    ++stats.motions;
-    sink(m);
-  };
-  while (!interpreter.program_ended() && reader.next(block)) {
-    ++stats.lines;
-    interpreter.execute(block, reader.line_text(), counting_sink);
-  }
-  return stats;
+  // Plain blocks stream straight through; parameters, expressions and
+  // O-words are evaluated there (src/gcode/program_runner.cpp).
+  return detail::run_rs274_program(in, file, config, sink);
 }
 
 }  // namespace abbe::gcode

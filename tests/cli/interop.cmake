@@ -11,7 +11,8 @@ add_test(NAME interop_rs274
                  $<TARGET_FILE:abbe> $<TARGET_FILE:abbe_canon_compare>
                  ${CMAKE_BINARY_DIR}/interop ${PROJECT_SOURCE_DIR}
                  $<TARGET_FILE:abbe_random_programs>
-                 $<TARGET_FILE:abbe_compensated_compare> $<TARGET_FILE:gen_program>)
+                 $<TARGET_FILE:abbe_compensated_compare> $<TARGET_FILE:gen_program>
+                 $<TARGET_FILE:gen_flow_programs>)
 set_tests_properties(interop_rs274 PROPERTIES LABELS interop SKIP_RETURN_CODE 77 TIMEOUT 1800)
 
 # `abbe interpret` summary mode (the interpret-only mode of the benchmarks).

@@ -60,11 +60,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     ++line_number;
   }
 
-  // The whole front end: parser and interpreter.
+  // The whole front end: parser, control flow and interpreter. Loops are
+  // bounded by a small limit so that an input spends its time on variety,
+  // not on one long loop (the limit itself is what a hang would defeat).
   std::istringstream in(text);
+  abbe::gcode::InterpreterConfig config;
+  config.dialect.loop_limit = 10'000;
   try {
-    abbe::gcode::run_program(in, "fuzz.nc", abbe::gcode::InterpreterConfig{},
-                             [](const abbe::gcode::Motion&) {});
+    abbe::gcode::run_program(in, "fuzz.nc", config, [](const abbe::gcode::Motion&) {});
   } catch (const abbe::InputError&) {
   }
   return 0;

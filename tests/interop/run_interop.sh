@@ -4,7 +4,7 @@
 # ncfiles directory and every file in nc-samples/.
 #
 # usage: run_interop.sh ABBE CANON_COMPARE WORK_DIR SOURCE_DIR [RANDOM_PROGRAMS
-#                       [COMPENSATED_COMPARE GEN_PROGRAM]]
+#                       [COMPENSATED_COMPARE GEN_PROGRAM [GEN_FLOW_PROGRAMS]]]
 #
 # With RANDOM_PROGRAMS (tests/interop/random_programs.cpp), also
 # $ABBE_INTEROP_RANDOM (default 100) generated programs (fixed seeds) are
@@ -18,6 +18,10 @@
 # every file abbe refuses must be refused by `abbe compensate` with the
 # message `abbe interpret --machine` gives in the same configuration.
 #
+# With GEN_FLOW_PROGRAMS (tools/gen/gen_flow_programs.cpp), also
+# $ABBE_INTEROP_FLOW (default 50) generated programs with parameters,
+# expressions and O-word control flow (fixed seeds) are compared call by call.
+#
 # Each file is classified (see docs/interop.md): matched, refused (abbe
 # stops with a clear file:line:col error; OK), rs274-refused (rs274 stops
 # with an error, abbe does not; listed), or mismatch / abbe-failed (test
@@ -30,8 +34,8 @@
 # it (exit 77, reported by ctest as skipped).
 set -uo pipefail
 
-if [ $# -ne 4 ] && [ $# -ne 5 ] && [ $# -ne 7 ]; then
-  echo "usage: $0 ABBE CANON_COMPARE WORK_DIR SOURCE_DIR [RANDOM_PROGRAMS [COMPENSATED_COMPARE GEN_PROGRAM]]" >&2
+if [ $# -ne 4 ] && [ $# -ne 5 ] && [ $# -ne 7 ] && [ $# -ne 8 ]; then
+  echo "usage: $0 ABBE CANON_COMPARE WORK_DIR SOURCE_DIR [RANDOM_PROGRAMS [COMPENSATED_COMPARE GEN_PROGRAM [GEN_FLOW_PROGRAMS]]]" >&2
   exit 2
 fi
 abbe=$1
@@ -41,6 +45,7 @@ src=$4
 random_programs=${5:-}
 comp_compare=${6:-}
 gen_program=${7:-}
+gen_flow=${8:-}
 sample_machine="$src/machines/sample/machine.yaml"
 
 if [ "${ABBE_SKIP_INTEROP:-0}" = "1" ]; then
@@ -156,6 +161,13 @@ if [ -n "$gen_program" ]; then
   files+=("$generated_dir/gen-2000.ngc")
 fi
 
+flow_dir="$work/flow"
+if [ -n "$gen_flow" ]; then
+  rm -rf "$flow_dir" && mkdir -p "$flow_dir"
+  "$gen_flow" "${ABBE_INTEROP_FLOW:-50}" "$flow_dir" || fail "gen_flow_programs failed"
+  while IFS= read -r f; do files+=("$f"); done < <(find "$flow_dir" -type f -name '*.ngc' | sort)
+fi
+
 out="$work/out"
 rm -rf "$out" && mkdir -p "$out"
 
@@ -243,11 +255,14 @@ for f in "${files[@]}"; do
       args=("${own_args[@]}")
       ;;
     "$generated_dir"/*) name="generated/${f#"$generated_dir"/}" ;;
+    "$flow_dir"/*) name="flow/${f#"$flow_dir"/}" ;;
     *) name="nc-samples/${f#"$src/nc-samples"/}" ;;
   esac
   run_rs274 "$f" "$out/$i.rs274" "$table" "$var"
   rs_exit=$?
-  timeout 60 "$abbe" interpret --canon "$f" "${args[@]}" >"$out/$i.abbe" 2>"$out/$i.err"
+  # rs274 runs in the file's folder and finds o<name> call's name.ngc there.
+  timeout 60 "$abbe" interpret --canon "$f" "${args[@]}" --subroutine-path "$(dirname "$f")" \
+    >"$out/$i.abbe" 2>"$out/$i.err"
   ab_exit=$?
   result=$("$compare" "$out/$i.rs274" "$rs_exit" "$out/$i.abbe" "$out/$i.err" "$ab_exit")
   cmp_exit=$?

@@ -253,27 +253,23 @@ void expect_refused(const std::string& line, std::size_t column, const std::stri
 }
 
 TEST(ParserRefuses, Parameters) {
-  expect_refused("G1 #1=2", 4, "parameters (#) are not supported");
-  expect_refused("G1 X#1", 5, "parameters (#) are not supported");
-  expect_refused("#<name>=3", 1, "parameters (#) are not supported");
+  expect_refused("G1 #1", 4, "bad parameter setting (#n = value or #<name> = value)");
+  expect_refused("G1 X#", 5, "bad parameter in word 'X'");
+  expect_refused("#<name>3", 1, "bad parameter setting");
+  expect_refused("G1 X#<a", 5, "bad parameter in word 'X'");
 }
 
 TEST(ParserRefuses, Expressions) {
-  expect_refused("G1 X[1+2]", 5, "expressions ([...]) are not supported");
-  expect_refused("G1 [1]", 4, "expressions ([...]) are not supported");
-  expect_refused("G1 X - [1]", 8, "expressions ([...]) are not supported");
+  expect_refused("G1 X[1+]", 5, "bad expression in word 'X'");
+  expect_refused("G1 [1]", 4, "an expression ([...]) must be the value of a word");
+  expect_refused("G1 X - [1", 8, "bad expression in word 'X'");
+  expect_refused("G1 X[1 FOO 2]", 5, "bad expression in word 'X'");
 }
 
 TEST(ParserRefuses, OWordControlFlow) {
-  expect_refused("o100 sub", 1, "O-word control flow is not supported");
-  expect_refused("O100 ENDSUB", 1, "O-word control flow is not supported");
-  expect_refused("  o<drill> call [1]", 3, "O-word control flow is not supported");
-  expect_refused("o101 if [#1 GT 0]", 1, "O-word control flow is not supported");
-  expect_refused("o102 while [1]", 1, "O-word control flow is not supported");
-  expect_refused("o103 do", 1, "O-word control flow is not supported");
-  expect_refused("o104 return", 1, "O-word control flow is not supported");
-  expect_refused("o105 (label) endsub", 1, "O-word control flow is not supported");
-  expect_refused("G0 O100", 4, "O-word control flow is not supported");
+  expect_refused("  o<drill> foo [1]", 3, "bad O-word: o<name> must be followed by sub");
+  expect_refused("o100 sub X1", 10, "bad O-word line: only [...] arguments and a comment");
+  expect_refused("G0 O100", 4, "an O-word must be the first word of its line");
   expect_refused("O1 G0 X1", 4, "a program number line (O...) may carry only a comment");
   expect_refused("O", 1, "word 'O' has no number");
 }
@@ -437,7 +433,7 @@ TEST(BlockReader, ReusedBlockIsCompletelyOverwritten) {
 }
 
 TEST(BlockReader, ErrorNamesTheLineOfTheFile) {
-  std::istringstream in("G0 X0\nG1 X1\r\nG1 Y#2\r\n");
+  std::istringstream in("G0 X0\nG1 X1\r\nG1 Y#\r\n");
   BlockReader reader(in, "prog.nc");
   Block b;
   ASSERT_TRUE(reader.next(b));
@@ -448,8 +444,8 @@ TEST(BlockReader, ErrorNamesTheLineOfTheFile) {
   } catch (const InputError& e) {
     EXPECT_EQ(e.where().line, 3U);
     EXPECT_EQ(e.where().column, 5U);
-    EXPECT_EQ(e.where().source_line, "G1 Y#2");
-    EXPECT_EQ(std::string(e.what()).rfind("prog.nc:3:5: error: parameters (#)", 0), 0U);
+    EXPECT_EQ(e.where().source_line, "G1 Y#");
+    EXPECT_EQ(std::string(e.what()).rfind("prog.nc:3:5: error: bad parameter in word 'Y'", 0), 0U);
   }
 }
 

@@ -26,6 +26,18 @@ void add_dialect_options(CLI::App& sub, gcode::DialectOptions& dialect) {
          "mm / in (units, calculator-type input)")
       ->check(CLI::IsMember({"increment", "units"}))
       ->default_str("increment");
+  sub.add_option("--var-file", dialect.var_file,
+                 "linuxcnc: rs274's parameter file (lines 'number value'), read before the "
+                 "program runs")
+      ->check(CLI::ExistingFile);
+  sub.add_option("--subroutine-path", dialect.subroutine_path,
+                 "linuxcnc: folder searched for name.ngc (holding 'o<name> sub') when "
+                 "'o<name> call' finds no such subroutine in the program")
+      ->check(CLI::ExistingDirectory);
+  sub.add_option("--loop-limit", dialect.loop_limit,
+                 "linuxcnc: loop iterations (while, do, repeat; all loops together) after "
+                 "which a program is refused as a runaway loop")
+      ->capture_default_str();
 }
 
 }  // namespace abbe::cli

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "abbe/gcode/expression.hpp"
+
 namespace abbe::gcode {
 
 struct Word {
@@ -33,6 +35,18 @@ struct Block {
   std::vector<Word> words;             // all words but N, in the order written
   std::vector<Comment> comments;
   std::optional<int> checksum;  // *nn
+
+  // Parameters, expressions and O-words (LinuxCNC dialect,
+  // gcode/expression.hpp): all empty for a plain block.
+  std::vector<ExprCode> code;                     // the postfix code of every expression
+  std::vector<std::string> names;                 // named parameters the code refers to
+  std::vector<WordExpression> word_expressions;   // words whose value is computed
+  std::vector<ParameterSetting> settings;         // #n = ..., in the order written
+  OWord o;                                        // o.keyword == none: no O-word
+
+  bool has_code() const {
+    return !code.empty() || !names.empty() || o.keyword != OKeyword::none;
+  }
 };
 
 }  // namespace abbe::gcode

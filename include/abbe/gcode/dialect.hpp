@@ -6,6 +6,7 @@
 // subprogram calls between the O-numbered programs of one file.
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <string_view>
 
 #include "abbe/gcode/block.hpp"
@@ -29,6 +30,12 @@ enum class IntegerNumbers : std::uint8_t {
 struct DialectOptions {
   Dialect dialect = Dialect::linuxcnc;
   IntegerNumbers integers = IntegerNumbers::least_increment;
+  // LinuxCNC dialect, parameters and O-words (src/gcode/program_runner.cpp):
+  std::string var_file;         // rs274's parameter file ("number value" lines), read at start
+  std::string subroutine_path;  // folder of name.ngc files holding "o<name> sub" (o<name> call)
+  // Loop iterations (while, do, repeat, all loops together) before a program
+  // is refused as a runaway loop.
+  std::uint64_t loop_limit = 10'000'000;
 };
 
 // The M98 (subprogram call) or M99 (return) word of a Fanuc block, if any:

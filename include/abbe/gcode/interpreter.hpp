@@ -60,6 +60,12 @@ class Interpreter {
   // `raw_line` is used for error messages (caret display). Throws InputError.
   void execute(const Block& block, std::string_view raw_line, const MotionSink& sink);
 
+  // The same for a block whose parameters and expressions the caller has
+  // evaluated into its words (gcode::run_program does). execute() refuses a
+  // block with parameters, expressions or an O-word: a caller that goes
+  // line by line (compensate, verify) cannot follow them.
+  void execute_evaluated(const Block& block, std::string_view raw_line, const MotionSink& sink);
+
   // The last executed block as the interpreter read it: the caller's block,
   // or its RS274/NGC form for a program in another dialect (numbers in
   // program units, offsets still into the caller's line). A post-processor

@@ -1,4 +1,3 @@
 G21
 o100 sub
 G0 X1
-o100 endsub

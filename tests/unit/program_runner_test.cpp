@@ -1,0 +1,168 @@
+// Parameters, expressions and O-word control flow (src/gcode/program_runner.cpp):
+// end points of small programs, each value worked out by hand from rs274ngc's
+// rules (precedence, degrees, "settings take effect after the line").
+#include <gtest/gtest.h>
+
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "abbe/gcode/program.hpp"
+#include "abbe/io/input_error.hpp"
+
+namespace {
+
+using abbe::gcode::InterpreterConfig;
+using abbe::gcode::Motion;
+
+std::vector<Eigen::Vector3d> ends(const std::string& program, InterpreterConfig config = {}) {
+  std::istringstream in(program);
+  std::vector<Eigen::Vector3d> out;
+  abbe::gcode::run_program(in, "t.ngc", config, [&](const Motion& m) { out.push_back(m.end); });
+  return out;
+}
+
+double x_of(const std::string& expression) {
+  const auto e = ends("G21\nG0 X" + expression + "\n");
+  EXPECT_EQ(e.size(), 1u) << expression;
+  return e.empty() ? 0.0 : e[0].x();
+}
+
+std::string error_of(const std::string& program) {
+  try {
+    ends(program);
+  } catch (const abbe::InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Expressions, PrecedenceAndAssociativity) {
+  EXPECT_DOUBLE_EQ(x_of("[1+2*3]"), 7.0);
+  EXPECT_DOUBLE_EQ(x_of("[2**3**2]"), 64.0);  // left-associative, as rs274ngc
+  EXPECT_DOUBLE_EQ(x_of("[2*3**2]"), 18.0);
+  EXPECT_DOUBLE_EQ(x_of("[10-4-3]"), 3.0);
+  EXPECT_DOUBLE_EQ(x_of("[1+1 EQ 2]"), 1.0);
+  EXPECT_DOUBLE_EQ(x_of("[1 LT 2 AND 3 GT 4]"), 0.0);
+  EXPECT_DOUBLE_EQ(x_of("[1 OR 0 XOR 1]"), 0.0);  // (1 OR 0) XOR 1
+  EXPECT_DOUBLE_EQ(x_of("[-7 MOD 3]"), 2.0);       // non-negative, as rs274ngc
+  EXPECT_DOUBLE_EQ(x_of("[7 mod 3]"), 1.0);
+  EXPECT_DOUBLE_EQ(x_of("-[2]"), -2.0);
+  EXPECT_DOUBLE_EQ(x_of("[1 - -2]"), 3.0);
+}
+
+TEST(Expressions, Functions) {
+  EXPECT_NEAR(x_of("SIN[30]"), 0.5, 1e-12);
+  EXPECT_NEAR(x_of("[COS[60]]"), 0.5, 1e-12);
+  EXPECT_NEAR(x_of("ATAN[1]/[1]"), 45.0, 1e-12);
+  EXPECT_NEAR(x_of("[ACOS[0]]"), 90.0, 1e-12);
+  EXPECT_DOUBLE_EQ(x_of("[SQRT[16]]"), 4.0);
+  EXPECT_DOUBLE_EQ(x_of("[ABS[-3]]"), 3.0);
+  EXPECT_DOUBLE_EQ(x_of("[FIX[-2.5]]"), -3.0);
+  EXPECT_DOUBLE_EQ(x_of("[FUP[2.1]]"), 3.0);
+  EXPECT_DOUBLE_EQ(x_of("[ROUND[2.5]]"), 3.0);
+  EXPECT_DOUBLE_EQ(x_of("[ROUND[-2.5]]"), -3.0);
+  EXPECT_NEAR(x_of("[LN[EXP[2]]]"), 2.0, 1e-12);
+  EXPECT_DOUBLE_EQ(x_of("[EXISTS[#<nope>]]"), 0.0);
+}
+
+TEST(Parameters, SettingsTakeEffectAfterTheLine) {
+  const auto e = ends("G21\n#1=5\n#1=10 G0 X#1\nG0 X#1\n");
+  ASSERT_EQ(e.size(), 2u);
+  EXPECT_DOUBLE_EQ(e[0].x(), 5.0);
+  EXPECT_DOUBLE_EQ(e[1].x(), 10.0);
+  // Two settings on a line both read the old values.
+  const auto f = ends("G21\n#1=1 #2=2\n#1=#2 #2=#1\nG0 X#1 Y#2\n");
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_DOUBLE_EQ(f[0].x(), 2.0);
+  EXPECT_DOUBLE_EQ(f[0].y(), 1.0);
+}
+
+TEST(Parameters, NamedIndirectAndPredefined) {
+  const auto e = ends("G21\n#<a> = 3\n#<_G> = 4\n#[#<a>+1] = 7\nG0 X#4 Y#<_g> Z##<a>\n");
+  ASSERT_EQ(e.size(), 1u);
+  EXPECT_DOUBLE_EQ(e[0].x(), 7.0);
+  EXPECT_DOUBLE_EQ(e[0].y(), 4.0);
+  EXPECT_DOUBLE_EQ(e[0].z(), 0.0);  // #3 was never set
+  // #5420..#5422: the current position.
+  const auto p = ends("G21\nG0 X2 Y3\nG0 X[#5420+#5421]\n");
+  ASSERT_EQ(p.size(), 2u);
+  EXPECT_DOUBLE_EQ(p[1].x(), 5.0);
+  EXPECT_DOUBLE_EQ(p[1].y(), 3.0);
+}
+
+TEST(ControlFlow, SubroutineWithArgumentsAndLocalScope) {
+  const auto e = ends(
+      "G21\n#1=100\no<move> sub\n#<x> = [#1*2]\nG0 X#<x> Y#2\no<move> endsub\n"
+      "o<move> call [1] [5]\no<move> call [3]\nG0 Z#1\nM2\n");
+  ASSERT_EQ(e.size(), 3u);
+  EXPECT_DOUBLE_EQ(e[0].x(), 2.0);
+  EXPECT_DOUBLE_EQ(e[0].y(), 5.0);
+  EXPECT_DOUBLE_EQ(e[1].x(), 6.0);
+  EXPECT_DOUBLE_EQ(e[1].y(), 0.0);   // #2 not passed: 0
+  EXPECT_DOUBLE_EQ(e[2].z(), 100.0); // #1 restored after the calls
+}
+
+TEST(ControlFlow, CallBeforeDefinitionAndReturnValue) {
+  const auto e = ends(
+      "G21\no100 call [4]\nG0 X#<_value>\nM2\no100 sub\no100 return [#1*#1]\no100 endsub\n");
+  ASSERT_EQ(e.size(), 1u);
+  EXPECT_DOUBLE_EQ(e[0].x(), 16.0);
+}
+
+TEST(ControlFlow, IfElseifElse) {
+  const std::string p =
+      "G21\n#1=VALUE\no1 if [#1 LT 0]\nG0 X-1\no1 elseif [#1 EQ 0]\nG0 X0.5\no1 else\nG0 X1\n"
+      "o1 endif\nG0 Y9\n";
+  for (const auto& [value, x] : std::vector<std::pair<std::string, double>>{
+           {"-3", -1.0}, {"0", 0.5}, {"2", 1.0}}) {
+    std::string q = p;
+    q.replace(q.find("VALUE"), 5, value);
+    const auto e = ends(q);
+    ASSERT_EQ(e.size(), 2u) << value;
+    EXPECT_DOUBLE_EQ(e[0].x(), x) << value;
+    EXPECT_DOUBLE_EQ(e[1].y(), 9.0);
+  }
+}
+
+TEST(ControlFlow, Loops) {
+  // while with break and continue: X 1, 3 (2 skipped), stop at 4.
+  const auto w = ends(
+      "G21\n#1=0\no1 while [#1 LT 10]\n#1=[#1+1]\no2 if [#1 EQ 2]\no1 continue\no2 endif\n"
+      "o3 if [#1 EQ 4]\no1 break\no3 endif\nG0 X#1\no1 endwhile\nG0 Y1\n");
+  ASSERT_EQ(w.size(), 3u);
+  EXPECT_DOUBLE_EQ(w[0].x(), 1.0);
+  EXPECT_DOUBLE_EQ(w[1].x(), 3.0);
+  EXPECT_DOUBLE_EQ(w[2].y(), 1.0);
+  // do/while runs at least once; repeat n times.
+  EXPECT_EQ(ends("G21\no1 do\nG0 X1\no1 while [0]\n").size(), 1u);
+  EXPECT_EQ(ends("G21\n#1=0\no1 do\n#1=[#1+1]\nG0 X#1\no1 while [#1 LT 3]\n").size(), 3u);
+  EXPECT_EQ(ends("G21\no7 repeat [4]\nG0 X1\no7 endrepeat\n").size(), 4u);
+  EXPECT_EQ(ends("G21\no7 repeat [0]\nG0 X1\no7 endrepeat\n").size(), 0u);
+}
+
+TEST(ControlFlow, LoopLimitIsAClearError) {
+  InterpreterConfig config;
+  config.dialect.loop_limit = 100;
+  std::string what;
+  try {
+    ends("G21\no1 while [1]\nG0 X1\no1 endwhile\n", config);
+  } catch (const abbe::InputError& e) {
+    what = e.what();
+  }
+  EXPECT_NE(what.find("t.ngc:2:1: error: more than 100 loop iterations"), std::string::npos)
+      << what;
+}
+
+TEST(Errors, NameFileLineAndColumn) {
+  EXPECT_NE(error_of("G0 X[1/0]\n").find("t.ngc:1:7: error: division by zero"), std::string::npos);
+  EXPECT_NE(error_of("G0 X#<nope>\n").find("t.ngc:1:5: error: named parameter #<nope> is not defined"),
+            std::string::npos);
+  EXPECT_NE(error_of("#0 = 1\n").find("t.ngc:1:1: error: parameter number #0 is out of range"),
+            std::string::npos);
+  EXPECT_NE(error_of("o9 endwhile\n").find("t.ngc:1:1: error: o9 endwhile without while"),
+            std::string::npos);
+  EXPECT_NE(error_of("G0 X[ACOS[2]]\n").find("t.ngc:1:6: error: ACOS of 2"), std::string::npos);
+}
+
+}  // namespace
