@@ -6,12 +6,17 @@
 //   the interpreter executes it;
 // - plain lines stream through; from the first O-word on, the lines read are
 //   kept (text and parsed block) so that loops and calls can go back;
-// - sub ... endsub is skipped where it stands and remembered; a call of a
-//   subroutine not seen yet looks ahead in the file, then for name.ngc in
-//   the subroutine folder;
-// - if/elseif/else/endif, while/endwhile, do/while, repeat/endrepeat,
-//   break/continue are matched by their label, as in rs274ngc;
-// - loops are bounded (DialectOptions::loop_limit iterations in all) and
+// - the control flow is rs274ngc's own state machine (LinuxCNC 2.9,
+//   interp_o_word.cc), so that programs that lean on its details behave
+//   the same: each label's first line is remembered (loops jump back to it,
+//   calls to the "sub" line); going forward means skipping to the next
+//   O-word line with a given label; "if" keeps one executed flag, "break"
+//   and "continue" one flag each (a break out of a while nested in a do
+//   also ends the do, as rs274ngc does);
+// - a sub ... endsub is skipped where it stands; a call of a subroutine
+//   not seen yet opens name.ngc in the subroutine folder, else skips
+//   forward in the file to its "sub" line;
+// - loops are bounded (DialectOptions::loop_limit jumps back in all) and
 //   calls nest at most kMaxCallDepth deep.
 #include "program_runner.hpp"
 
@@ -34,7 +39,7 @@ namespace abbe::gcode::detail {
 
 namespace {
 
-constexpr std::size_t kMaxCallDepth = 10;  // rs274ngc's subroutine levels
+constexpr std::size_t kMaxCallDepth = 10;  // as rs274ngc (checked: LinuxCNC's factorial.ngc)
 
 struct StoredLine {
   std::string text;
@@ -68,26 +73,16 @@ struct Place {
   std::size_t index = 0;
 };
 
-enum class LoopKind { while_loop, do_loop, repeat_loop };
-
-struct Loop {
-  LoopKind kind;
-  std::string label;
-  Place start;  // the while / do / repeat line
-  double remaining = 0.0;  // repeat
-  std::size_t ifs = 0;     // open ifs when the loop began (break/continue leave the rest)
+// What rs274ngc remembers about a label: the line where it was first seen.
+struct Label {
+  OKeyword keyword = OKeyword::none;
+  Place at;
+  long repeat_count = -1;  // repeat: iterations left, -1 = not started
 };
 
 struct Frame {
-  Place return_to;
-  std::size_t loops = 0;  // loop stack size at the call
-  std::size_t ifs = 0;
-  std::string label;
-};
-
-struct If {
-  std::string label;
-  Place start;
+  Place return_to;  // the line after the call
+  Place call;
 };
 
 class Runner {
@@ -134,14 +129,10 @@ class Runner {
   }
 
  private:
-  CodeSite site(const Block& b, std::string_view text, const std::string& file) const {
-    return CodeSite{file, b.line, text};
-  }
-
   void execute(Block& block, std::string_view text, const std::string& file) {
     ++stats_.lines;
     if (block.has_code()) {
-      const CodeSite s = site(block, text, file);
+      const CodeSite s{file, block.line, text};
       for (const WordExpression& w : block.word_expressions)
         block.words[w.word].value = evaluate(block, w.code, parameters_, s);
       if (!block.settings.empty()) {
@@ -175,9 +166,14 @@ class Runner {
     interpreter_.execute_evaluated(block, text, counting_sink_);
   }
 
+  const StoredLine& line_at(const Place& at) const { return *at.source->lines[at.index]; }
+
   [[noreturn]] void fail(const Place& at, std::uint32_t column, const std::string& message) {
-    const StoredLine& l = *at.source->lines[at.index];
+    const StoredLine& l = line_at(at);
     fail_at(CodeSite{at.source->file, l.block.line, l.text}, column, message);
+  }
+  [[noreturn]] void fail(const Place& at, const std::string& message) {
+    fail(at, line_at(at).block.o.column, message);
   }
 
   double argument(const Place& at, std::size_t i) {
@@ -186,291 +182,327 @@ class Runner {
                     CodeSite{at.source->file, l.block.line, l.text});
   }
 
-  void need_arguments(const Place& at, std::size_t n) {
-    const OWord& o = at.source->lines[at.index]->block.o;
-    if (o.args.size() != n)
-      fail(at, o.keyword_column,
-           fmt::format("o{} {} needs {} [...] argument{}", label_text(o.label),
-                       o_keyword_name(o.keyword), n == 1 ? "one" : "no", n == 1 ? "" : "s"));
-  }
-
   static std::string label_text(const std::string& label) {
-    return (!label.empty() && label[0] >= '0' && label[0] <= '9') ? label : "<" + label + ">";
+    return (!label.empty() && label[0] >= '0' && label[0] <= '9') ? "o" + label
+                                                                  : "o<" + label + ">";
+  }
+  static std::string what(const OWord& o) {
+    return label_text(o.label) + " " + o_keyword_name(o.keyword);
   }
 
-  // The next line after `from` in the same source with this label and one of
-  // the keywords; an error naming the opening line if there is none.
-  Place find_forward(const Place& from, const std::string& label,
-                     std::initializer_list<OKeyword> keywords, const char* missing) {
-    for (std::size_t i = from.index + 1;; ++i) {
-      StoredLine* l = from.source->at(i);
-      if (l == nullptr) {
-        const OWord& o = from.source->lines[from.index]->block.o;
-        fail(from, o.column,
-             fmt::format("o{} {} without {}", label_text(label), o_keyword_name(o.keyword), missing));
-      }
-      if (l->block.o.keyword != OKeyword::none && l->block.o.label == label)
-        for (OKeyword k : keywords)
-          if (l->block.o.keyword == k) return Place{from.source, i};
-    }
+  // The condition of if/elseif/while/repeat: exactly one [...].
+  double condition(const Place& at) {
+    const OWord& o = line_at(at).block.o;
+    if (o.args.size() != 1)
+      fail(at, o.keyword_column, fmt::format("{} needs one [...] argument", what(o)));
+    return argument(at, 0);
   }
 
   void count_iteration(const Place& at) {
-    if (++iterations_ > config_.dialect.loop_limit) {
-      const OWord& o = at.source->lines[at.index]->block.o;
-      fail(at, o.column,
-           fmt::format("more than {} loop iterations (o{} {}): a runaway loop? (the limit is "
-                       "--loop-limit)",
-                       config_.dialect.loop_limit, label_text(o.label), o_keyword_name(o.keyword)));
-    }
+    if (++iterations_ > config_.dialect.loop_limit)
+      fail(at, fmt::format("more than {} loop iterations ({}): a runaway loop? (the limit is "
+                           "--loop-limit)",
+                           config_.dialect.loop_limit, what(line_at(at).block.o)));
   }
 
-  // A subroutine's "o<label> sub" line: seen before, later in the file, or in
-  // the subroutine folder.
-  Place find_sub(const Place& call) {
-    const std::string& label = call.source->lines[call.index]->block.o.label;
-    if (auto it = subs_.find(label); it != subs_.end()) return it->second;
-    for (std::size_t i = call.index + 1;; ++i) {
-      StoredLine* l = call.source->at(i);
-      if (l == nullptr) break;
-      if (l->block.o.keyword == OKeyword::sub && l->block.o.label == label)
-        return subs_[label] = Place{call.source, i};
+  // The label's first line; rs274ngc refuses a label used by two constructs.
+  Label* find(const std::string& label) {
+    const auto it = labels_.find(label);
+    return it == labels_.end() ? nullptr : &it->second;
+  }
+  Label& remember(const Place& at) {
+    const OWord& o = line_at(at).block.o;
+    return labels_[o.label] = Label{o.keyword, at, -1};
+  }
+  // if, while, repeat: a second construct with the same label is an error.
+  void remember_once(const Place& at, bool do_end_allowed) {
+    const OWord& o = line_at(at).block.o;
+    if (Label* l = find(o.label)) {
+      const bool same_line = l->at.source == at.source && l->at.index == at.index;
+      if (!same_line && !(do_end_allowed && l->keyword == OKeyword::do_))
+        fail(at, fmt::format("duplicate O-word label {} (first used in line {})",
+                             label_text(o.label), line_at(l->at).block.line));
+    } else {
+      remember(at);
     }
-    if (&*call.source != &main_)  // a sub file may call subs of the main file
-      for (std::size_t i = 0;; ++i) {
-        StoredLine* l = main_.at(i);
-        if (l == nullptr) break;
-        if (l->block.o.keyword == OKeyword::sub && l->block.o.label == label)
-          return subs_[label] = Place{&main_, i};
-      }
+  }
+  // elseif, else, endif, break, continue, endwhile, endrepeat: their label
+  // must have been opened by the right construct.
+  Label& opened_by(const Place& at, std::initializer_list<OKeyword> keywords) {
+    const OWord& o = line_at(at).block.o;
+    Label* l = find(o.label);
+    if (l == nullptr) fail(at, fmt::format("{} without its opening line", what(o)));
+    for (OKeyword k : keywords)
+      if (l->keyword == k) return *l;
+    fail(at, fmt::format("{} does not match the {} {} in line {}", what(o),
+                         label_text(o.label), o_keyword_name(l->keyword),
+                         line_at(l->at).block.line));
+  }
+
+  void skip_to(const std::string& label, const Place& from) {
+    skipping_ = label;
+    skip_start_ = from;
+  }
+
+  // Jumps to the remembered line of `label` (loops: the opening line, calls:
+  // the sub line). Returns false if the label is unknown.
+  bool back_to(const std::string& label, Place& pc) {
+    Label* l = find(label);
+    if (l == nullptr) return false;
+    pc = l->at;
+    return true;
+  }
+
+  // o<name> call: the sub line, a file of the subroutine folder, or skipping
+  // forward to "o<name> sub".
+  void call(const Place& here, Place& pc) {
+    const OWord& o = line_at(here).block.o;
+    if (frames_.size() >= kMaxCallDepth)
+      fail(here, fmt::format("subroutine calls nested more than {} deep", kMaxCallDepth));
+    std::vector<double> args;
+    for (std::size_t i = 0; i < o.args.size(); ++i) args.push_back(argument(here, i));
+    if (args.size() > static_cast<std::size_t>(ParameterStore::kCallArguments))
+      fail(here, "more than 30 arguments in a call");
+    frames_.push_back(Frame{pc, here});
+    parameters_.enter_call(args);
+    if (back_to(o.label, pc)) return;
     if (!config_.dialect.subroutine_path.empty()) {
-      const std::string path = config_.dialect.subroutine_path + "/" + label + ".ngc";
+      const std::string path = config_.dialect.subroutine_path + "/" + o.label + ".ngc";
       std::ifstream in(path);
       if (in) {
         auto source = std::make_unique<Source>();
         source->file = path;
         BlockReader reader(in, path);
         source->reader = &reader;
-        for (std::size_t i = 0; source->at(i) != nullptr; ++i) {
+        while (source->at(source->lines.size()) != nullptr) {
         }
         source->reader = nullptr;
         sub_files_.push_back(std::move(source));
-        Source* s = sub_files_.back().get();
-        for (std::size_t i = 0; i < s->lines.size(); ++i)
-          if (s->lines[i]->block.o.keyword == OKeyword::sub && s->lines[i]->block.o.label == label)
-            return subs_[label] = Place{s, i};
+        skipping_ = o.label;
+        skipping_to_sub_ = o.label;
+        skip_start_ = here;
+        pc = Place{sub_files_.back().get(), 0};
+        return;
       }
     }
-    const OWord& o = call.source->lines[call.index]->block.o;
-    fail(call, o.column, fmt::format("call of an undefined subroutine o{}", label_text(label)));
+    skipping_ = o.label;
+    skipping_to_sub_ = o.label;
+    skip_start_ = here;
   }
 
-  void do_return(Place& pc, double value, bool has_value) {
+  void do_return(const Place& here, Place& pc, const OWord& o) {
+    const bool has_value = !o.args.empty();
+    const double value = has_value ? argument(here, 0) : 0.0;
     // LinuxCNC: #<_value> is the returned value (0 without one), #<_value_returned> says which.
-    parameters_.set("_value", has_value ? value : 0.0);
+    parameters_.set("_value", value);
     parameters_.set("_value_returned", has_value ? 1.0 : 0.0);
-    const Frame f = frames_.back();
+    pc = frames_.back().return_to;
     frames_.pop_back();
-    loops_.resize(f.loops);
-    ifs_.resize(f.ifs);
     parameters_.return_from_call();
-    pc = f.return_to;
+  }
+
+  [[noreturn]] void fail_at_end() {
+    if (!skipping_to_sub_.empty()) {
+      const Place call = skip_start_;
+      fail(call, fmt::format("call of an undefined subroutine {}", label_text(skipping_to_sub_)));
+    }
+    const OWord& o = line_at(skip_start_).block.o;
+    const char* missing = "its end";
+    switch (o.keyword) {
+      case OKeyword::sub: missing = "endsub"; break;
+      case OKeyword::if_:
+      case OKeyword::elseif:
+      case OKeyword::else_: missing = "endif"; break;
+      case OKeyword::while_: missing = "endwhile"; break;
+      case OKeyword::repeat: missing = "endrepeat"; break;
+      default: break;
+    }
+    fail(skip_start_, fmt::format("{} without {} (the file ends while skipping to it)", what(o),
+                                  missing));
   }
 
   void run_from(Place pc) {
     while (!interpreter_.program_ended()) {
       StoredLine* l = pc.source->at(pc.index);
       if (l == nullptr) {
-        if (!ifs_.empty()) {
-          const Place at = ifs_.back().start;
-          fail(at, at.source->lines[at.index]->block.o.column,
-               fmt::format("o{} if without endif", label_text(ifs_.back().label)));
-        }
-        if (!loops_.empty()) {
-          const Place at = loops_.back().start;
-          fail(at, at.source->lines[at.index]->block.o.column,
-               fmt::format("o{} loop without its end", label_text(loops_.back().label)));
-        }
-        if (!frames_.empty()) {
-          const Place call{frames_.back().return_to.source, frames_.back().return_to.index - 1};
-          fail(call, call.source->lines[call.index]->block.o.column,
-               "the subroutine called here ends without endsub");
-        }
+        if (!skipping_.empty() || !skipping_to_sub_.empty()) fail_at_end();
+        if (pc.source != &main_) fail(frames_.back().call, "the called subroutine has no endsub");
         return;
       }
       Block& b = l->block;
       if (b.o.keyword == OKeyword::none) {
-        if (pc.source != &main_ && frames_.empty()) return;  // cannot happen
-        execute(b, l->text, pc.source->file);
+        if (skipping_.empty() && skipping_to_sub_.empty())
+          execute(b, l->text, pc.source->file);
+        ++pc.index;
+        continue;
+      }
+      const OWord& o = b.o;
+      // A definition is skipped up to its endsub; nothing in it runs.
+      if (defining_sub_ && !(o.keyword == OKeyword::endsub && o.label == skipping_)) {
+        ++pc.index;
+        continue;
+      }
+      if (!skipping_.empty() && skipping_ != effective_label(o)) {
+        ++pc.index;
+        continue;
+      }
+      if (!skipping_to_sub_.empty() && o.keyword != OKeyword::sub) {
         ++pc.index;
         continue;
       }
       ++stats_.lines;
-      const OWord& o = b.o;
-      switch (o.keyword) {
-        case OKeyword::sub: {
-          subs_[o.label] = pc;
-          pc = find_forward(pc, o.label, {OKeyword::endsub}, "endsub");
-          ++pc.index;
-          break;
+      control(pc, o);
+    }
+  }
+
+  // rs274ngc: "return" and "endsub" belong to the subroutine they are in,
+  // whatever label they carry (o1010 return inside o1000 sub is o1000's).
+  const std::string& effective_label(const OWord& o) const {
+    if ((o.keyword == OKeyword::return_ || o.keyword == OKeyword::endsub) && !frames_.empty())
+      return line_at(frames_.back().call).block.o.label;
+    return o.label;
+  }
+
+  // One O-word line that is not skipped (rs274ngc's convert_control_functions).
+  void control(Place& pc, const OWord& o) {
+    const Place here = pc;
+    ++pc.index;
+    switch (o.keyword) {
+      case OKeyword::sub: {
+        if (!skipping_.empty() || !skipping_to_sub_.empty()) {
+          // Skipping to a sub: define it now.
+          if (!skipping_to_sub_.empty() && skipping_to_sub_ != o.label) return;
+          remember(here);
+          skipping_.clear();
         }
-        case OKeyword::endsub:
-        case OKeyword::return_: {
-          // rs274ngc: a return may carry any label (that of an enclosing
-          // if, say); endsub must carry its subroutine's.
-          if (frames_.empty() ||
-              (o.keyword == OKeyword::endsub && frames_.back().label != o.label))
-            fail(pc, o.column,
-                 fmt::format("o{} {} outside its subroutine", label_text(o.label),
-                             o_keyword_name(o.keyword)));
-          const bool has_value = !o.args.empty();
-          const double value = has_value ? argument(pc, 0) : 0.0;
-          do_return(pc, value, has_value);
-          break;
-        }
-        case OKeyword::call: {
-          if (frames_.size() >= kMaxCallDepth)
-            fail(pc, o.column,
-                 fmt::format("subroutine calls nested more than {} deep", kMaxCallDepth));
-          std::vector<double> args;
-          for (std::size_t i = 0; i < o.args.size(); ++i) args.push_back(argument(pc, i));
-          if (args.size() > static_cast<std::size_t>(ParameterStore::kCallArguments))
-            fail(pc, o.column, "more than 30 arguments in a call");
-          const Place sub = find_sub(pc);
-          frames_.push_back(Frame{Place{pc.source, pc.index + 1}, loops_.size(), ifs_.size(), o.label});
-          parameters_.enter_call(args);
-          pc = Place{sub.source, sub.index + 1};
-          break;
-        }
-        case OKeyword::if_: {
-          need_arguments(pc, 1);
-          ifs_.push_back(If{o.label, pc});
-          Place at = pc;
-          while (argument(at, 0) == 0.0) {
-            at = find_forward(pc, o.label, {OKeyword::elseif, OKeyword::else_, OKeyword::endif},
-                              "endif");
-            pc = at;
-            const OKeyword k = at.source->lines[at.index]->block.o.keyword;
-            if (k != OKeyword::elseif) break;
-            need_arguments(at, 1);
-          }
-          if (at.source->lines[at.index]->block.o.keyword == OKeyword::endif) ifs_.pop_back();
-          pc = Place{at.source, at.index + 1};
-          break;
-        }
-        case OKeyword::elseif:
-        case OKeyword::else_: {
-          if (ifs_.empty() || ifs_.back().label != o.label)
-            fail(pc, o.column,
-                 fmt::format("o{} {} without if", label_text(o.label), o_keyword_name(o.keyword)));
-          pc = find_forward(pc, o.label, {OKeyword::endif}, "endif");
-          ifs_.pop_back();
-          ++pc.index;
-          break;
-        }
-        case OKeyword::endif: {
-          if (ifs_.empty() || ifs_.back().label != o.label)
-            fail(pc, o.column, fmt::format("o{} endif without if", label_text(o.label)));
-          ifs_.pop_back();
-          ++pc.index;
-          break;
-        }
-        case OKeyword::do_: {
-          loops_.push_back(Loop{LoopKind::do_loop, o.label, pc, 0.0, ifs_.size()});
-          ++pc.index;
-          break;
-        }
-        case OKeyword::while_: {
-          need_arguments(pc, 1);
-          const bool ends_do = !loops_.empty() && loops_.back().label == o.label &&
-                               loops_.back().kind == LoopKind::do_loop;
-          if (ends_do) {
-            if (argument(pc, 0) != 0.0) {
-              count_iteration(pc);
-              pc = Place{loops_.back().start.source, loops_.back().start.index + 1};
-            } else {
-              loops_.pop_back();
-              ++pc.index;
-            }
-            break;
-          }
-          const bool again = !loops_.empty() && loops_.back().label == o.label &&
-                             loops_.back().start.source == pc.source &&
-                             loops_.back().start.index == pc.index;
-          if (argument(pc, 0) != 0.0) {
-            if (again)
-              count_iteration(pc);
-            else
-              loops_.push_back(Loop{LoopKind::while_loop, o.label, pc, 0.0, ifs_.size()});
-            ++pc.index;
-          } else {
-            if (again) loops_.pop_back();
-            pc = find_forward(pc, o.label, {OKeyword::endwhile}, "endwhile");
-            ++pc.index;
-          }
-          break;
-        }
-        case OKeyword::endwhile: {
-          if (loops_.empty() || loops_.back().label != o.label ||
-              loops_.back().kind != LoopKind::while_loop)
-            fail(pc, o.column, fmt::format("o{} endwhile without while", label_text(o.label)));
-          pc = loops_.back().start;
-          break;
-        }
-        case OKeyword::repeat: {
-          need_arguments(pc, 1);
-          const double n = argument(pc, 0);
-          if (n >= 1.0) {
-            loops_.push_back(Loop{LoopKind::repeat_loop, o.label, pc, std::floor(n), ifs_.size()});
-            ++pc.index;
-          } else {
-            pc = find_forward(pc, o.label, {OKeyword::endrepeat}, "endrepeat");
-            ++pc.index;
-          }
-          break;
-        }
-        case OKeyword::endrepeat: {
-          if (loops_.empty() || loops_.back().label != o.label ||
-              loops_.back().kind != LoopKind::repeat_loop)
-            fail(pc, o.column, fmt::format("o{} endrepeat without repeat", label_text(o.label)));
-          Loop& loop = loops_.back();
-          loop.remaining -= 1.0;
-          if (loop.remaining >= 1.0) {
-            count_iteration(pc);
-            pc = Place{loop.start.source, loop.start.index + 1};
-          } else {
-            loops_.pop_back();
-            ++pc.index;
-          }
-          break;
-        }
-        case OKeyword::break_:
-        case OKeyword::continue_: {
-          std::size_t k = loops_.size();
-          const std::size_t floor = frames_.empty() ? 0 : frames_.back().loops;
-          while (k > floor && loops_[k - 1].label != o.label) --k;
-          if (k == floor)
-            fail(pc, o.column,
-                 fmt::format("o{} {} outside its loop", label_text(o.label),
-                             o_keyword_name(o.keyword)));
-          loops_.resize(k);
-          const Loop loop = loops_.back();
-          ifs_.resize(loop.ifs);
-          const OKeyword end = loop.kind == LoopKind::while_loop    ? OKeyword::endwhile
-                               : loop.kind == LoopKind::repeat_loop ? OKeyword::endrepeat
-                                                                     : OKeyword::while_;
-          const Place close = find_forward(loop.start, o.label, {end}, o_keyword_name(end));
-          if (o.keyword == OKeyword::break_) {
-            loops_.pop_back();
-            pc = Place{close.source, close.index + 1};
-          } else {
-            pc = close;  // the closing line decides whether the loop goes on
-          }
-          break;
-        }
-        case OKeyword::none:
-          break;
+        skipping_to_sub_.clear();
+        if (!frames_.empty()) return;  // entering a called subroutine
+        if (defining_sub_) fail(here, "a subroutine definition inside another one");
+        if (Label* l = find(o.label); l != nullptr && !(l->at.source == here.source &&
+                                                       l->at.index == here.index))
+          fail(here, fmt::format("{} is defined twice (first in line {})", label_text(o.label),
+                                 line_at(l->at).block.line));
+        remember(here);
+        skip_to(o.label, here);
+        defining_sub_ = true;
+        return;
       }
+      case OKeyword::endsub:
+      case OKeyword::return_: {
+        if (frames_.empty()) {
+          if (!defining_sub_)
+            fail(here, fmt::format("{} outside a subroutine", what(o)));
+          if (o.keyword == OKeyword::endsub) {  // end of a definition
+            skipping_.clear();
+            defining_sub_ = false;
+          }
+          return;
+        }
+        if (o.keyword == OKeyword::endsub && skipping_ == o.label) skipping_.clear();
+        do_return(here, pc, o);
+        return;
+      }
+      case OKeyword::call:
+        call(here, pc);
+        return;
+      case OKeyword::do_:
+        skipping_.clear();
+        if (find(o.label) == nullptr) remember(here);
+        return;
+      case OKeyword::repeat: {
+        remember_once(here, false);
+        skipping_.clear();
+        Label& l = *find(o.label);
+        if (l.keyword != OKeyword::repeat) return;
+        if (l.repeat_count == -1) {
+          const double n = condition(here);
+          l.repeat_count = std::lround(n);  // rs274ngc rounds the count
+        }
+        if (l.repeat_count > 0) {
+          --l.repeat_count;
+        } else {
+          skip_to(o.label, here);
+          l.repeat_count = -1;
+        }
+        return;
+      }
+      case OKeyword::while_: {
+        remember_once(here, true);
+        skipping_.clear();
+        const Label& l = *find(o.label);
+        const double test = condition(here);
+        if (l.keyword == OKeyword::while_) {
+          if (test == 0.0) skip_to(o.label, here);
+        } else if (test != 0.0 && !doing_break_) {  // the end of a do
+          count_iteration(here);
+          back_to(o.label, pc);
+        } else {
+          doing_break_ = false;
+        }
+        return;
+      }
+      case OKeyword::if_: {
+        remember_once(here, false);
+        if (condition(here) != 0.0) {
+          skipping_.clear();
+          executed_if_ = true;
+        } else {
+          skip_to(o.label, here);
+          executed_if_ = false;
+        }
+        return;
+      }
+      case OKeyword::elseif: {
+        opened_by(here, {OKeyword::if_});
+        const double test = condition(here);
+        if (executed_if_) {
+          skip_to(o.label, here);
+        } else if (test != 0.0) {
+          skipping_.clear();
+          executed_if_ = true;
+        }
+        return;
+      }
+      case OKeyword::else_: {
+        opened_by(here, {OKeyword::if_});
+        if (executed_if_) {
+          skip_to(o.label, here);
+        } else if (skipping_ == o.label) {
+          executed_if_ = true;
+          skipping_.clear();
+        }
+        return;
+      }
+      case OKeyword::endif:
+        opened_by(here, {OKeyword::if_});
+        skipping_.clear();
+        executed_if_ = true;
+        return;
+      case OKeyword::break_:
+        opened_by(here, {OKeyword::while_, OKeyword::do_});
+        skip_to(o.label, here);
+        doing_break_ = true;
+        return;
+      case OKeyword::continue_:
+        opened_by(here, {OKeyword::while_, OKeyword::do_});
+        if (skipping_ == o.label) return;
+        skip_to(o.label, here);
+        doing_continue_ = true;
+        return;
+      case OKeyword::endwhile:
+      case OKeyword::endrepeat: {
+        opened_by(here, {o.keyword == OKeyword::endwhile ? OKeyword::while_ : OKeyword::repeat});
+        if (skipping_ == o.label) {
+          skipping_.clear();
+          if (!doing_continue_) return;  // the loop is done
+          doing_continue_ = false;
+        }
+        count_iteration(here);
+        back_to(o.label, pc);
+        return;
+      }
+      case OKeyword::none:
+        return;
     }
   }
 
@@ -485,10 +517,15 @@ class Runner {
   ParameterStore parameters_;
   Source main_;
   std::vector<std::unique_ptr<Source>> sub_files_;
-  std::map<std::string, Place> subs_;
-  std::vector<Loop> loops_;
-  std::vector<If> ifs_;
+  std::map<std::string, Label> labels_;
   std::vector<Frame> frames_;
+  std::string skipping_;         // skip to the next O-word line with this label
+  std::string skipping_to_sub_;  // skip to "o<label> sub"
+  Place skip_start_;             // the line that started the skip
+  bool defining_sub_ = false;
+  bool executed_if_ = false;
+  bool doing_break_ = false;
+  bool doing_continue_ = false;
   std::uint64_t iterations_ = 0;
 };
 

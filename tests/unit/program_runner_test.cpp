@@ -150,7 +150,7 @@ TEST(ControlFlow, LoopLimitIsAClearError) {
   } catch (const abbe::InputError& e) {
     what = e.what();
   }
-  EXPECT_NE(what.find("t.ngc:2:1: error: more than 100 loop iterations"), std::string::npos)
+  EXPECT_NE(what.find("t.ngc:4:1: error: more than 100 loop iterations (o1 endwhile)"), std::string::npos)
       << what;
 }
 
@@ -160,7 +160,7 @@ TEST(Errors, NameFileLineAndColumn) {
             std::string::npos);
   EXPECT_NE(error_of("#0 = 1\n").find("t.ngc:1:1: error: parameter number #0 is out of range"),
             std::string::npos);
-  EXPECT_NE(error_of("o9 endwhile\n").find("t.ngc:1:1: error: o9 endwhile without while"),
+  EXPECT_NE(error_of("o9 endwhile\n").find("t.ngc:1:1: error: o9 endwhile without its opening line"),
             std::string::npos);
   EXPECT_NE(error_of("G0 X[ACOS[2]]\n").find("t.ngc:1:6: error: ACOS of 2"), std::string::npos);
 }
