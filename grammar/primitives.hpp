@@ -130,7 +130,8 @@ namespace abbe::gcode::grammar {
 
 // One of a fixed list of case-insensitive ASCII keywords (operators and
 // function names of expressions, O-word keywords); the longest one that
-// matches wins (ELSEIF over ELSE, ** over *). Its attribute is the value
+// matches wins (ELSEIF over ELSE, ** over *). Blanks may stand between its
+// characters, as rs274ngc drops blanks ("else if", "end sub", "S I N"). Its attribute is the value
 // listed with the keyword. A keyword made of letters must not run on into
 // another letter when `whole_word` is set (O-word keywords).
 template <typename T>
@@ -153,14 +154,19 @@ struct keyword_parser : x3::parser<keyword_parser<T, N, WholeWord>> {
     std::size_t best = 0;
     const Keyword<T>* found = nullptr;
     for (const Keyword<T>& k : *table) {
-      std::size_t n = 0;
-      for (; k.text[n] != '\0'; ++n) {
+      // rs274ngc removes blanks before it reads a line: "else if" is "elseif".
+      std::size_t n = 0;  // bytes of input matched
+      std::size_t t = 0;  // characters of the keyword matched
+      for (; k.text[t] != '\0'; ++t, ++n) {
+        while (t > 0 && first + static_cast<std::ptrdiff_t>(n) != last &&
+               (first[n] == ' ' || first[n] == '\t'))
+          ++n;
         if (first + static_cast<std::ptrdiff_t>(n) == last) break;
         char c = first[n];
         if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
-        if (c != k.text[n]) break;
+        if (c != k.text[t]) break;
       }
-      if (k.text[n] != '\0' || n <= best) continue;
+      if (k.text[t] != '\0' || n <= best) continue;
       if constexpr (WholeWord) {
         const It after = first + static_cast<std::ptrdiff_t>(n);
         if (after != last && ((*after >= 'a' && *after <= 'z') || (*after >= 'A' && *after <= 'Z')))
