@@ -149,8 +149,10 @@ BOOST_SPIRIT_DEFINE(bracketed, real_value, logical)
 // XSIN[30] (rs274ngc's read_real_value).
 const auto plain_word =
     (position >> omit[word_letter] >> blanks >> number >> number_end)[add_word] >> blanks;
+// A value that begins like a number is a plain number or wrong (X1e5, X1.2.3
+// are explained as bad numbers): only other values are read as expressions.
 const auto expression_word =
-    (position >> omit[word_letter] >> blanks >> real_value)[add_expression_word];
+    (position >> omit[word_letter] >> blanks >> !number >> real_value)[add_expression_word];
 const auto word = plain_word | expression_word;
 // #n = value, #<name> = value (n itself may be a value: #[#1+1] = 2).
 const auto setting_target = omit[name[set_target_name]] >> blanks | real_value;

@@ -49,6 +49,9 @@ TEST(Expressions, PrecedenceAndAssociativity) {
   EXPECT_DOUBLE_EQ(x_of("[7 mod 3]"), 1.0);
   EXPECT_DOUBLE_EQ(x_of("-[2]"), -2.0);
   EXPECT_DOUBLE_EQ(x_of("[1 - -2]"), 3.0);
+  // rs274ngc reads a sign before any value: X--1 is 1, X+-1 is -1.
+  EXPECT_DOUBLE_EQ(x_of("--1"), 1.0);
+  EXPECT_DOUBLE_EQ(x_of("+-1"), -1.0);
 }
 
 TEST(Expressions, Functions) {
