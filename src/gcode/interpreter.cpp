@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "abbe/io/input_error.hpp"
 #include "fanuc_dialect.hpp"
@@ -113,13 +115,19 @@ Eigen::Vector3d Interpreter::position() const { return state_->tip(state_->pos);
 
 void Interpreter::execute(const Block& written, std::string_view raw_line, const MotionSink& sink) {
   if (written.has_code()) {
-    std::uint32_t column = written.o.keyword != OKeyword::none ? written.o.column
-                           : !written.code.empty()             ? written.code.front().column
-                                                               : 0;
+    // The first construct: the O-word, a setting's '#' or a computed word's letter.
+    std::uint32_t column = written.o.keyword != OKeyword::none ? written.o.column : UINT32_MAX;
+    if (!written.settings.empty()) column = std::min(column, written.settings.front().column);
+    if (!written.word_expressions.empty())
+      column = std::min(column, written.words[written.word_expressions.front().word].begin);
+    if (column == UINT32_MAX) column = 0;
     throw InputError(SourceLocation{state_->file, written.line, std::size_t{column} + 1, "",
                                     std::string(raw_line)},
-                     "parameters, expressions and O-words are not supported by a command that "
-                     "rewrites the program line by line");
+                     state_->config.dialect.dialect == Dialect::fanuc
+                         ? "macro variables, expressions and O-word control flow (#, [...], "
+                           "o... sub) are not supported in the Fanuc dialect"
+                         : "parameters, expressions and O-words are not supported by a command "
+                           "that rewrites the program line by line");
   }
   execute_evaluated(written, raw_line, sink);
 }

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "abbe/gcode/parser.hpp"
 #include "abbe/gcode/program.hpp"
 #include "abbe/io/input_error.hpp"
 
@@ -166,6 +167,33 @@ TEST(Errors, NameFileLineAndColumn) {
   EXPECT_NE(error_of("o9 endwhile\n").find("t.ngc:1:1: error: o9 endwhile without its opening line"),
             std::string::npos);
   EXPECT_NE(error_of("G0 X[ACOS[2]]\n").find("t.ngc:1:6: error: ACOS of 2"), std::string::npos);
+}
+
+TEST(Errors, LineByLineCallersAndTheFanucDialectRefuseThemByName) {
+  // Interpreter::execute (compensate, verify) cannot evaluate: it refuses.
+  abbe::gcode::Interpreter interpreter(InterpreterConfig{}, "t.ngc");
+  const auto block = abbe::gcode::parse_line("G0 X1 Y#1", 3, "t.ngc");
+  std::string what;
+  try {
+    interpreter.execute(block, "G0 X1 Y#1", [](const Motion&) {});
+  } catch (const abbe::InputError& e) {
+    what = e.what();
+  }
+  EXPECT_NE(what.find("t.ngc:3:7: error: parameters, expressions and O-words are not supported by "
+                      "a command that rewrites the program line by line"),
+            std::string::npos)
+      << what;
+  InterpreterConfig fanuc;
+  fanuc.dialect.dialect = abbe::gcode::Dialect::fanuc;
+  what.clear();
+  try {
+    ends("G21\n#1=2\n", fanuc);
+  } catch (const abbe::InputError& e) {
+    what = e.what();
+  }
+  EXPECT_NE(what.find("t.ngc:2:1: error: macro variables, expressions and O-word control flow"),
+            std::string::npos)
+      << what;
 }
 
 }  // namespace
