@@ -3,6 +3,8 @@
 // rules (precedence, degrees, "settings take effect after the line").
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -112,6 +114,33 @@ TEST(ControlFlow, CallBeforeDefinitionAndReturnValue) {
       "G21\no100 call [4]\nG0 X#<_value>\nM2\no100 sub\no100 return [#1*#1]\no100 endsub\n");
   ASSERT_EQ(e.size(), 1u);
   EXPECT_DOUBLE_EQ(e[0].x(), 16.0);
+}
+
+TEST(Parameters, VarFileAndSubroutineFolder) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "abbe_program_runner_test";
+  fs::create_directories(dir);
+  {
+    std::ofstream var(dir / "params.var");
+    var << "1\t42.5\n5161 3\nnot a parameter line\n";
+    std::ofstream sub(dir / "square.ngc");
+    sub << "(a subroutine file)\no<square> sub\nG1 X[#1*#1] F100\no<square> endsub\n";
+  }
+  InterpreterConfig config;
+  config.dialect.var_file = (dir / "params.var").string();
+  config.dialect.subroutine_path = dir.string();
+  const auto e = ends("G21\nG0 X#1 Y#5161\no<square> call [3]\nG0 Y#1\n", config);
+  ASSERT_EQ(e.size(), 3u);
+  EXPECT_DOUBLE_EQ(e[0].x(), 42.5);
+  EXPECT_DOUBLE_EQ(e[0].y(), 3.0);
+  EXPECT_DOUBLE_EQ(e[1].x(), 9.0);   // from square.ngc
+  EXPECT_DOUBLE_EQ(e[2].y(), 42.5);  // #1 restored after the call
+  // #5220 (G55 = 2) and #5400 (tool in the spindle after M6).
+  const auto p = ends("G21\nG55\nT3 M6\nG0 X#5220 Y#5400\n");
+  ASSERT_FALSE(p.empty());
+  EXPECT_DOUBLE_EQ(p.back().x(), 2.0);
+  EXPECT_DOUBLE_EQ(p.back().y(), 3.0);
+  fs::remove_all(dir);
 }
 
 TEST(ControlFlow, IfElseifElse) {
