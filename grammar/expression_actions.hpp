@@ -148,7 +148,8 @@ inline constexpr auto set_o_word = [](auto& ctx) {
   o.column = detail::offset(line, boost::fusion::at_c<0>(attribute));
   const ast::Span& label = boost::fusion::at_c<1>(attribute);
   o.label.clear();
-  const bool numbered = label.begin() != label.end() && *label.begin() >= '0' && *label.begin() <= '9';
+  const bool numbered =
+      label.begin() != label.end() && *label.begin() >= '0' && *label.begin() <= '9';
   for (char c : label) {
     if (c == ' ' || c == '\t') continue;
     if (numbered && c == '0' && o.label.empty()) continue;  // o0100 is o100

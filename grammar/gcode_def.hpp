@@ -41,30 +41,27 @@ const auto word_letter = char_("DFGHIJKLMPQRSTXYZdfghijklmpqrstxyz");
 inline const std::array<Keyword<ExprOp>, 3> kLogicalOps = {
     {{"and", ExprOp::and_}, {"or", ExprOp::or_}, {"xor", ExprOp::xor_}}};
 inline const std::array<Keyword<ExprOp>, 6> kRelationalOps = {{{"eq", ExprOp::eq},
-                                                                {"ne", ExprOp::ne},
-                                                                {"gt", ExprOp::gt},
-                                                                {"ge", ExprOp::ge},
-                                                                {"lt", ExprOp::lt},
-                                                                {"le", ExprOp::le}}};
+                                                               {"ne", ExprOp::ne},
+                                                               {"gt", ExprOp::gt},
+                                                               {"ge", ExprOp::ge},
+                                                               {"lt", ExprOp::lt},
+                                                               {"le", ExprOp::le}}};
 inline const std::array<Keyword<ExprOp>, 2> kAdditiveOps = {
     {{"+", ExprOp::plus}, {"-", ExprOp::minus}}};
-inline const std::array<Keyword<ExprOp>, 4> kMultiplicativeOps = {{{"*", ExprOp::times},
-                                                                    {"**", ExprOp::power},
-                                                                    {"/", ExprOp::divide},
-                                                                    {"mod", ExprOp::modulo}}};
-inline const std::array<Keyword<ExprOp>, 12> kFunctions = {
-    {{"abs", ExprOp::abs},
-     {"acos", ExprOp::acos},
-     {"asin", ExprOp::asin},
-     {"cos", ExprOp::cos},
-     {"exp", ExprOp::exp},
-     {"fix", ExprOp::fix},
-     {"fup", ExprOp::fup},
-     {"ln", ExprOp::ln},
-     {"round", ExprOp::round},
-     {"sin", ExprOp::sin},
-     {"sqrt", ExprOp::sqrt},
-     {"tan", ExprOp::tan}}};
+inline const std::array<Keyword<ExprOp>, 4> kMultiplicativeOps = {
+    {{"*", ExprOp::times}, {"**", ExprOp::power}, {"/", ExprOp::divide}, {"mod", ExprOp::modulo}}};
+inline const std::array<Keyword<ExprOp>, 12> kFunctions = {{{"abs", ExprOp::abs},
+                                                            {"acos", ExprOp::acos},
+                                                            {"asin", ExprOp::asin},
+                                                            {"cos", ExprOp::cos},
+                                                            {"exp", ExprOp::exp},
+                                                            {"fix", ExprOp::fix},
+                                                            {"fup", ExprOp::fup},
+                                                            {"ln", ExprOp::ln},
+                                                            {"round", ExprOp::round},
+                                                            {"sin", ExprOp::sin},
+                                                            {"sqrt", ExprOp::sqrt},
+                                                            {"tan", ExprOp::tan}}};
 inline const std::array<Keyword<ExprOp>, 1> kAtan = {{{"atan", ExprOp::atan}}};
 inline const std::array<Keyword<ExprOp>, 1> kExists = {{{"exists", ExprOp::exists}}};
 inline const std::array<Keyword<OKeyword>, 15> kOKeywords = {{{"sub", OKeyword::sub},
@@ -112,28 +109,27 @@ const x3::rule<bracketed_class> bracketed = "expression";  // "[" logical "]"
 const x3::rule<value_class> real_value = "value";
 const x3::rule<logical_class> logical = "expression";
 
-const auto power_level =
-    real_value >> *((position >> power_op >> blanks >> real_value)[push_operator]);
-const auto multiplicative_level =
-    power_level >> *((position >> multiplicative_op >> blanks >> power_level)[push_operator]);
-const auto additive_level =
-    multiplicative_level >>
-    *((position >> additive_op >> blanks >> multiplicative_level)[push_operator]);
-const auto relational_level =
-    additive_level >> *((position >> relational_op >> blanks >> additive_level)[push_operator]);
-const auto logical_def =
-    relational_level >> *((position >> logical_op >> blanks >> relational_level)[push_operator]);
+const auto power_level = real_value >>
+                         *((position >> power_op >> blanks >> real_value)[push_operator]);
+const auto multiplicative_level = power_level >> *((position >> multiplicative_op >> blanks >>
+                                                    power_level)[push_operator]);
+const auto additive_level = multiplicative_level >> *((position >> additive_op >> blanks >>
+                                                       multiplicative_level)[push_operator]);
+const auto relational_level = additive_level >> *((position >> relational_op >> blanks >>
+                                                   additive_level)[push_operator]);
+const auto logical_def = relational_level >>
+                         *((position >> logical_op >> blanks >> relational_level)[push_operator]);
 
 const auto bracketed_def = lit('[') >> blanks >> logical >> lit(']') >> blanks;
 
 const auto parameter = (position >> lit('#') >> blanks >> name)[push_named] >> blanks |
                        (position >> lit('#') >> blanks >> real_value)[push_parameter];
-const auto function =
-    (position >> atan_name >> blanks >> bracketed >> lit('/') >> blanks >> bracketed)[push_operator] |
-    (position >> omit[exists_name] >> blanks >> lit('[') >> blanks >> lit('#') >> blanks >> name >>
-     blanks >> lit(']'))[push_exists] >>
-        blanks |
-    (position >> function_name >> blanks >> bracketed)[push_operator];
+const auto function = (position >> atan_name >> blanks >> bracketed >> lit('/') >> blanks >>
+                       bracketed)[push_operator] |
+                      (position >> omit[exists_name] >> blanks >> lit('[') >> blanks >> lit('#') >>
+                       blanks >> name >> blanks >> lit(']'))[push_exists] >>
+                          blanks |
+                      (position >> function_name >> blanks >> bracketed)[push_operator];
 const auto real_value_def = bracketed | parameter |
                             (number >> !char_("0-9."))[push_number] >> blanks |
                             (position >> lit('-') >> blanks >> real_value)[push_negate] |
@@ -156,8 +152,8 @@ const auto expression_word =
 const auto word = plain_word | expression_word;
 // #n = value, #<name> = value (n itself may be a value: #[#1+1] = 2).
 const auto setting_target = omit[name[set_target_name]] >> blanks | real_value;
-const auto setting = (position >> lit('#') >> blanks >> setting_target >> lit('=')[mark_target_end] >>
-                      blanks >> real_value)[add_setting];
+const auto setting = (position >> lit('#') >> blanks >> setting_target >>
+                      lit('=')[mark_target_end] >> blanks >> real_value)[add_setting];
 const auto line_number =
     &char_("Nn") >>
     (position >> omit[char_("Nn")] >> blanks >> digits >> number_end)[add_line_number] >> blanks;
@@ -174,9 +170,8 @@ const auto comment = paren_comment | semicolon_comment;
 const auto item = word | setting | comment;
 
 // O-word control flow: o100 sub, o<name> call [1] [2], o101 if [#1 GT 0], ...
-const auto o_line = &char_("Oo") >>
-                    (position >> omit[char_("Oo")] >> blanks >> o_label >> blanks >> position >>
-                     o_keyword)[set_o_word] >>
+const auto o_line = &char_("Oo") >> (position >> omit[char_("Oo")] >> blanks >> o_label >> blanks >>
+                                     position >> o_keyword)[set_o_word] >>
                     blanks >> *(bracketed[add_o_argument]) >> -comment;
 
 const auto percent_line = percent >> -comment;
@@ -186,7 +181,8 @@ const auto block = -line_number >> x3::repeat(std::size_t{0}, kMaxItemsPerBlock)
 // Every alternative is chosen by its first character and nothing can fail
 // after an item has been stored, so no half-parsed item is ever left behind.
 const line_type nc_line = "line";
-const auto nc_line_def = blanks >> (percent_line | (-block_delete >> (o_line | program_line | block)));
+const auto nc_line_def = blanks >>
+                         (percent_line | (-block_delete >> (o_line | program_line | block)));
 
 BOOST_SPIRIT_DEFINE(nc_line)
 

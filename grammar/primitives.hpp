@@ -9,8 +9,8 @@
 //   blanks_parser    { " " | tab }, without an attribute (the most frequent
 //                    parser of a line: after every item).
 // Like every X3 parser they leave `first` unchanged when they fail.
-#include <boost/spirit/home/x3.hpp>
 #include <array>
+#include <boost/spirit/home/x3.hpp>
 #include <cstddef>
 #include <cstdint>
 #include <type_traits>

@@ -10,22 +10,38 @@ namespace abbe::gcode {
 
 const char* o_keyword_name(OKeyword keyword) {
   switch (keyword) {
-    case OKeyword::sub: return "sub";
-    case OKeyword::endsub: return "endsub";
-    case OKeyword::call: return "call";
-    case OKeyword::return_: return "return";
-    case OKeyword::do_: return "do";
-    case OKeyword::while_: return "while";
-    case OKeyword::endwhile: return "endwhile";
-    case OKeyword::if_: return "if";
-    case OKeyword::elseif: return "elseif";
-    case OKeyword::else_: return "else";
-    case OKeyword::endif: return "endif";
-    case OKeyword::break_: return "break";
-    case OKeyword::continue_: return "continue";
-    case OKeyword::repeat: return "repeat";
-    case OKeyword::endrepeat: return "endrepeat";
-    case OKeyword::none: break;
+    case OKeyword::sub:
+      return "sub";
+    case OKeyword::endsub:
+      return "endsub";
+    case OKeyword::call:
+      return "call";
+    case OKeyword::return_:
+      return "return";
+    case OKeyword::do_:
+      return "do";
+    case OKeyword::while_:
+      return "while";
+    case OKeyword::endwhile:
+      return "endwhile";
+    case OKeyword::if_:
+      return "if";
+    case OKeyword::elseif:
+      return "elseif";
+    case OKeyword::else_:
+      return "else";
+    case OKeyword::endif:
+      return "endif";
+    case OKeyword::break_:
+      return "break";
+    case OKeyword::continue_:
+      return "continue";
+    case OKeyword::repeat:
+      return "repeat";
+    case OKeyword::endrepeat:
+      return "endrepeat";
+    case OKeyword::none:
+      break;
   }
   return "";
 }
@@ -39,9 +55,9 @@ constexpr std::size_t kMaxStack = 256;
 }  // namespace
 
 void fail_at(const CodeSite& site, std::uint32_t column, const std::string& message) {
-  throw InputError(SourceLocation{site.file, site.line, std::size_t{column} + 1, "",
-                                  std::string(site.text)},
-                   message);
+  throw InputError(
+      SourceLocation{site.file, site.line, std::size_t{column} + 1, "", std::string(site.text)},
+      message);
 }
 
 int integer_value(double value, const CodeSite& site, std::uint32_t column, const char* what) {
@@ -98,8 +114,12 @@ double evaluate(const Block& block, CodeRange code, const ParameterStore& parame
       need(1, c);
       double& x = stack[top - 1];
       switch (c.op) {
-        case ExprOp::negate: x = -x; break;
-        case ExprOp::abs: x = std::abs(x); break;
+        case ExprOp::negate:
+          x = -x;
+          break;
+        case ExprOp::abs:
+          x = std::abs(x);
+          break;
         case ExprOp::acos:
           if (x < -1.0 || x > 1.0)
             fail_at(site, c.column, fmt::format("ACOS of {} (must be between -1 and 1)", x));
@@ -110,10 +130,18 @@ double evaluate(const Block& block, CodeRange code, const ParameterStore& parame
             fail_at(site, c.column, fmt::format("ASIN of {} (must be between -1 and 1)", x));
           x = std::asin(x) * 180.0 / kPi;
           break;
-        case ExprOp::cos: x = std::cos(x * kPi / 180.0); break;
-        case ExprOp::exp: x = std::exp(x); break;
-        case ExprOp::fix: x = std::floor(x); break;
-        case ExprOp::fup: x = std::ceil(x); break;
+        case ExprOp::cos:
+          x = std::cos(x * kPi / 180.0);
+          break;
+        case ExprOp::exp:
+          x = std::exp(x);
+          break;
+        case ExprOp::fix:
+          x = std::floor(x);
+          break;
+        case ExprOp::fup:
+          x = std::ceil(x);
+          break;
         case ExprOp::ln:
           if (x <= 0.0) fail_at(site, c.column, fmt::format("LN of {} (must be positive)", x));
           x = std::log(x);
@@ -122,28 +150,36 @@ double evaluate(const Block& block, CodeRange code, const ParameterStore& parame
           // rs274ngc: (int)(x + 0.5) for x >= 0, (int)(x - 0.5) otherwise
           x = std::trunc(x + (x < 0.0 ? -0.5 : 0.5));
           break;
-        case ExprOp::sin: x = std::sin(x * kPi / 180.0); break;
+        case ExprOp::sin:
+          x = std::sin(x * kPi / 180.0);
+          break;
         case ExprOp::sqrt:
-          if (x < 0.0)
-            fail_at(site, c.column, fmt::format("SQRT of {} (must not be negative)", x));
+          if (x < 0.0) fail_at(site, c.column, fmt::format("SQRT of {} (must not be negative)", x));
           x = std::sqrt(x);
           break;
-        case ExprOp::tan: x = std::tan(x * kPi / 180.0); break;
-        default: break;
+        case ExprOp::tan:
+          x = std::tan(x * kPi / 180.0);
+          break;
+        default:
+          break;
       }
     } else {
       need(2, c);
       const double b = stack[--top];
       double& a = stack[top - 1];
       switch (c.op) {
-        case ExprOp::atan: a = std::atan2(a, b) * 180.0 / kPi; break;
+        case ExprOp::atan:
+          a = std::atan2(a, b) * 180.0 / kPi;
+          break;
         case ExprOp::power:
           if (a < 0.0 && std::floor(b) != b)
             fail_at(site, c.column,
                     fmt::format("negative number {} raised to the non-integer power {}", a, b));
           a = std::pow(a, b);
           break;
-        case ExprOp::times: a = a * b; break;
+        case ExprOp::times:
+          a = a * b;
+          break;
         case ExprOp::divide:
           if (b == 0.0) fail_at(site, c.column, "division by zero");
           a = a / b;
@@ -154,25 +190,49 @@ double evaluate(const Block& block, CodeRange code, const ParameterStore& parame
           a = std::fmod(a, b);
           if (a < 0.0) a += std::abs(b);
           break;
-        case ExprOp::plus: a = a + b; break;
-        case ExprOp::minus: a = a - b; break;
-        case ExprOp::eq: a = std::abs(a - b) < kToleranceEqual ? 1.0 : 0.0; break;
-        case ExprOp::ne: a = std::abs(a - b) >= kToleranceEqual ? 1.0 : 0.0; break;
-        case ExprOp::gt: a = a > b ? 1.0 : 0.0; break;
-        case ExprOp::ge: a = a >= b ? 1.0 : 0.0; break;
-        case ExprOp::lt: a = a < b ? 1.0 : 0.0; break;
-        case ExprOp::le: a = a <= b ? 1.0 : 0.0; break;
-        case ExprOp::and_: a = (a == 0.0 || b == 0.0) ? 0.0 : 1.0; break;
-        case ExprOp::or_: a = (a != 0.0 || b != 0.0) ? 1.0 : 0.0; break;
-        case ExprOp::xor_: a = ((a == 0.0) != (b == 0.0)) ? 1.0 : 0.0; break;
-        default: break;
+        case ExprOp::plus:
+          a = a + b;
+          break;
+        case ExprOp::minus:
+          a = a - b;
+          break;
+        case ExprOp::eq:
+          a = std::abs(a - b) < kToleranceEqual ? 1.0 : 0.0;
+          break;
+        case ExprOp::ne:
+          a = std::abs(a - b) >= kToleranceEqual ? 1.0 : 0.0;
+          break;
+        case ExprOp::gt:
+          a = a > b ? 1.0 : 0.0;
+          break;
+        case ExprOp::ge:
+          a = a >= b ? 1.0 : 0.0;
+          break;
+        case ExprOp::lt:
+          a = a < b ? 1.0 : 0.0;
+          break;
+        case ExprOp::le:
+          a = a <= b ? 1.0 : 0.0;
+          break;
+        case ExprOp::and_:
+          a = (a == 0.0 || b == 0.0) ? 0.0 : 1.0;
+          break;
+        case ExprOp::or_:
+          a = (a != 0.0 || b != 0.0) ? 1.0 : 0.0;
+          break;
+        case ExprOp::xor_:
+          a = ((a == 0.0) != (b == 0.0)) ? 1.0 : 0.0;
+          break;
+        default:
+          break;
       }
     }
     if (!std::isfinite(stack[top - 1]))
       fail_at(site, c.column, "the expression's value is not a finite number");
   }
-  if (top != 1) fail_at(site, code.begin < code.end ? block.code[code.begin].column : 0,
-                        "malformed expression");
+  if (top != 1)
+    fail_at(site, code.begin < code.end ? block.code[code.begin].column : 0,
+            "malformed expression");
   return stack[0];
 }
 

@@ -18,7 +18,7 @@ class ParameterStore {
  public:
   // #1 .. #5601, as LinuxCNC 2.9 (RS274NGC_MAX_PARAMETERS 5602).
   static constexpr int kCount = 5602;
-  static constexpr int kCallArguments = 30;   // #1 .. #30 are a subroutine's arguments
+  static constexpr int kCallArguments = 30;  // #1 .. #30 are a subroutine's arguments
 
   ParameterStore();
 

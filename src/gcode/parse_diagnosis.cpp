@@ -118,8 +118,7 @@ std::string explain_letter(std::string_view line, std::size_t stop, const ast::L
       return "word 'E' is not supported";
     case 'O': {
       const std::size_t i = skip_blanks(line, stop + 1);
-      if (!only_block_delete_before(items))
-        return "an O-word must be the first word of its line";
+      if (!only_block_delete_before(items)) return "an O-word must be the first word of its line";
       if (i < line.size() && line[i] == '<')
         return "bad O-word: o<name> must be followed by sub, endsub, return, call, if, elseif, "
                "else, endif, do, while, endwhile, repeat, endrepeat, break or continue and its "

@@ -26,8 +26,8 @@
 #include <fstream>
 #include <initializer_list>
 #include <map>
-#include <optional>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "abbe/gcode/parser.hpp"
@@ -234,9 +234,8 @@ class Runner {
     if (l == nullptr) fail(at, fmt::format("{} without its opening line", what(o)));
     for (OKeyword k : keywords)
       if (l->keyword == k) return *l;
-    fail(at, fmt::format("{} does not match the {} {} in line {}", what(o),
-                         label_text(o.label), o_keyword_name(l->keyword),
-                         line_at(l->at).block.line));
+    fail(at, fmt::format("{} does not match the {} {} in line {}", what(o), label_text(o.label),
+                         o_keyword_name(l->keyword), line_at(l->at).block.line));
   }
 
   void skip_to(const std::string& label, const Place& from) {
@@ -309,16 +308,25 @@ class Runner {
     const OWord& o = line_at(skip_start_).block.o;
     const char* missing = "its end";
     switch (o.keyword) {
-      case OKeyword::sub: missing = "endsub"; break;
+      case OKeyword::sub:
+        missing = "endsub";
+        break;
       case OKeyword::if_:
       case OKeyword::elseif:
-      case OKeyword::else_: missing = "endif"; break;
-      case OKeyword::while_: missing = "endwhile"; break;
-      case OKeyword::repeat: missing = "endrepeat"; break;
-      default: break;
+      case OKeyword::else_:
+        missing = "endif";
+        break;
+      case OKeyword::while_:
+        missing = "endwhile";
+        break;
+      case OKeyword::repeat:
+        missing = "endrepeat";
+        break;
+      default:
+        break;
     }
-    fail(skip_start_, fmt::format("{} without {} (the file ends while skipping to it)", what(o),
-                                  missing));
+    fail(skip_start_,
+         fmt::format("{} without {} (the file ends while skipping to it)", what(o), missing));
   }
 
   void run_from(Place pc) {
@@ -331,8 +339,7 @@ class Runner {
       }
       Block& b = l->block;
       if (b.o.keyword == OKeyword::none) {
-        if (skipping_.empty() && skipping_to_sub_.empty())
-          execute(b, l->text, pc.source->file);
+        if (skipping_.empty() && skipping_to_sub_.empty()) execute(b, l->text, pc.source->file);
         ++pc.index;
         continue;
       }
@@ -378,8 +385,8 @@ class Runner {
         skipping_to_sub_.clear();
         if (!frames_.empty()) return;  // entering a called subroutine
         if (defining_sub_) fail(here, "a subroutine definition inside another one");
-        if (Label* l = find(o.label); l != nullptr && !(l->at.source == here.source &&
-                                                       l->at.index == here.index))
+        if (Label* l = find(o.label);
+            l != nullptr && !(l->at.source == here.source && l->at.index == here.index))
           fail(here, fmt::format("{} is defined twice (first in line {})", label_text(o.label),
                                  line_at(l->at).block.line));
         remember(here);
@@ -390,8 +397,7 @@ class Runner {
       case OKeyword::endsub:
       case OKeyword::return_: {
         if (frames_.empty()) {
-          if (!defining_sub_)
-            fail(here, fmt::format("{} outside a subroutine", what(o)));
+          if (!defining_sub_) fail(here, fmt::format("{} outside a subroutine", what(o)));
           if (o.keyword == OKeyword::endsub) {  // end of a definition
             skipping_.clear();
             defining_sub_ = false;

@@ -143,9 +143,9 @@ TEST(BadInputGenerated, TenMegabyteCommentIsFineButTheNextLineIsNot) {
   // A long comment is accepted; the error on the following line proves that
   // the comment line was read and passed.
   const TempFile file("long-comment.nc", "G21 (" + std::string(10U << 20, 'c') + ")\nG0 X#\n");
-  EXPECT_NE(refusal_text_of_file(file).find(
-                "long-comment.nc:2:5: error: bad parameter in word 'X'"),
-            std::string::npos);
+  EXPECT_NE(
+      refusal_text_of_file(file).find("long-comment.nc:2:5: error: bad parameter in word 'X'"),
+      std::string::npos);
 }
 
 TEST(BadInputGenerated, NulByte) {

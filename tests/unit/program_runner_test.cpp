@@ -48,7 +48,7 @@ TEST(Expressions, PrecedenceAndAssociativity) {
   EXPECT_DOUBLE_EQ(x_of("[1+1 EQ 2]"), 1.0);
   EXPECT_DOUBLE_EQ(x_of("[1 LT 2 AND 3 GT 4]"), 0.0);
   EXPECT_DOUBLE_EQ(x_of("[1 OR 0 XOR 1]"), 0.0);  // (1 OR 0) XOR 1
-  EXPECT_DOUBLE_EQ(x_of("[-7 MOD 3]"), 2.0);       // non-negative, as rs274ngc
+  EXPECT_DOUBLE_EQ(x_of("[-7 MOD 3]"), 2.0);      // non-negative, as rs274ngc
   EXPECT_DOUBLE_EQ(x_of("[7 mod 3]"), 1.0);
   EXPECT_DOUBLE_EQ(x_of("-[2]"), -2.0);
   EXPECT_DOUBLE_EQ(x_of("[1 - -2]"), 3.0);
@@ -105,13 +105,13 @@ TEST(ControlFlow, SubroutineWithArgumentsAndLocalScope) {
   EXPECT_DOUBLE_EQ(e[0].x(), 2.0);
   EXPECT_DOUBLE_EQ(e[0].y(), 5.0);
   EXPECT_DOUBLE_EQ(e[1].x(), 6.0);
-  EXPECT_DOUBLE_EQ(e[1].y(), 0.0);   // #2 not passed: 0
-  EXPECT_DOUBLE_EQ(e[2].z(), 100.0); // #1 restored after the calls
+  EXPECT_DOUBLE_EQ(e[1].y(), 0.0);    // #2 not passed: 0
+  EXPECT_DOUBLE_EQ(e[2].z(), 100.0);  // #1 restored after the calls
 }
 
 TEST(ControlFlow, CallBeforeDefinitionAndReturnValue) {
-  const auto e = ends(
-      "G21\no100 call [4]\nG0 X#<_value>\nM2\no100 sub\no100 return [#1*#1]\no100 endsub\n");
+  const auto e =
+      ends("G21\no100 call [4]\nG0 X#<_value>\nM2\no100 sub\no100 return [#1*#1]\no100 endsub\n");
   ASSERT_EQ(e.size(), 1u);
   EXPECT_DOUBLE_EQ(e[0].x(), 16.0);
 }
@@ -147,8 +147,8 @@ TEST(ControlFlow, IfElseifElse) {
   const std::string p =
       "G21\n#1=VALUE\no1 if [#1 LT 0]\nG0 X-1\no1 elseif [#1 EQ 0]\nG0 X0.5\no1 else\nG0 X1\n"
       "o1 endif\nG0 Y9\n";
-  for (const auto& [value, x] : std::vector<std::pair<std::string, double>>{
-           {"-3", -1.0}, {"0", 0.5}, {"2", 1.0}}) {
+  for (const auto& [value, x] :
+       std::vector<std::pair<std::string, double>>{{"-3", -1.0}, {"0", 0.5}, {"2", 1.0}}) {
     std::string q = p;
     q.replace(q.find("VALUE"), 5, value);
     const auto e = ends(q);
@@ -183,18 +183,21 @@ TEST(ControlFlow, LoopLimitIsAClearError) {
   } catch (const abbe::InputError& e) {
     what = e.what();
   }
-  EXPECT_NE(what.find("t.ngc:4:1: error: more than 100 loop iterations (o1 endwhile)"), std::string::npos)
+  EXPECT_NE(what.find("t.ngc:4:1: error: more than 100 loop iterations (o1 endwhile)"),
+            std::string::npos)
       << what;
 }
 
 TEST(Errors, NameFileLineAndColumn) {
   EXPECT_NE(error_of("G0 X[1/0]\n").find("t.ngc:1:7: error: division by zero"), std::string::npos);
-  EXPECT_NE(error_of("G0 X#<nope>\n").find("t.ngc:1:5: error: named parameter #<nope> is not defined"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of("G0 X#<nope>\n").find("t.ngc:1:5: error: named parameter #<nope> is not defined"),
+      std::string::npos);
   EXPECT_NE(error_of("#0 = 1\n").find("t.ngc:1:1: error: parameter number #0 is out of range"),
             std::string::npos);
-  EXPECT_NE(error_of("o9 endwhile\n").find("t.ngc:1:1: error: o9 endwhile without its opening line"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of("o9 endwhile\n").find("t.ngc:1:1: error: o9 endwhile without its opening line"),
+      std::string::npos);
   EXPECT_NE(error_of("G0 X[ACOS[2]]\n").find("t.ngc:1:6: error: ACOS of 2"), std::string::npos);
 }
 

@@ -25,8 +25,8 @@ class FlowProgramGenerator {
   bool chance(double p) { return uniform(0, 1) < p; }
   void line(const std::string& s);
   std::string number();
-  std::string term(int depth);          // any finite value
-  std::string coordinate();            // a value within +-40
+  std::string term(int depth);  // any finite value
+  std::string coordinate();     // a value within +-40
   std::string condition();
   std::string new_label();
   void statement(int depth);
@@ -34,8 +34,8 @@ class FlowProgramGenerator {
 
   std::mt19937 rng_;
   std::string text_;
-  std::vector<std::string> params_;     // parameters that are defined
-  std::vector<std::string> subs_;       // subroutine names
+  std::vector<std::string> params_;  // parameters that are defined
+  std::vector<std::string> subs_;    // subroutine names
   int labels_ = 100;
   int indent_ = 0;
 };

@@ -1,13 +1,12 @@
 // gen_flow_programs COUNT DIR [FIRST_SEED]: writes COUNT random but valid
 // programs with parameters, expressions and O-word control flow
 // (flow_program_generator.hpp) as DIR/flow-NNNN.ngc, seeds FIRST_SEED.. (default 1).
-#include "tools/gen/flow_program_generator.hpp"
-
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 
-#include <cmath>
-#include <cstdio>
+#include "tools/gen/flow_program_generator.hpp"
 
 namespace abbe::gen {
 
@@ -27,7 +26,9 @@ std::string FlowProgramGenerator::term(int depth) {
     case 0:
       return number();
     case 1:
-      return params_.empty() ? number() : params_[static_cast<std::size_t>(pick(static_cast<int>(params_.size())))];
+      return params_.empty()
+                 ? number()
+                 : params_[static_cast<std::size_t>(pick(static_cast<int>(params_.size())))];
     case 2: {
       static const char* kOps[] = {"+", "-", "*"};
       return "[" + term(depth - 1) + " " + kOps[pick(3)] + " " + term(depth - 1) + "]";
@@ -86,9 +87,15 @@ void FlowProgramGenerator::statement(int depth) {
     case 0: {
       std::string p;
       switch (pick(3)) {
-        case 0: p = "#" + std::to_string(31 + pick(20)); break;
-        case 1: p = "#<v" + std::to_string(pick(5)) + ">"; break;
-        default: p = "#<_g" + std::to_string(pick(5)) + ">"; break;
+        case 0:
+          p = "#" + std::to_string(31 + pick(20));
+          break;
+        case 1:
+          p = "#<v" + std::to_string(pick(5)) + ">";
+          break;
+        default:
+          p = "#<_g" + std::to_string(pick(5)) + ">";
+          break;
       }
       line(p + " = " + term(3));
       // A named parameter is read later only if it is surely defined: set
@@ -166,7 +173,8 @@ void FlowProgramGenerator::statement(int depth) {
         moves();
         break;
       }
-      std::string call = "o<" + subs_[static_cast<std::size_t>(pick(static_cast<int>(subs_.size())))] + "> call";
+      std::string call =
+          "o<" + subs_[static_cast<std::size_t>(pick(static_cast<int>(subs_.size())))] + "> call";
       const int args = pick(4);
       for (int a = 0; a < args; ++a) call += " [" + term(2) + "]";
       line(call);

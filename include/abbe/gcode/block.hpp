@@ -38,15 +38,13 @@ struct Block {
 
   // Parameters, expressions and O-words (LinuxCNC dialect,
   // gcode/expression.hpp): all empty for a plain block.
-  std::vector<ExprCode> code;                     // the postfix code of every expression
-  std::vector<std::string> names;                 // named parameters the code refers to
-  std::vector<WordExpression> word_expressions;   // words whose value is computed
-  std::vector<ParameterSetting> settings;         // #n = ..., in the order written
-  OWord o;                                        // o.keyword == none: no O-word
+  std::vector<ExprCode> code;                    // the postfix code of every expression
+  std::vector<std::string> names;                // named parameters the code refers to
+  std::vector<WordExpression> word_expressions;  // words whose value is computed
+  std::vector<ParameterSetting> settings;        // #n = ..., in the order written
+  OWord o;                                       // o.keyword == none: no O-word
 
-  bool has_code() const {
-    return !code.empty() || !names.empty() || o.keyword != OKeyword::none;
-  }
+  bool has_code() const { return !code.empty() || !names.empty() || o.keyword != OKeyword::none; }
 };
 
 }  // namespace abbe::gcode

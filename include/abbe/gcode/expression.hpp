@@ -13,18 +13,41 @@
 namespace abbe::gcode {
 
 enum class ExprOp : std::uint8_t {
-  number,       // push value
-  parameter,    // pop an index, push #index (numbered parameter)
-  named,        // push #<names[arg]>
-  exists,       // push 1 if #<names[arg]> is defined, else 0
-  negate,       // unary minus
+  number,     // push value
+  parameter,  // pop an index, push #index (numbered parameter)
+  named,      // push #<names[arg]>
+  exists,     // push 1 if #<names[arg]> is defined, else 0
+  negate,     // unary minus
   // functions of one argument (angles in degrees, as rs274ngc)
-  abs, acos, asin, cos, exp, fix, fup, ln, round, sin, sqrt, tan,
+  abs,
+  acos,
+  asin,
+  cos,
+  exp,
+  fix,
+  fup,
+  ln,
+  round,
+  sin,
+  sqrt,
+  tan,
   atan,  // ATAN[a]/[b]: pops b, then a; pushes atan2(a, b) in degrees
   // binary operators: pop right, then left; push the result
-  power, times, divide, modulo, plus, minus,
-  eq, ne, gt, ge, lt, le,
-  and_, or_, xor_,
+  power,
+  times,
+  divide,
+  modulo,
+  plus,
+  minus,
+  eq,
+  ne,
+  gt,
+  ge,
+  lt,
+  le,
+  and_,
+  or_,
+  xor_,
 };
 
 struct ExprCode {
@@ -57,15 +80,29 @@ struct ParameterSetting {
 };
 
 enum class OKeyword : std::uint8_t {
-  none, sub, endsub, call, return_, do_, while_, endwhile,
-  if_, elseif, else_, endif, break_, continue_, repeat, endrepeat,
+  none,
+  sub,
+  endsub,
+  call,
+  return_,
+  do_,
+  while_,
+  endwhile,
+  if_,
+  elseif,
+  else_,
+  endif,
+  break_,
+  continue_,
+  repeat,
+  endrepeat,
 };
 
 // An O-word control-flow line: o100 if [...], o<name> call [1] [2], ...
 struct OWord {
   OKeyword keyword = OKeyword::none;
   std::string label;  // "100" for o100 (leading zeros dropped), "name" for o<Name> (lower case)
-  std::uint32_t column = 0;        // of the 'o'
+  std::uint32_t column = 0;  // of the 'o'
   std::uint32_t keyword_column = 0;
   std::vector<CodeRange> args;  // the [...] after the keyword, in order
 };
