@@ -1,8 +1,8 @@
 // Quantiles of the diagnosis' significance floor (Boost.Math), against
 // tabulated values (NIST/SEMATECH e-Handbook, tables 1.3.6.7.1 and 1.3.6.7.4).
-#include <gtest/gtest.h>
-
 #include "abbe/diagnose/statistics.hpp"
+
+#include <gtest/gtest.h>
 
 using abbe::diagnose::chi2_upper_quantile;
 using abbe::diagnose::normal_upper_quantile;
