@@ -280,9 +280,13 @@ std::string iso230_to_text(const std::vector<Iso230Result>& results) {
   std::string out =
       fmt::format("{:<4} {:<5} {:>4} {:>7} {:>4} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9}\n", "axis",
                   "comp", "unit", "targets", "runs", "A", "R", "B_mean", "M", "B", "E");
+  // The text spells units as the docs do (µm, µrad); JSON keeps its ASCII ids.
+  auto shown = [](const std::string& unit) {
+    return unit == "um" ? std::string("µm") : unit == "urad" ? std::string("µrad") : unit;
+  };
   for (const Iso230Result& r : results)
     out += fmt::format("{:<4} {:<5} {:>4} {:>7} {:>4} {} {} {} {} {} {}\n", r.axis, r.component,
-                       r.unit, r.targets.size(), r.runs, f(r.A), f(r.R), f(r.B_mean), f(r.M),
+                       shown(r.unit), r.targets.size(), r.runs, f(r.A), f(r.R), f(r.B_mean), f(r.M),
                        f(r.B), f(r.E));
   return out;
 }
