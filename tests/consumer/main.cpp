@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
     abbe::pipeline::ModelSet models(machine, {abbe::model::ModelKind::ae_arm});
     abbe::model::EvalPoint point;
     point.p = {std::atof(argv[2]), std::atof(argv[3]), std::atof(argv[4])};
+    point.tool_length = machine.tool_length();  // as abbe predict for a CSV point
     models.evaluate(point, "consumer", 1);
     const Eigen::Vector3d e = models.deviations().at(0).e_um;
     std::cout << "consumer: |e| = " << e.norm() << " µm\n";
