@@ -64,6 +64,19 @@ file(WRITE ${WORK}/comp.ngc "${OUT}")
 run_stdin(0 ${WORK}/comp.ngc ${ABBE} verify - --against ${program} --machine ${machine} --check)
 run(1 ${ABBE} compensate - --machine ${machine} --in-place)
 
+# diagnose: measured data from stdin, the JSON report on stdout, the summary
+# on stderr; the old --out still works.
+run_stdin(0 ${SRC}/machines/sample/measured-grid.csv
+          ${ABBE} diagnose --machine ${machine} --measured - -o -)
+if(NOT OUT MATCHES "^{" OR NOT ERR MATCHES "points")
+  message(FATAL_ERROR "diagnose --measured - -o -: unexpected streams:\n${OUT}\n---\n${ERR}")
+endif()
+run(0 ${ABBE} diagnose --machine ${machine} --measured ${SRC}/machines/sample/measured-grid.csv
+    --out ${WORK}/diagnosis.json -q)
+if(NOT EXISTS ${WORK}/diagnosis.json)
+  message(FATAL_ERROR "diagnose --out (hidden alias) wrote nothing")
+endif()
+
 # A failed check: exit 4, not the 1 of bad input.
 run(4 ${ABBE} verify ${program} --against ${program} --machine ${machine} --check)
 
