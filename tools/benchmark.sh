@@ -13,9 +13,8 @@
 # RSS (/usr/bin/time -f %M) of `abbe path` at each size.
 #
 # rs274 comes from the Debian package linuxcnc-uspace, unpacked (not
-# installed): $ABBE_LINUXCNC_DIR, else the interop test's cache
-# (build/*/interop/linuxcnc), else `apt-get download` + `dpkg -x` into
-# build/linuxcnc. Without it the rs274 column says n/a.
+# installed) by `tools/install-deps.sh --test` into $ABBE_LINUXCNC_DIR
+# (default /opt/abbe/linuxcnc). Without it the rs274 column says n/a.
 #
 # usage: tools/benchmark.sh [SIZES...]   (default: 10000 100000 1000000)
 # env:   ABBE_BENCH_DIR (default build/bench), ABBE_BENCH_REPEAT (default 3),
@@ -31,7 +30,7 @@ mkdir -p "$work"
 
 build=${ABBE_BENCH_BUILD:-$root/build/release}
 echo "== building Release ($build, -j2)"
-cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DABBE_BUILD_TESTS=OFF >/dev/null
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DABBE_BUILD_GENERATORS=ON >/dev/null
 cmake --build "$build" -j2 --target abbe gen_program >/dev/null
 abbe=$build/abbe
 gen=$build/gen_program
@@ -39,19 +38,11 @@ gen=$build/gen_program
 # ---- rs274 ----
 rs274=""
 lcnc=""
-for d in "${ABBE_LINUXCNC_DIR:-}" "$root"/build/*/interop/linuxcnc "$root/build/linuxcnc"; do
+for d in "${ABBE_LINUXCNC_DIR:-/opt/abbe/linuxcnc}"; do
   if [ -n "$d" ] && [ -x "$d/usr/bin/rs274" ]; then lcnc=$d; break; fi
 done
 if [ -z "$lcnc" ]; then
-  echo "== fetching linuxcnc-uspace into build/linuxcnc (apt-get download, dpkg -x)"
-  if (cd "$work" && rm -f linuxcnc-uspace_*.deb && apt-get download linuxcnc-uspace >/dev/null 2>&1); then
-    rm -rf "$root/build/linuxcnc.tmp"
-    dpkg -x "$work"/linuxcnc-uspace_*.deb "$root/build/linuxcnc.tmp" &&
-      mv "$root/build/linuxcnc.tmp" "$root/build/linuxcnc" && lcnc=$root/build/linuxcnc
-    rm -f "$work"/linuxcnc-uspace_*.deb
-  else
-    echo "   (not available: rs274 columns are n/a)"
-  fi
+  echo "   (no rs274: tools/install-deps.sh --test unpacks it; rs274 columns are n/a)"
 fi
 if [ -n "$lcnc" ]; then
   rs274=$lcnc/usr/bin/rs274

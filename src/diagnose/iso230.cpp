@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "abbe/io/csv_reader.hpp"
 #include "abbe/io/input_error.hpp"
 
 namespace abbe::diagnose {
@@ -19,30 +20,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 const char* const kColumns[] = {"axis", "component", "target_mm", "run", "direction", "deviation"};
-
-struct Cell {
-  std::string text;
-  std::size_t column = 0;  // 1-based
-};
-
-std::vector<Cell> split_line(const std::string& line) {
-  std::vector<Cell> cells;
-  std::size_t start = 0;
-  for (std::size_t i = 0; i <= line.size(); ++i) {
-    if (i == line.size() || line[i] == ',') {
-      std::string t = line.substr(start, i - start);
-      std::size_t col = start + 1;
-      while (!t.empty() && (t.front() == ' ' || t.front() == '\t')) {
-        t.erase(t.begin());
-        ++col;
-      }
-      while (!t.empty() && (t.back() == ' ' || t.back() == '\t')) t.pop_back();
-      cells.push_back({t, col});
-      start = i + 1;
-    }
-  }
-  return cells;
-}
 
 [[noreturn]] void fail(const std::string& file, std::size_t line, std::size_t column,
                        const std::string& field, const std::string& source,
@@ -72,91 +49,71 @@ double stddev_of(const std::vector<double>& v, double mean) {
 }  // namespace
 
 std::vector<Iso230Reading> read_iso230_runs(std::istream& in, const std::string& file) {
-  std::string line;
-  std::size_t line_no = 0;
-  // Header (the first non-empty line).
+  // io::CsvReader: BOM, `,` `;` or tab, quotes, header names in any case, CRLF.
+  io::CsvReader csv(in, file);
+  csv.read_header();
   std::array<std::size_t, 6> index{};
-  std::size_t n_columns = 0;
-  bool have_header = false;
-  std::vector<Iso230Reading> out;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.find_first_not_of(" \t") == std::string::npos) continue;
-    const auto cells = split_line(line);
-    if (!have_header) {
-      n_columns = cells.size();
-      std::set<std::string> seen;
-      for (int c = 0; c < 6; ++c) {
-        auto it = std::find_if(cells.begin(), cells.end(),
-                               [&](const Cell& cell) { return cell.text == kColumns[c]; });
-        if (it == cells.end())
-          fail(file, line_no, 1, kColumns[c], line,
+  for (int c = 0; c < 6; ++c) {
+    const auto at = csv.column(kColumns[c]);
+    if (!at)
+      csv.fail(1, kColumns[c],
                fmt::format("header lacks column '{}' (expected "
                            "axis,component,target_mm,run,direction,deviation)",
                            kColumns[c]));
-        index[static_cast<std::size_t>(c)] = static_cast<std::size_t>(it - cells.begin());
-      }
-      for (const Cell& cell : cells) {
-        if (std::find(std::begin(kColumns), std::end(kColumns), cell.text) == std::end(kColumns))
-          fail(file, line_no, cell.column, cell.text, line,
-               fmt::format("unknown column '{}'", cell.text));
-        if (!seen.insert(cell.text).second)
-          fail(file, line_no, cell.column, cell.text, line,
-               fmt::format("column '{}' appears twice", cell.text));
-      }
-      have_header = true;
-      continue;
-    }
+    index[static_cast<std::size_t>(c)] = *at;
+  }
+  const std::size_t n_columns = csv.header_names().size();
+  for (std::size_t i = 0; i < n_columns; ++i) {
+    const std::string& name = csv.header_names()[i];
+    if (std::find(std::begin(kColumns), std::end(kColumns), name) == std::end(kColumns))
+      csv.fail(csv.fields()[i].column, name, fmt::format("unknown column '{}'", name));
+  }
+  std::vector<Iso230Reading> out;
+  while (csv.next()) {
+    const std::vector<io::CsvField>& cells = csv.fields();
     if (cells.size() != n_columns)
-      fail(file, line_no, 1, "", line,
-           fmt::format("expected {} fields, found {}", n_columns, cells.size()));
-    auto cell = [&](int c) -> const Cell& { return cells[index[static_cast<std::size_t>(c)]]; };
+      csv.fail(1, "", fmt::format("expected {} fields, found {}", n_columns, cells.size()));
+    auto cell = [&](int c) -> const io::CsvField& {
+      return cells[index[static_cast<std::size_t>(c)]];
+    };
     auto number = [&](int c) {
-      const Cell& x = cell(c);
-      errno = 0;
-      char* end = nullptr;
-      const double v = std::strtod(x.text.c_str(), &end);
-      if (x.text.empty() || end != x.text.c_str() + x.text.size() || errno != 0 ||
-          !std::isfinite(v))
-        fail(file, line_no, x.column, kColumns[c], line,
-             fmt::format("'{}' is not a number", x.text));
-      return v;
+      const io::CsvField& x = cell(c);
+      const auto v = io::parse_csv_number(x.text);
+      if (!v) csv.fail(x.column, kColumns[c], fmt::format("'{}' is not a number", x.text));
+      return *v;
     };
     Iso230Reading r;
-    r.line = line_no;
-    const Cell& axis = cell(0);
+    r.line = csv.line();
+    const io::CsvField& axis = cell(0);
     if (axis.text != "X" && axis.text != "Y" && axis.text != "Z")
-      fail(file, line_no, axis.column, "axis", line,
-           fmt::format("axis '{}' is not X, Y or Z", axis.text));
+      csv.fail(axis.column, "axis", fmt::format("axis '{}' is not X, Y or Z", axis.text));
     r.axis = axis.text[0];
-    const Cell& comp = cell(1);
+    const io::CsvField& comp = cell(1);
     const std::string dirs = "XYZABC";
     if (comp.text.size() != 3 || comp.text[0] != 'E' ||
         dirs.find(comp.text[1]) == std::string::npos || comp.text[2] != r.axis)
-      fail(file, line_no, comp.column, "component", line,
-           fmt::format("component '{}' is not a component of axis {} (EX{}, EY{}, …, EC{})",
-                       comp.text, r.axis, r.axis, r.axis, r.axis));
-    r.component = comp.text;
+      csv.fail(comp.column, "component",
+               fmt::format("component '{}' is not a component of axis {} (EX{}, EY{}, …, EC{})",
+                           comp.text, r.axis, r.axis, r.axis, r.axis));
+    r.component = std::string(comp.text);
     r.target_mm = number(2);
     const double run = number(3);
     if (run < 1.0 || run != std::floor(run) || run > 1e6)
-      fail(file, line_no, cell(3).column, "run", line,
-           fmt::format("run '{}' is not a positive integer", cell(3).text));
+      csv.fail(cell(3).column, "run",
+               fmt::format("run '{}' is not a positive integer", cell(3).text));
     r.run = static_cast<int>(run);
-    const std::string& d = cell(4).text;
+    const std::string_view d = cell(4).text;
     if (d == "up" || d == "fwd")
       r.dir = +1;
     else if (d == "down" || d == "rev")
       r.dir = -1;
     else
-      fail(file, line_no, cell(4).column, "direction", line,
-           fmt::format("direction '{}' is not up, down, fwd or rev", d));
+      csv.fail(cell(4).column, "direction",
+               fmt::format("direction '{}' is not up, down, fwd or rev", d));
     r.deviation = number(5);
     out.push_back(r);
   }
-  if (!have_header) fail(file, 0, 0, "", "", "empty file: expected a header line");
-  if (out.empty()) fail(file, line_no, 0, "", "", "no runs after the header");
+  if (out.empty()) csv.fail(0, "", "no runs after the header");
   return out;
 }
 
@@ -323,9 +280,13 @@ std::string iso230_to_text(const std::vector<Iso230Result>& results) {
   std::string out =
       fmt::format("{:<4} {:<5} {:>4} {:>7} {:>4} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9}\n", "axis",
                   "comp", "unit", "targets", "runs", "A", "R", "B_mean", "M", "B", "E");
+  // The text spells units as the docs do (µm, µrad); JSON keeps its ASCII ids.
+  auto shown = [](const std::string& unit) {
+    return unit == "um" ? std::string("µm") : unit == "urad" ? std::string("µrad") : unit;
+  };
   for (const Iso230Result& r : results)
     out += fmt::format("{:<4} {:<5} {:>4} {:>7} {:>4} {} {} {} {} {} {}\n", r.axis, r.component,
-                       r.unit, r.targets.size(), r.runs, f(r.A), f(r.R), f(r.B_mean), f(r.M),
+                       shown(r.unit), r.targets.size(), r.runs, f(r.A), f(r.R), f(r.B_mean), f(r.M),
                        f(r.B), f(r.E));
   return out;
 }

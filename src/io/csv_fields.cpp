@@ -9,15 +9,4 @@ std::string_view trim_blanks(std::string_view s) {
   return s;
 }
 
-std::vector<CsvField> split_csv_line(std::string_view line) {
-  std::vector<CsvField> out;
-  std::size_t start = 0;
-  for (std::size_t i = 0; i <= line.size(); ++i)
-    if (i == line.size() || line[i] == ',') {
-      out.push_back({line.substr(start, i - start), start + 1});
-      start = i + 1;
-    }
-  return out;
-}
-
 }  // namespace abbe::io

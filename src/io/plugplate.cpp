@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 #include <vector>
 
@@ -96,6 +97,7 @@ MeasuredData read_plugplate(std::istream& in, const std::string& file) {
 }
 
 MeasuredData load_plugplate(const std::string& path) {
+  if (path == "-") return read_plugplate(std::cin, "-");
   std::ifstream in(path, std::ios::binary);
   if (!in)
     throw InputError({path, 0, 0, "", ""},

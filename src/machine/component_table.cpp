@@ -9,7 +9,7 @@
 #include <sstream>
 #include <string_view>
 
-#include "abbe/io/csv_fields.hpp"
+#include "abbe/io/csv_reader.hpp"
 #include "abbe/io/input_error.hpp"
 
 namespace abbe::machine {
@@ -46,48 +46,29 @@ ComponentTable ComponentTable::parse(const std::string& text, const std::string&
   table.file_ = file;
   table.slot_.fill(0);
 
-  std::string_view rest(text);
-  std::size_t line_no = 0;
-  bool header_seen = false;
-  std::array<io::CsvField, 5> fields;  // trimmed, with the column of their first character
-  std::string_view line;
-
+  // io::CsvReader: BOM, `,` `;` or tab, quotes, header names in any case,
+  // CRLF, `#` comment lines.
+  std::istringstream in(text);
+  io::CsvReader csv(in, file, io::CsvReader::Options{'#'});
+  csv.read_header();
+  for (std::size_t i = 0; i < csv.header_names().size() || i < kColumns.size(); ++i)
+    if (i >= csv.header_names().size() || i >= kColumns.size() ||
+        csv.header_names()[i] != kColumns[i])
+      csv.fail(i < csv.fields().size() ? csv.fields()[i].column : 1, "header",
+               "the header must be \"axis,component,position_mm,direction,value\"");
   auto error = [&](std::size_t column, std::string_view field, const std::string& msg) {
-    throw InputError(
-        {file, line_no, column, std::string(field), std::string(io::trim_blanks(line))}, msg);
+    csv.fail(column, field, msg);
   };
 
-  while (!rest.empty()) {
-    std::size_t nl = rest.find('\n');
-    line = rest.substr(0, nl);
-    rest = nl == std::string_view::npos ? std::string_view{} : rest.substr(nl + 1);
-    ++line_no;
-    std::string_view content = io::trim_blanks(line);
-    if (content.empty() || content.front() == '#') continue;
-
-    // Split into exactly five fields.
-    std::size_t n = 0, start = 0;
-    for (std::size_t i = 0; i <= line.size(); ++i) {
-      if (i == line.size() || line[i] == ',') {
-        if (n == fields.size())
-          error(start + 1, "", fmt::format("more than {} fields", fields.size()));
-        std::string_view raw = line.substr(start, i - start);
-        std::size_t lead = 0;
-        while (lead < raw.size() && (raw[lead] == ' ' || raw[lead] == '\t')) ++lead;
-        fields[n++] = {io::trim_blanks(raw), start + lead + 1};
-        start = i + 1;
-      }
-    }
-    if (!header_seen) {
-      for (std::size_t i = 0; i < kColumns.size(); ++i)
-        if (i >= n || fields[i].text != kColumns[i])
-          error(i < n ? fields[i].column : 1, "header",
-                "the header must be \"axis,component,position_mm,direction,value\"");
-      header_seen = true;
-      continue;
-    }
-    if (n != fields.size())
-      error(line.size() + 1, kColumns[n], fmt::format("{} fields instead of 5", n));
+  while (csv.next()) {
+    const std::size_t line_no = csv.line();
+    const std::vector<io::CsvField>& fields = csv.fields();
+    const std::size_t n = fields.size();
+    if (n > kColumns.size())
+      error(fields[kColumns.size()].column, "",
+            fmt::format("more than {} fields", kColumns.size()));
+    if (n != kColumns.size())
+      error(csv.line_text().size() + 1, kColumns[n], fmt::format("{} fields instead of 5", n));
 
     auto axis = parse_axis(fields[0].text);
     if (!axis)
@@ -164,10 +145,6 @@ ComponentTable ComponentTable::parse(const std::string& text, const std::string&
     s.value.push_back(value);
     s.line.push_back(line_no);
   }
-  if (!header_seen)
-    throw InputError({file, 1, 1, "header", ""},
-                     "empty table: the header \"axis,component,position_mm,direction,value\" is "
-                     "required");
 
   // Whole-series checks: bidirectional pairs complete, units plausible.
   for (const ComponentSeries& s : table.series_) {

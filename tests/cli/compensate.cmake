@@ -61,8 +61,8 @@ foreach(f thesis-toolpath-1 thesis-toolpath-2 spline-slot spline-slot-corner inc
   endif()
 endforeach()
 
-# verify --check fails on the uncompensated program.
-run(1 ${ABBE} verify ${SRC}/nc-samples/thesis-toolpath-1.ngc
+# verify --check fails on the uncompensated program: exit 4 (a check failed).
+run(4 ${ABBE} verify ${SRC}/nc-samples/thesis-toolpath-1.ngc
     --against ${SRC}/nc-samples/thesis-toolpath-1.ngc --machine ${MACHINE} --check)
 
 # A program the front end refuses: the same message, exit 1, no output.

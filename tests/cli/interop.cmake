@@ -1,5 +1,5 @@
 # Interoperability test against LinuxCNC's standalone interpreter rs274
-# (Debian package linuxcnc-uspace, fetched once into the build tree).
+# (Debian package linuxcnc-uspace, unpacked by tools/install-deps.sh --test).
 # See docs/interop.md. ABBE_SKIP_INTEROP=1 skips it (reported as skipped).
 add_executable(abbe_canon_compare ${CMAKE_CURRENT_SOURCE_DIR}/interop/canon_compare.cpp)
 target_link_libraries(abbe_canon_compare PRIVATE abbe_warnings)

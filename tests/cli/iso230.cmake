@@ -7,7 +7,7 @@ if(NOT CMAKE_SCRIPT_MODE_FILE)
   add_test(NAME cli_iso230_text COMMAND $<TARGET_FILE:abbe> iso230 ${ABBE_ISO230_DATA}/hand.csv)
   set_tests_properties(cli_iso230_text PROPERTIES LABELS cli
     PASS_REGULAR_EXPRESSION
-    "X +EXX +um +2 +3 +9\\.000 +6\\.000 +-0\\.500 +3\\.500 +2\\.000 +5\\.000\nX +EBX +urad +2 +2 +- +- +- +- +- +-\n")
+    "X +EXX +µm +2 +3 +9\\.000 +6\\.000 +-0\\.500 +3\\.500 +2\\.000 +5\\.000\nX +EBX +µrad +2 +2 +- +- +- +- +- +-\n")
   add_test(NAME cli_iso230_json
            COMMAND $<TARGET_FILE:abbe> iso230 ${ABBE_ISO230_DATA}/hand.csv --per-target)
   set_tests_properties(cli_iso230_json PROPERTIES LABELS cli

@@ -29,9 +29,9 @@
 # <work>/results.md; with ABBE_INTEROP_REPORT=<absolute path of docs/interop.md> (or another
 # page with the result markers) they also replace that page's results.
 #
-# The package is fetched once with `apt-get download` and unpacked into
-# WORK_DIR. Without network the test fails loudly; ABBE_SKIP_INTEROP=1 skips
-# it (exit 77, reported by ctest as skipped).
+# rs274 comes from `tools/install-deps.sh --test` ($ABBE_LINUXCNC_DIR,
+# default /opt/abbe/linuxcnc). Without it the test fails loudly;
+# ABBE_SKIP_INTEROP=1 skips it (exit 77, reported by ctest as skipped).
 set -uo pipefail
 
 if [ $# -ne 4 ] && [ $# -ne 5 ] && [ $# -ne 7 ] && [ $# -ne 8 ]; then
@@ -60,18 +60,13 @@ fail() {
 }
 
 mkdir -p "$work" || fail "cannot create $work"
-lcnc="$work/linuxcnc"
+# rs274 is put in place by `tools/install-deps.sh --test` (the package
+# linuxcnc-uspace unpacked under $ABBE_LINUXCNC_DIR, default
+# /opt/abbe/linuxcnc); this test downloads nothing.
+lcnc=${ABBE_LINUXCNC_DIR:-/opt/abbe/linuxcnc}
 rs274="$lcnc/usr/bin/rs274"
-if [ ! -x "$rs274" ]; then
-  echo "interop: fetching linuxcnc-uspace (apt-get download, ~21 MB) into $work"
-  (cd "$work" && rm -f linuxcnc-uspace_*.deb && apt-get download linuxcnc-uspace) ||
-    fail "apt-get download linuxcnc-uspace did not work (no network or no Debian archive?)"
-  rm -rf "$lcnc.tmp"
-  dpkg -x "$work"/linuxcnc-uspace_*.deb "$lcnc.tmp" || fail "dpkg -x of linuxcnc-uspace failed"
-  dpkg-deb -f "$work"/linuxcnc-uspace_*.deb Version >"$lcnc.tmp/VERSION" 2>/dev/null
-  mv "$lcnc.tmp" "$lcnc" || fail "cannot move the unpacked package into place"
-  rm -f "$work"/linuxcnc-uspace_*.deb
-fi
+[ -x "$rs274" ] ||
+  fail "no rs274 in $lcnc: run tools/install-deps.sh --test (it unpacks linuxcnc-uspace there)"
 ncfiles="$lcnc/usr/share/linuxcnc/ncfiles"
 [ -d "$ncfiles" ] || fail "no ncfiles directory in the unpacked package ($ncfiles)"
 export LD_LIBRARY_PATH="$lcnc/usr/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"

@@ -43,6 +43,23 @@ TEST(MeasuredData, NormalDeviation) {
   EXPECT_THROW(read("x,y,z,dn\n0,0,0,2.5\n"), InputError);                 // no normal
 }
 
+TEST(MeasuredData, FilesAsSpreadsheetsSaveThem) {
+  // Excel "CSV UTF-8": BOM, upper-case header, CRLF, quoted numbers.
+  const MeasuredData a = read("\xEF\xBB\xBFX,Y,Z,DX\r\n\"1.5\",2,3,\"-0.5\"\r\n");
+  ASSERT_EQ(a.rows.size(), 1u);
+  EXPECT_EQ(a.rows[0].p, Eigen::Vector3d(1.5, 2, 3));
+  EXPECT_DOUBLE_EQ(a.rows[0].d[0], -0.5);
+  // A German-locale export: `;` separators, decimal commas.
+  const MeasuredData b = read("x;y;z;dz;set\n1,5;2;3;0,25;\"A;1\"\n");
+  EXPECT_EQ(b.rows[0].p, Eigen::Vector3d(1.5, 2, 3));
+  EXPECT_DOUBLE_EQ(b.rows[0].d[2], 0.25);
+  EXPECT_EQ(b.rows[0].set, "A;1");
+  // Tab-separated, with a comment line.
+  const MeasuredData c = read("x\ty\tz\tdy\n# probe 2\n1\t2\t3\t4\n");
+  EXPECT_EQ(c.rows[0].line, 3u);
+  EXPECT_DOUBLE_EQ(c.rows[0].d[1], 4.0);
+}
+
 void expect_error(const std::string& text, std::size_t line, std::size_t column,
                   const std::string& field) {
   try {

@@ -17,8 +17,9 @@
 #include "abbe/machine/machine.hpp"
 #include "abbe/model/error_model.hpp"
 #include "abbe/pipeline/interpreter_setup.hpp"
-#include "dialect_option.hpp"
 #include "command.hpp"
+#include "dialect_option.hpp"
+#include "input_stream.hpp"
 #include "model_option.hpp"
 #include "progress.hpp"
 
@@ -59,10 +60,11 @@ int run_compensate(CompensateCliOptions o, const GlobalOptions& g) {
   gcode::InterpreterConfig config = pipeline::interpreter_config(machine);
   config.dialect = o.dialect;
 
-  std::ifstream in(o.input, std::ios::binary);
-  if (!in)
-    throw InputError({o.input, 0, 0, "", ""},
-                     std::string("cannot open the input: ") + std::strerror(errno));
+  if (o.in_place && o.input == "-")
+    throw InputError({"<command line>", 0, 0, "--in-place", ""},
+                     "--in-place needs a file, not - (standard input)");
+  InputStream input(o.input, "the input");
+  std::istream& in = input.stream();
   io::AtomicOutputFile out(o.output);
   // Progress on a terminal: bytes of the program read.
   Progress progress("compensate", Progress::file_size(o.input), !g.quiet);
@@ -106,7 +108,10 @@ const CommandRegistrar registrar(
     "compensate", "Write the NC program with coordinates corrected for the predicted errors", 40,
     [](CLI::App& sub, const GlobalOptions& g) -> CommandAction {
       auto o = std::make_shared<CompensateCliOptions>();
-      sub.add_option("input", o->input, "NC program")->required();
+      sub.footer(
+          "Example: abbe compensate nc-samples/thesis-toolpath-1.ngc --machine "
+          "machines/sample/machine.yaml --tol 1 -o compensated.ngc");
+      sub.add_option("input", o->input, "NC program (- for stdin)")->required();
       sub.add_option("-o,--output", o->output, "Output program (written atomically), - for stdout");
       add_dialect_options(sub, o->dialect);
       add_model_options(sub, o->m,

@@ -14,6 +14,7 @@
 #include "abbe/io/measured_data.hpp"
 #include "abbe/machine/machine.hpp"
 #include "command.hpp"
+#include "output_options.hpp"
 #include "progress.hpp"
 
 namespace abbe::cli {
@@ -90,14 +91,16 @@ const CommandRegistrar registrar(
       auto o = std::make_shared<DiagnoseCliOptions>();
       sub.footer(
           "Example: abbe diagnose --machine machines/sample/machine.yaml "
-          "--measured machines/sample/measured-grid.csv --out diagnosis.json");
+          "--measured machines/sample/measured-grid.csv -o diagnosis.json");
       sub.add_option("--machine", o->machine, "Machine file (YAML, docs/formats.md)")->required();
-      sub.add_option("--measured", o->measured, "Measured data (CSV, docs/formats.md)")->required();
+      sub.add_option("--measured", o->measured, "Measured data (CSV, docs/formats.md; - for stdin)")
+          ->required();
       sub.add_option("--model", o->model,
                      "Error model diagnosed: " + model::model_names_text(false))
           ->check(CLI::IsMember(model::model_names(false)))
           ->capture_default_str();
-      sub.add_option("--out", o->out, "Write the JSON report to FILE (- for stdout)");
+      add_output_option(sub, o->out, "Write the JSON report to FILE");
+      add_hidden_alias(sub, "--out", o->out);
       sub.add_option("--overlay", o->overlay, "Write the extended model (overlay YAML) to FILE");
       sub.add_option("--extend", o->extend, "Add an earlier overlay to the model first");
       sub.add_option("--folds", o->folds, "Folds of the held-out check")

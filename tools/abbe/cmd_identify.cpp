@@ -19,6 +19,7 @@
 #include "abbe/io/measured_data.hpp"
 #include "abbe/machine/machine.hpp"
 #include "command.hpp"
+#include "output_options.hpp"
 
 namespace abbe::cli {
 namespace {
@@ -130,7 +131,7 @@ int run_linear(const IdentifyCliOptions& o, const machine::Machine& machine,
   }
   js["product_consistency"] = r.product_consistency;
   if (!o.output.empty()) write_file(o.output, js.dump(2) + "\n");
-  std::fputs(text.c_str(), stdout);
+  std::fputs(text.c_str(), summary_stream(o.output));
   return kOk;
 }
 
@@ -189,7 +190,7 @@ int run_tables(const IdentifyCliOptions& o, const machine::Machine& machine,
   js["unidentifiable"] = t.unidentifiable;
   if (!o.table_out.empty()) write_file(o.table_out, identify::table_fit_to_csv(t));
   if (!o.output.empty()) write_file(o.output, js.dump(2) + "\n");
-  std::fputs(text.c_str(), stdout);
+  std::fputs(text.c_str(), summary_stream(o.output));
   return kOk;
 }
 
@@ -211,7 +212,8 @@ const CommandRegistrar registrar(
       sub.footer(
           "Example: abbe identify --measured machines/sample/measured-grid.csv "
           "--machine machines/sample/machine.yaml -o identified.json");
-      sub.add_option("--measured", o->measured, "Measured-data CSV (docs/formats.md)")->required();
+      sub.add_option("--measured", o->measured, "Measured-data CSV (docs/formats.md; - for stdin)")
+          ->required();
       sub.add_option("--machine", o->machine, "Machine file (YAML): chain, arms, squareness, L")
           ->required();
       sub.add_option("--param", o->param, "linear (12 parameters) or tables (component tables)")
@@ -219,7 +221,7 @@ const CommandRegistrar registrar(
           ->capture_default_str();
       sub.add_option("--knots", o->knots, "Knot spacing of the fitted tables, mm")
           ->capture_default_str();
-      sub.add_option("-o,--output", o->output, "Result as JSON (written atomically)");
+      add_output_option(sub, o->output, "Result as JSON");
       sub.add_option("--table-out", o->table_out,
                      "Fitted component table CSV (--param tables), readable by predict");
       return [o] { return run_identify(*o); };

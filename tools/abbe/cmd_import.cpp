@@ -34,7 +34,7 @@ const CommandRegistrar registrar(
       sub.add_option("format", o->format, "Report format: plugplate")
           ->required()
           ->check(CLI::IsMember({"plugplate"}));
-      sub.add_option("input", o->input, "The report file")->required();
+      sub.add_option("input", o->input, "The report file (- for stdin)")->required();
       sub.add_option("-o,--output", o->output, "Measured-data CSV (written atomically), - stdout")
           ->capture_default_str();
       return [o] { return run_import(*o); };

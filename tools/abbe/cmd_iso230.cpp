@@ -7,6 +7,7 @@
 #include "abbe/io/input_error.hpp"
 #include "abbe/sim/text_file.hpp"
 #include "command.hpp"
+#include "output_options.hpp"
 
 namespace abbe::cli {
 namespace {
@@ -14,7 +15,8 @@ namespace {
 struct Iso230Options {
   std::string runs;
   std::string output = "-";
-  bool json = false;
+  bool json = false;  // --json, the old spelling of --format json
+  std::string format;
   bool per_target = false;
 };
 
@@ -32,8 +34,9 @@ int run_iso230(const Iso230Options& o) {
     readings = diagnose::read_iso230_runs(in, o.runs);
   }
   const auto results = diagnose::evaluate_iso230(readings, o.runs);
-  const std::string text = o.json || o.per_target ? diagnose::iso230_to_json(results, o.per_target)
-                                                  : diagnose::iso230_to_text(results);
+  const bool json = o.json || o.format == "json" || o.per_target;
+  const std::string text =
+      json ? diagnose::iso230_to_json(results, o.per_target) : diagnose::iso230_to_text(results);
   sim::write_text_file_atomically(o.output, text);
   return kOk;
 }
@@ -44,13 +47,14 @@ const CommandRegistrar registrar(
     "systematic error E, mean deviation M)",
     60, [](CLI::App& sub, const GlobalOptions&) -> CommandAction {
       auto o = std::make_shared<Iso230Options>();
-      sub.footer("Example: abbe iso230 machines/sample/runs.csv --json -o iso230.json");
+      sub.footer("Example: abbe iso230 machines/sample/runs.csv --format json -o iso230.json");
       sub.add_option("runs", o->runs,
                      "Runs CSV: axis,component,target_mm,run,direction,deviation ('-' = stdin)")
           ->required();
-      sub.add_flag("--json", o->json, "JSON output (stable keys) instead of the text table");
+      add_format_option(sub, o->format, {"text", "json"});
+      sub.add_flag("--json", o->json, "")->group("");  // old spelling of --format json
       sub.add_flag("--per-target", o->per_target, "JSON with the per-target values too");
-      sub.add_option("-o,--output", o->output, "Output file (default stdout)");
+      add_output_option(sub, o->output, "The table or JSON (default stdout)");
       return [o] { return run_iso230(*o); };
     });
 

@@ -18,6 +18,7 @@
 #include "abbe/machine/machine.hpp"
 #include "box_option.hpp"
 #include "command.hpp"
+#include "output_options.hpp"
 #include "progress.hpp"
 
 namespace abbe::cli {
@@ -127,7 +128,7 @@ int run_map(const MapCliOptions& o, const GlobalOptions& g) {
     text += fmt::format("  {} lookups outside the measured range ({})\n", map.out_of_range_lookups,
                         machine::to_string(machine.out_of_range()));
   if (!o.json.empty()) write_file(o.json, js.dump(2) + "\n");
-  std::fputs(text.c_str(), stdout);
+  std::fputs(text.c_str(), summary_stream(o.output == "-" ? o.output : o.json));
   return kOk;
 }
 
@@ -146,9 +147,9 @@ const CommandRegistrar registrar(
           ->check(CLI::IsMember(model::model_names(true)))
           ->capture_default_str();
       sub.add_option("--tool-length", o->tool_length, "Tool length, mm (default: the machine's)");
-      sub.add_option("-o,--output", o->output, "CSV of the grid points (written atomically)");
+      add_output_option(sub, o->output, "CSV of the grid points");
       sub.add_option("--slices", o->slices, "Directory for slice CSVs (XY at 3 z, XZ, YZ)");
-      sub.add_option("--json", o->json, "Statistics as JSON to FILE");
+      sub.add_option("--json", o->json, "Statistics as JSON to FILE (- for stdout)");
       const GlobalOptions* gp = &g;
       return [o, gp] { return run_map(*o, *gp); };
     });

@@ -19,9 +19,10 @@
 #include "abbe/sim/text_file.hpp"
 #include "abbe/sim/truth_file.hpp"
 #include "abbe/sim/validation_measurement.hpp"
-#include "dialect_option.hpp"
 #include "box_option.hpp"
 #include "command.hpp"
+#include "dialect_option.hpp"
+#include "input_stream.hpp"
 
 namespace abbe::cli {
 namespace {
@@ -60,11 +61,12 @@ double parse_non_negative(const std::string& text, const std::string& unit) {
   return v;
 }
 
-// "0.5um", "0.5" (µm) → µm.
+// "0.5µm", "0.5um" (the ASCII spelling of the same), "0.5" (µm) → µm.
 double parse_um(const std::string& field, const std::string& text) {
-  const double v = parse_non_negative(text, "um");
+  double v = parse_non_negative(text, "µm");
+  if (std::isnan(v)) v = parse_non_negative(text, "um");
   if (std::isnan(v))
-    bad_option(field, "expected a non-negative length in µm (e.g. 0.5um), got '" + text + "'");
+    bad_option(field, "expected a non-negative length in µm (e.g. 0.5µm), got '" + text + "'");
   return v;
 }
 
@@ -172,12 +174,8 @@ int run_measure(const MeasureOptions& o) {
     config.tool_lengths = truth.tool_table;
     config.default_tool_length = tool_length;
     config.initial_position = Eigen::Vector3d(0.0, 0.0, -tool_length);
-    std::ifstream in(o.program);
-    if (!in) {
-      SourceLocation where;
-      where.file = o.program;
-      throw InputError(where, "cannot open the NC program");
-    }
+    InputStream input(o.program, "the NC program");  // "-": stdin
+    std::istream& in = input.stream();
     pipeline::PathOptions po;
     if (!(o.step > 0.0)) bad_option("--step", "must be > 0 mm");
     po.fragment.step = o.step;
@@ -225,6 +223,7 @@ const CommandRegistrar registrar(
           "machine",
           "Generate a truth machine and run its laser campaign: writes DIR/truth.yaml, "
           "machine.yaml, errors.csv, runs.csv");
+      machine->footer("Example: abbe simulate machine --like mazak --seed 1 -o vm");
       machine->add_option("--seed", mo->gen.seed, "Random seed")->capture_default_str();
       machine->add_option("--like", mo->gen.profile, "Profile: mazak | generic")
           ->capture_default_str();
@@ -255,6 +254,8 @@ const CommandRegistrar registrar(
       auto co = std::make_shared<CampaignOptions>();
       CLI::App* campaign = sub.add_subcommand(
           "campaign", "Re-run the laser campaign of a truth file (other spacing, runs, noise)");
+      campaign->footer(
+          "Example: abbe simulate campaign --truth machines/sample/truth.yaml -o campaign");
       campaign->add_option("--truth", co->truth, "Truth file (truth.yaml)")->required();
       campaign->add_option("--spacing", co->spacing, "Target interval, mm");
       campaign->add_option("--runs", co->runs, "Runs per direction");
@@ -265,6 +266,9 @@ const CommandRegistrar registrar(
       auto me = std::make_shared<MeasureOptions>();
       CLI::App* measure = sub.add_subcommand(
           "measure", "Measure the truth (with its effects and --inject ones): measured-data CSV");
+      measure->footer(
+          "Example: abbe simulate measure --truth machines/sample/truth.yaml --grid 100 -o "
+          "measured.csv");
       measure->add_option("--truth", me->truth, "Truth file (truth.yaml)")->required();
       auto* grid = measure->add_option("--grid", me->grid,
                                        "Volumetric grid spacing, mm (default 50 with --box)");
@@ -278,7 +282,7 @@ const CommandRegistrar registrar(
       measure->add_option("--tool-length", me->tool_length,
                           "Tool length, mm (default: the machine's tool_length)");
       measure->add_option("--inject", me->inject, "Effect KIND:AXIS:MAG[:k=v,...] (repeatable)");
-      measure->add_option("--noise", me->noise, "Gaussian noise per coordinate, e.g. 0.5um")
+      measure->add_option("--noise", me->noise, "Gaussian noise per coordinate, e.g. 0.5µm")
           ->capture_default_str();
       measure->add_option("--seed", me->seed, "Noise seed")->capture_default_str();
       measure->add_option("--interval", me->interval, "Grid: seconds per measured point")

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <sstream>
 #include <string>
 
 #include "abbe/compensate/path_verifier.hpp"
@@ -14,8 +15,8 @@
 #include "abbe/machine/machine.hpp"
 #include "abbe/model/error_model.hpp"
 #include "abbe/pipeline/interpreter_setup.hpp"
-#include "dialect_option.hpp"
 #include "command.hpp"
+#include "dialect_option.hpp"
 #include "model_option.hpp"
 #include "progress.hpp"
 
@@ -32,12 +33,19 @@ struct VerifyCliOptions {
   gcode::DialectOptions dialect;
 };
 
-std::ifstream open_input(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
+// verify reads each program twice (it seeks back): standard input ("-") is
+// read into memory first.
+std::unique_ptr<std::istream> open_input(const std::string& path) {
+  if (path == "-") {
+    auto s = std::make_unique<std::stringstream>();
+    *s << std::cin.rdbuf();
+    return s;
+  }
+  auto f = std::make_unique<std::ifstream>(path, std::ios::binary);
+  if (!*f)
     throw InputError({path, 0, 0, "", ""},
                      std::string("cannot open the input: ") + std::strerror(errno));
-  return in;
+  return f;
 }
 
 int run_verify(const VerifyCliOptions& o, const GlobalOptions& g) {
@@ -47,15 +55,18 @@ int run_verify(const VerifyCliOptions& o, const GlobalOptions& g) {
   config.dialect = o.dialect;
   compensate::VerifyOptions vo = o.v;
   vo.tol_um = o.tol_um;
-  std::ifstream comp_file = open_input(o.input);
-  std::ifstream orig_file = open_input(o.against);
+  if (o.input == "-" && o.against == "-")
+    throw InputError({"<command line>", 0, 0, "--against", ""},
+                     "only one of the two programs can be - (standard input)");
+  const auto comp_file = open_input(o.input);
+  const auto orig_file = open_input(o.against);
   // Progress on a terminal: bytes read of both programs, each read twice
   // (the forward and the backward pass).
   Progress progress("verify", 2 * (Progress::file_size(o.input) + Progress::file_size(o.against)),
                     !g.quiet);
   std::uint64_t bytes_read = 0;
-  ProgressStreambuf comp_counted(comp_file.rdbuf(), progress, bytes_read);
-  ProgressStreambuf orig_counted(orig_file.rdbuf(), progress, bytes_read);
+  ProgressStreambuf comp_counted(comp_file->rdbuf(), progress, bytes_read);
+  ProgressStreambuf orig_counted(orig_file->rdbuf(), progress, bytes_read);
   std::istream comp(&comp_counted), orig(&orig_counted);
   const compensate::VerifyStats s =
       compensate::verify_program(comp, o.input, orig, o.against, config, model, vo);
@@ -75,7 +86,7 @@ int run_verify(const VerifyCliOptions& o, const GlobalOptions& g) {
                   max, o.tol_um, max <= o.tol_um ? "pass" : "FAIL")
           .c_str(),
       stdout);
-  if (o.check && max > o.tol_um) return kBadInput;
+  if (o.check && max > o.tol_um) return kCheckFailed;
   return kOk;
 }
 
@@ -83,8 +94,11 @@ const CommandRegistrar registrar(
     "verify", "Measure the predicted path of a compensated program against the nominal path", 41,
     [](CLI::App& sub, const GlobalOptions& g) -> CommandAction {
       auto o = std::make_shared<VerifyCliOptions>();
-      sub.add_option("input", o->input, "Compensated NC program")->required();
-      sub.add_option("--against", o->against, "The original NC program")->required();
+      sub.footer(
+          "Example: abbe verify compensated.ngc --against nc-samples/thesis-toolpath-1.ngc "
+          "--machine machines/sample/machine.yaml --tol 1 --check   (exit 4 if beyond --tol)");
+      sub.add_option("input", o->input, "Compensated NC program (- for stdin)")->required();
+      sub.add_option("--against", o->against, "The original NC program (- for stdin)")->required();
       add_dialect_options(sub, o->dialect);
       add_model_options(sub, o->m,
                         "Predict with the extended model: add the effects of an overlay written by "
@@ -95,7 +109,7 @@ const CommandRegistrar registrar(
       sub.add_option("--step", o->v.step, "Fragment step, mm")
           ->check(CLI::PositiveNumber)
           ->capture_default_str();
-      sub.add_flag("--check", o->check, "Exit 1 if the max distance exceeds --tol");
+      sub.add_flag("--check", o->check, "Exit 4 if the max distance exceeds --tol");
       const GlobalOptions* gp = &g;
       return [o, gp] { return run_verify(*o, *gp); };
     });

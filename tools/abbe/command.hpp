@@ -11,7 +11,8 @@
 namespace abbe::cli {
 
 // Exit codes (documented in README and `abbe --help`).
-enum ExitCode : int { kOk = 0, kBadInput = 1, kUsage = 2, kInternal = 3 };
+// 4: a check the user asked for failed (verify --check, a tolerance check).
+enum ExitCode : int { kOk = 0, kBadInput = 1, kUsage = 2, kInternal = 3, kCheckFailed = 4 };
 
 struct GlobalOptions {
   int verbose = 0;  // -v count

@@ -20,12 +20,15 @@ int main(int argc, char** argv) {
   using namespace abbe::cli;
   CLI::App app{"abbe: predict how far a 3-axis machine tool deviates along an NC program, "
                "and why.\n"
-               "Exit codes: 0 ok, 1 bad input, 2 usage, 3 internal error."};
+               "Exit codes: 0 ok, 1 bad input, 2 usage, 3 internal error, 4 a check failed."};
   app.set_version_flag("--version", std::string("abbe ") + ABBE_VERSION);
   app.require_subcommand(1);
   GlobalOptions global;
   app.add_flag("-v,--verbose", global.verbose, "More log output (repeat for debug)");
   app.add_flag("-q,--quiet", global.quiet, "Only errors on stderr");
+  // Global options anywhere on the line: an option a subcommand does not know
+  // falls through to its parent (subcommands inherit this setting).
+  app.fallthrough();
 
   auto logger = spdlog::stderr_color_mt("abbe");
   spdlog::set_default_logger(logger);
@@ -48,7 +51,10 @@ int main(int argc, char** argv) {
       "machines/sample/machine.yaml -o report.html\n"
       "  abbe COMMAND --help shows the options and an example of each command.\n"
       "A progress bar appears on stderr for long jobs when it is a terminal (not with -q).\n"
-      "Exit codes: 0 ok, 1 bad input (file, line and column named), 2 usage, 3 internal error.\n"
+      "Global options (-v, -q) go anywhere on the line. Every command that writes data takes\n"
+      "-o FILE (- for stdout; the summary then goes to stderr); inputs may be - (stdin).\n"
+      "Exit codes: 0 ok, 1 bad input (file, line and column named), 2 usage, 3 internal error,\n"
+      "4 a check failed (verify --check).\n"
       "Walk-through: docs/getting-started.md");
 
   try {

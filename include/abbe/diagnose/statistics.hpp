@@ -1,11 +1,11 @@
 #pragma once
 // Small statistics helpers of the diagnosis: upper quantiles of the normal
-// and χ² distributions (for the significance floor).
+// and χ² distributions (for the significance floor), from Boost.Math.
 namespace abbe::diagnose {
 
 // z with P(Z > z) = alpha for a standard normal Z (0 < alpha < 1).
 double normal_upper_quantile(double alpha);
-// c with P(χ²_k > c) = alpha (Wilson–Hilferty approximation, k ≥ 1).
+// c with P(χ²_k > c) = alpha (exact, Boost.Math; k ≥ 1).
 double chi2_upper_quantile(int k, double alpha);
 
 }  // namespace abbe::diagnose

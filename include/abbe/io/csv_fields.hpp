@@ -1,10 +1,9 @@
 #pragma once
-// The pieces every CSV reader of abbe shares: a line split at commas into
-// fields that remember their 1-based start column (for file:line:col
+// The pieces of io::CsvReader (csv_reader.hpp), the one CSV reader of abbe:
+// a field that remembers its 1-based start column (for file:line:col
 // errors), and trimming of blanks (and the CR of CRLF files).
 #include <cstddef>
 #include <string_view>
-#include <vector>
 
 namespace abbe::io {
 
@@ -15,8 +14,5 @@ struct CsvField {
 
 // Without leading spaces/tabs and trailing spaces/tabs/CR.
 std::string_view trim_blanks(std::string_view s);
-
-// The fields of one line (an empty line gives one empty field).
-std::vector<CsvField> split_csv_line(std::string_view line);
 
 }  // namespace abbe::io

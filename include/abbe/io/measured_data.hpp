@@ -37,6 +37,7 @@ struct MeasuredData {
 
 // Throws abbe::InputError naming the file, line, column and column name.
 MeasuredData read_measured_data(std::istream& in, const std::string& file);
+// "-" reads standard input.
 MeasuredData load_measured_data(const std::string& path);
 
 // Writes rows in the DESIGN.md §4 column order (empty cells for absent values).

@@ -13,6 +13,7 @@ namespace abbe::io {
 
 // Throws abbe::InputError naming the file, line and column.
 MeasuredData read_plugplate(std::istream& in, const std::string& file);
+// "-" reads standard input.
 MeasuredData load_plugplate(const std::string& path);
 
 }  // namespace abbe::io

@@ -2,14 +2,16 @@
 // PointReader: the points of a CSV file (a CMM or laser grid) as evaluation
 // points. Header with x, y, z (required) and optional vx, vy, vz (direction
 // signs, −1, 0 or 1) and tool_length; other columns (e.g. measured
-// deviations) are ignored. Blank lines are skipped. A bad field is an
-// abbe::InputError naming the file, line, column and field.
+// deviations) are ignored. Read by io::CsvReader (BOM, `,` `;` or tab,
+// quotes, any case of the header names, CRLF); blank lines are skipped. A
+// bad field is an abbe::InputError naming the file, line, column and field.
 #include <array>
 #include <cstddef>
 #include <istream>
 #include <string>
 #include <string_view>
 
+#include "abbe/io/csv_reader.hpp"
 #include "abbe/model/error_model.hpp"
 
 namespace abbe::pipeline {
@@ -24,14 +26,9 @@ class PointReader {
 
  private:
   static constexpr std::size_t kColumns = 7;
-  bool next_line();
-  [[noreturn]] void error(std::size_t column, const std::string& field, const std::string& message);
 
-  std::istream& in_;
-  std::string file_;
+  io::CsvReader csv_;
   double default_tool_length_;
-  std::string line_;
-  std::size_t line_no_ = 0;
   std::array<int, kColumns> col_{-1, -1, -1, -1, -1, -1, -1};
 };
 

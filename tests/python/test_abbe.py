@@ -1,0 +1,153 @@
+"""Tests of the Python module abbe (python/abbe_module.cpp, docs/python.md).
+
+Run by ctest (tests/cli/python.cmake) with PYTHONPATH at the built module and
+ABBE_SOURCE_DIR at the source tree; the CLI binary (ABBE_EXE) gives the
+reference numbers the module must reproduce.
+"""
+import csv
+import io
+import os
+import pathlib
+import subprocess
+
+import numpy as np
+import pytest
+
+import abbe
+
+ROOT = pathlib.Path(os.environ.get("ABBE_SOURCE_DIR", pathlib.Path(__file__).parents[2]))
+MACHINE = ROOT / "machines/sample/machine.yaml"
+PROGRAM = ROOT / "nc-samples/thesis-toolpath-1.ngc"
+MEASURED = ROOT / "machines/sample/measured-grid.csv"
+
+
+@pytest.fixture(scope="module")
+def machine():
+    return abbe.Machine(MACHINE)
+
+
+def cli_text(*args):
+    exe = os.environ.get("ABBE_EXE")
+    assert exe, "ABBE_EXE (the abbe binary) is not set"
+    env = dict(os.environ)
+    env.pop("LD_PRELOAD", None)
+    out = subprocess.run([exe, *map(str, args)], check=True, capture_output=True, env=env)
+    return out.stdout.decode()
+
+
+def cli(*args):
+    return list(csv.DictReader(io.StringIO(cli_text(*args))))
+
+
+def test_machine_loads(machine):
+    assert machine.name
+    assert "abbe.Machine" in repr(machine)
+    assert abbe.load_machine(str(MACHINE)).name == machine.name
+
+
+def test_path_arrays_match_cli(machine):
+    p = abbe.path(PROGRAM, machine=machine)
+    n = len(p["line"])
+    assert n > 10
+    assert p["xyz"].shape == (n, 3)
+    assert p["dir"].shape == (n, 3)
+    for key in ("tool_length", "kind", "feed", "time"):
+        assert p[key].shape == (n,)
+    assert np.all(np.diff(p["time"]) >= 0)
+    rows = cli("path", PROGRAM, "--machine", MACHINE)
+    assert len(rows) == n
+    ref = np.array([[float(r["x"]), float(r["y"]), float(r["z"])] for r in rows])
+    np.testing.assert_allclose(p["xyz"], ref, atol=1e-9)
+    assert [int(r["line"]) for r in rows] == p["line"].tolist()
+
+
+def test_path_from_code_without_machine():
+    p = abbe.path(code="G21 G90\nG0 X0 Y0 Z0\nG1 X10 F100\n", step=2.5)
+    x = p["xyz"][:, 0]
+    np.testing.assert_allclose(x, [0, 2.5, 5, 7.5, 10])
+    assert p["line"].tolist() == [2, 3, 3, 3, 3]
+    assert p["kind"].tolist() == [0, 1, 1, 1, 1]
+
+
+def test_arrays_are_not_copies(machine):
+    p = abbe.path(PROGRAM, machine=machine)
+    # The arrays view buffers owned by C++ (kept alive by a capsule).
+    assert not p["xyz"].flags.owndata
+    assert p["xyz"].flags.c_contiguous
+
+
+def test_predict_program_matches_cli(machine):
+    r = abbe.predict(machine, PROGRAM, model="all")
+    assert set(r["models"]) == {"htm", "ae-arm", "dual"}
+    rows = cli("predict", PROGRAM, "--machine", MACHINE, "--model", "ae-arm", "-o", "-")
+    d = r["models"]["ae-arm"]["d_um"]
+    assert len(rows) == len(d)
+    # The CSV has 6 decimals (0.5e-6 µm rounding).
+    np.testing.assert_allclose(d, [float(row["d"]) for row in rows], rtol=0, atol=5.1e-7)
+    e = r["models"]["ae-arm"]["e_um"]
+    np.testing.assert_allclose(np.linalg.norm(e, axis=1), d, rtol=1e-12)
+    assert "second_order_um" in r["models"]["dual"]
+    s = r["summary"]
+    assert s["points"] == len(d)
+    assert [m["model"] for m in s["models"]] == ["htm", "ae-arm", "dual"]
+
+
+def test_predict_points_array_and_list(machine):
+    prog = abbe.predict(machine, PROGRAM, model="htm")
+    pts = abbe.predict(machine, prog["xyz"], model="htm")
+    # The same points through a list (converted) give the same numbers as
+    # through an array (read in place).
+    as_list = abbe.predict(machine, prog["xyz"].tolist(), model="htm")
+    np.testing.assert_array_equal(pts["models"]["htm"]["e_um"], as_list["models"]["htm"]["e_um"])
+    np.testing.assert_array_equal(pts["xyz"], prog["xyz"])
+    assert pts["line"].tolist() == list(range(1, len(pts["line"]) + 1))
+
+
+def test_predict_zero_at_origin_is_finite_and_shapes(machine):
+    r = abbe.predict(machine, np.zeros((4, 3)), model="ae-arm")
+    e = r["models"]["ae-arm"]["e_um"]
+    assert e.shape == (4, 3)
+    assert np.all(np.isfinite(e))
+    # The same point gives the same deviation.
+    assert np.all(e == e[0])
+
+
+def test_bad_points_shape(machine):
+    with pytest.raises(ValueError, match=r"shape \(n, 3\)"):
+        abbe.predict(machine, np.zeros((4, 2)))
+
+
+def test_bad_program_names_line_and_column():
+    with pytest.raises(abbe.InputError, match=r"<string>:2:1: error: cutter radius compensation"):
+        abbe.path(code="G21\nG41 X1\n")
+
+
+def test_missing_machine_file():
+    with pytest.raises(abbe.InputError, match="no-such-machine.yaml"):
+        abbe.Machine("no-such-machine.yaml")
+
+
+def test_unknown_model(machine):
+    with pytest.raises(ValueError, match="unknown model"):
+        abbe.predict(machine, PROGRAM, model="nope")
+
+
+def test_diagnose_returns_report_dict(machine):
+    d = abbe.diagnose(machine, MEASURED, folds=3)
+    assert d["model"] == "ae-arm"
+    assert d["n_points"] > 0
+    assert isinstance(d["effects"], list)
+    assert {"htm", "ae-arm", "dual"} <= {m["model"] for m in d["models"]}
+
+
+def test_compensate_returns_program(machine):
+    text, summary = abbe.compensate(machine, PROGRAM, tol_um=1.0)
+    assert text != PROGRAM.read_text()
+    assert summary["blocks_changed"] > 0
+    assert summary["unconverged_points"] == 0
+    assert summary["max_correction_um"] > 0
+    # Byte for byte what the command writes.
+    assert text == cli_text("compensate", PROGRAM, "--machine", MACHINE, "--tol", "1", "-o", "-")
+    # From text too.
+    text2, _ = abbe.compensate(machine, code=PROGRAM.read_text())
+    assert text2 == text
