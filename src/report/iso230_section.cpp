@@ -92,7 +92,7 @@ void render_iso230_report(HtmlPage& page, const std::vector<diagnose::Iso230Resu
     LinePlot p;
     p.id = plot_id(r);
     const std::string u = unit_text(r.unit);
-    p.title = fmt::format("{} {}: A = {} B = {} R = {} E = {} M = {} {}", r.axis, r.component,
+    p.title = fmt::format("{} {}: A = {}, B = {}, R = {}, E = {}, M = {} {}", r.axis, r.component,
                           value(r.A), value(r.B), value(r.R), value(r.E), value(r.M), u);
     p.x = {fmt::format("target position {}", r.axis), "mm", {}, {}};
     p.y = {"deviation", u, {}, {}};

@@ -22,7 +22,7 @@ constexpr const char* kScript = R"JS(
     return 'rgb(' + c.join(',') + ')';
   }
   var NB = 24;  // colour bins per band
-  function binColour(b) {  // b: 0..NB-1 within, NB..2NB-1 above, 2NB over 2x, 2NB+1 NaN
+  function binColour(b) {  // b: 0..NB-1 within, NB..2NB-1 above, 2NB over 2x, 2NB+1 unknown
     if (b < NB) return lerp([198, 219, 239], [8, 48, 107], b / (NB - 1));
     if (b < 2 * NB) return lerp([230, 159, 0], [213, 94, 0], (b - NB) / (NB - 1));
     return b === 2 * NB ? '#7f2704' : '#999999';
@@ -74,7 +74,7 @@ constexpr const char* kScript = R"JS(
       var mg = new Float64Array(n), d = data.d[m];
       for (i = 0; i < n; i++) {
         var dx = d[3 * i], dy = d[3 * i + 1], dz = d[3 * i + 2];
-        mg[i] = dx === null || dy === null || dz === null ? NaN : Math.sqrt(dx * dx + dy * dy + dz * dz);
+        mg[i] = dx === null || dy === null || dz === null ? -1 : Math.sqrt(dx * dx + dy * dy + dz * dz);
       }
       mags.push(mg);
     }
@@ -188,7 +188,7 @@ constexpr const char* kScript = R"JS(
       return 'line ' + line + ': ' + src + '\nP = (' + fmt(data.p[3 * i], 3) + ', ' +
         fmt(data.p[3 * i + 1], 3) + ', ' + fmt(data.p[3 * i + 2], 3) + ') mm\n' +
         data.models[m] + ': d = (' + fmt(d[3 * i], 3) + ', ' + fmt(d[3 * i + 1], 3) + ', ' +
-        fmt(d[3 * i + 2], 3) + ') \u00b5m, |d| = ' + fmt(mags[m][i], 3) + ' \u00b5m';
+        fmt(d[3 * i + 2], 3) + ') \u00b5m, |d| = ' + (mags[m][i] < 0 ? 'n/a' : fmt(mags[m][i], 3)) + ' \u00b5m';
     }
     function pick(x, y) {
       var best = -1, bd = 100;  // within 10 px
@@ -298,10 +298,10 @@ std::string json_string(const std::string& s) {
   return o;
 }
 
-double nice_down(double v) {
-  const double mag = std::pow(10.0, std::floor(std::log10(v)));
-  const double f = v / mag;
-  return mag * (f >= 5.0 ? 5.0 : f >= 2.0 ? 2.0 : 1.0);
+// Rounded up to two significant digits (19.785 → 20, 0.1234 → 0.13).
+double round_up_2(double v) {
+  const double mag = std::pow(10.0, std::floor(std::log10(v)) - 1.0);
+  return std::ceil(v / mag - 1e-9) * mag;
 }
 
 }  // namespace
@@ -310,7 +310,7 @@ double auto_tolerance(const PredictedPath& r) {
   double m = 0.0;
   for (const auto& s : r.stats)
     if (std::isfinite(s.max_um)) m = std::max(m, s.max_um);
-  return m > 0.0 ? nice_down(0.5 * m) : 1.0;
+  return m > 0.0 ? round_up_2(m) : 1.0;
 }
 
 std::string toolpath_view_json(const PredictedPath& r, const ToolpathViewOptions& o) {

@@ -134,11 +134,13 @@ TEST(ReportToolpathView, JsonHoldsEveryPointAndEscapesText) {
             "{\"k\":500,\"tol\":2.5,\"models\":[\"ae-arm\"],\"p\":[0,0,0,10.5,-2.25,1],"
             "\"line\":[3,4],\"d\":[[1,2,2,0,0,null]],\"src\":{\"3\":\"G1 X0 (\\u003c/script>"
             "\\u003cb>)\",\"4\":\"G1 X10.5\"}}");
-  // Automatic tolerance: half of the largest max |d| rounded down to 1/2/5 × 10ⁿ.
-  EXPECT_DOUBLE_EQ(auto_tolerance(r), 1.0);  // 1.5 → 1
+  // Automatic tolerance: the largest max |d| rounded up to two digits.
+  EXPECT_NEAR(auto_tolerance(r), 3.0, 1e-12);
   PredictedPath big = r;
-  big.stats[0].max_um = 44.0;  // 22 → 20
-  EXPECT_DOUBLE_EQ(auto_tolerance(big), 20.0);
+  big.stats[0].max_um = 44.37;
+  EXPECT_NEAR(auto_tolerance(big), 45.0, 1e-12);
+  big.stats[0].max_um = 0.1234;
+  EXPECT_NEAR(auto_tolerance(big), 0.13, 1e-12);
   big.stats[0].max_um = 0.0;
   EXPECT_DOUBLE_EQ(auto_tolerance(big), 1.0);
   const std::string html = render_toolpath_view(r, o);

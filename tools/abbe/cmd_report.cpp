@@ -237,8 +237,7 @@ const CommandRegistrar registrar(
       predict
           ->add_option("--tolerance", o->tolerance,
                        "Colour the 3-D toolpath by |d| against this tolerance, µm (default: "
-                       "half the largest max |d|, rounded to 1/2/5 × 10^n; changeable in the "
-                       "page)")
+                       "the largest max |d| rounded up to 2 digits; changeable in the page)")
           ->check(CLI::PositiveNumber);
       predict->add_option("--step", o->step, "Largest distance between points, mm")
           ->check(CLI::PositiveNumber)

@@ -20,8 +20,9 @@ struct ToolpathViewOptions {
   double tolerance_um = 0.0;  // ≤ 0: auto_tolerance
 };
 
-// Half the largest max |d| of the models rounded to 1, 2 or 5 × 10ⁿ µm
-// (1 µm when there is no deviation).
+// The largest max |d| of the models rounded up to two significant digits,
+// µm (1 µm when there is no deviation): every point within the tolerance,
+// the blue shades showing how close each comes to the largest.
 double auto_tolerance(const PredictedPath& path);
 
 // The kept points as the JSON the script reads: {"k", "tol", "models",
