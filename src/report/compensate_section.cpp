@@ -12,6 +12,7 @@
 #include "abbe/pipeline/interpreter_setup.hpp"
 #include "abbe/pipeline/program_path.hpp"
 #include "abbe/report/line_plot.hpp"
+#include "abbe/report/palette.hpp"
 #include "abbe/report/predict_section.hpp"
 
 namespace abbe::report {
@@ -40,8 +41,8 @@ Eigen::Vector3d nearest_on_segment(const Eigen::Vector3d& a, const Eigen::Vector
 }
 
 const char* kNominal = "#555555";
-const char* kOriginal = "#d62728";
-const char* kCompensated = "#1f77b4";
+const char* kOriginal = palette::kOrange;
+const char* kCompensated = palette::kBlue;
 
 }  // namespace
 

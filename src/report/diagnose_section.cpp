@@ -6,6 +6,7 @@
 
 #include "abbe/diagnose/overlay.hpp"
 #include "abbe/report/line_plot.hpp"
+#include "abbe/report/palette.hpp"
 
 namespace abbe::report {
 namespace {
@@ -97,8 +98,8 @@ void render_diagnose_report(HtmlPage& page, const DiagnosisForReport& r) {
     p.title = fmt::format("Residual against {}", names[v]);
     p.x = {names[v], units[v], {}, {}};
     p.y = {"residual", "µm", {}, {}};
-    p.series = {residual_series(r.before, v, "before", "#d62728", 2.2),
-                residual_series(r.after, v, "after the extension", "#1f77b4", 1.8)};
+    p.series = {residual_series(r.before, v, "before", palette::kOrange, 2.2),
+                residual_series(r.after, v, "after the extension", palette::kBlue, 1.8)};
     figs.push_back(p.render(660, 340));
   }
   page.add_figures(figs);

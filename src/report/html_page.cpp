@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <cstdlib>
+#include <ctime>
+
 #include "abbe/report/svg.hpp"
 
 namespace abbe::report {
@@ -24,6 +27,8 @@ th { background: #eee; }
 td:first-child, th:first-child, td.text, th.text { text-align: left; }
 #toc { font-size: 14px; }
 #toc a { margin-right: 14px; }
+footer { margin-top: 32px; border-top: 1px solid #ccc; padding-top: 8px; color: #555; font-size: 13px; }
+footer code { font-size: 12px; word-break: break-all; }
 )";
 
 // Builds the table of contents from the h2 headings (the page reads fine
@@ -39,13 +44,27 @@ constexpr const char* kScript = R"(
     a.textContent = hs[i].textContent;
     toc.appendChild(a);
   }
-  var n = document.querySelectorAll('svg.plot').length;
+  var n = document.querySelectorAll('svg.plot, figure.toolpath-3d').length;
   var f = document.getElementById('plot-count');
   if (f) f.textContent = n + ' plots';
 })();
 )";
 
 }  // namespace
+
+std::string report_date() {
+  std::time_t t = std::time(nullptr);
+  if (const char* e = std::getenv("SOURCE_DATE_EPOCH")) {
+    char* end = nullptr;
+    const long long v = std::strtoll(e, &end, 10);
+    if (end != e && *end == '\0' && v >= 0) t = static_cast<std::time_t>(v);
+  }
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
 
 HtmlPage::HtmlPage(std::string title) : title_(std::move(title)) {}
 
@@ -88,6 +107,10 @@ void HtmlPage::add_figures(const std::vector<std::string>& svgs) {
   body_ += "</div>\n";
 }
 
+void HtmlPage::add_html(const std::string& html) { body_ += html; }
+
+void HtmlPage::set_provenance(Provenance p) { provenance_ = std::move(p); }
+
 void HtmlPage::add_fact(const std::string& key, const std::string& value) {
   facts_.emplace_back(key, value);
 }
@@ -102,9 +125,15 @@ std::string HtmlPage::render() const {
   o += "</div>\n<nav id=\"toc\"></nav>\n";
   o += body_;
   o += fmt::format(
-      "<p class=\"note\">abbe {} &#183; <span id=\"plot-count\"></span> &#183; hover over a "
-      "curve or a cell for its values</p>\n<script>{}</script>\n</body>\n</html>\n",
-      ABBE_VERSION, kScript);
+      "<footer id=\"provenance\"><div>made {} by abbe {} &#183; <span id=\"plot-count\"></span> "
+      "&#183; hover over a curve, a cell or the 3-D toolpath for its values</div>\n",
+      escape_xml(provenance_.date.empty() ? report_date() : provenance_.date), ABBE_VERSION);
+  if (!provenance_.command_line.empty())
+    o += fmt::format("<div>command: <code>{}</code></div>\n", escape_xml(provenance_.command_line));
+  for (const auto& [name, hash] : provenance_.inputs)
+    o += fmt::format("<div>input {}: SHA-256 <code>{}</code></div>\n", escape_xml(name),
+                     escape_xml(hash));
+  o += fmt::format("</footer>\n<script>{}</script>\n</body>\n</html>\n", kScript);
   return o;
 }
 

@@ -27,6 +27,10 @@ LegendLayout layout_legend(const std::vector<Series>& series, double width) {
   double x = 0.0;
   int row = 0;
   for (const auto& s : series) {
+    if (s.name.empty()) {  // not in the legend
+      l.pos.emplace_back(x, row);
+      continue;
+    }
     const double w = legend_item_width(s.name);
     if (x > 0.0 && x + w > width) {
       x = 0.0;
@@ -170,6 +174,7 @@ std::string LinePlot::render(int width, int height) const {
   o += "<g class=\"legend\">\n";
   for (std::size_t si = 0; si < series.size(); ++si) {
     const Series& s = series[si];
+    if (s.name.empty()) continue;
     const double lx = f.left + legend.pos[si].first;
     const double ly = 36.0 + 18.0 * legend.pos[si].second;
     const std::string colour = stroke_of(s, si);

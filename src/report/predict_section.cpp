@@ -5,12 +5,14 @@
 #include <cmath>
 
 #include "abbe/report/line_plot.hpp"
+#include "abbe/report/palette.hpp"
 #include "abbe/report/svg.hpp"
+#include "abbe/report/toolpath_view.hpp"
 
 namespace abbe::report {
 namespace {
 
-const char* model_colour(model::ModelKind k) { return model::descriptor(k).colour.c_str(); }
+std::string model_colour(model::ModelKind k) { return palette::model_colour(k); }
 
 std::string model_name(model::ModelKind k) { return model::to_string(k); }
 
@@ -25,74 +27,44 @@ std::string hover_text(const PredictedPath& r, std::size_t model, std::size_t i)
       d.norm());
 }
 
-// Nominal and exaggerated predicted toolpaths in one view.
-LinePlot toolpath_plot(const PredictedPath& r, double k, const std::string& id,
-                       const std::string& title, int u, int v, bool iso) {
-  LinePlot plot;
-  plot.id = id;
-  plot.title = title;
-  plot.equal_scale = true;
-  const char* names = "xyz";
-  if (iso) {
-    plot.x = {"isometric horizontal", "mm", {}, {}};
-    plot.y = {"isometric vertical", "mm", {}, {}};
-    for (int a = 0; a < 3; ++a) {
-      Eigen::Vector3d e = Eigen::Vector3d::Zero();
-      e[a] = 1.0;
-      const Eigen::Vector2d q = isometric(e);
-      plot.directions.push_back({std::string(1, static_cast<char>('X' + a)), q.x(), q.y()});
-    }
-  } else {
-    plot.x = {std::string(1, names[u]), "mm", {}, {}};
-    plot.y = {std::string(1, names[v]), "mm", {}, {}};
-  }
-  auto project = [&](const Eigen::Vector3d& p) {
-    return iso ? isometric(p) : Eigen::Vector2d(p[u], p[v]);
+// At most about `n` of the kept points for the SVG plots: every k-th, and
+// in each stretch of k the one of the largest |d| (any model) too.
+std::vector<std::size_t> display_subset(const PredictedPath& r, std::size_t n) {
+  const std::size_t count = r.nominal.size();
+  std::vector<std::size_t> out;
+  const std::size_t k = std::max<std::size_t>(1, (count + n - 1) / n);
+  auto dmax = [&](std::size_t i) {
+    double v = 0.0;
+    for (const auto& d : r.deviation_um) v = std::max(v, d[i].norm());
+    return v;
   };
-  Series nominal;
-  nominal.name = "nominal";
-  nominal.colour = "#555555";
-  nominal.style = SeriesStyle::dashed;
-  nominal.width = 1.0;
-  for (const auto& p : r.nominal) {
-    const Eigen::Vector2d q = project(p);
-    nominal.x.push_back(q.x());
-    nominal.y.push_back(q.y());
+  for (std::size_t i = 0; i < count; i += k) {
+    out.push_back(i);
+    std::size_t best = i;
+    for (std::size_t j = i + 1; j < std::min(count, i + k); ++j)
+      if (dmax(j) > dmax(best)) best = j;
+    if (best != i) out.push_back(best);
   }
-  plot.series.push_back(std::move(nominal));
-  for (std::size_t m = 0; m < r.models.size(); ++m) {
-    Series s;
-    s.name = fmt::format("predicted {} (× {:g})", model_name(r.models[m]), k);
-    s.colour = model_colour(r.models[m]);
-    s.width = 1.4;
-    // dual's first order is ae-arm: dashed, so that both stay visible.
-    if (model::descriptor(r.models[m]).dashed) s.style = SeriesStyle::dashed;
-    for (std::size_t i = 0; i < r.nominal.size(); ++i) {
-      const Eigen::Vector2d q = project(r.nominal[i] + k * 1e-3 * r.deviation_um[m][i]);
-      s.x.push_back(q.x());
-      s.y.push_back(q.y());
-      s.hover.push_back(hover_text(r, m, i));
-    }
-    plot.series.push_back(std::move(s));
-  }
-  plot.max_hover_targets = 1500;
-  return plot;
+  return out;
 }
 
-LinePlot deviation_plot(const PredictedPath& r, std::size_t m) {
+constexpr std::size_t kPlotPoints = 1500;
+
+LinePlot deviation_plot(const PredictedPath& r, const std::vector<std::size_t>& shown,
+                        std::size_t m) {
   LinePlot plot;
   plot.id = "deviation-" + model_name(r.models[m]);
   plot.title = fmt::format("Deviation along the path, {} model", model_name(r.models[m]));
   plot.x = {"path length", "mm", {}, {}};
   plot.y = {"deviation", "µm", {}, {}};
   const char* names[] = {"dx", "dy", "dz"};
-  const char* colours[] = {"#d62728", "#2ca02c", "#1f77b4"};
+  const char* colours[] = {palette::kBlue, palette::kOrange, palette::kPurple};
   for (int a = 0; a < 3; ++a) {
     Series s;
     s.name = names[a];
     s.colour = colours[a];
     s.width = 1.2;
-    for (std::size_t i = 0; i < r.nominal.size(); ++i) {
+    for (std::size_t i : shown) {
       s.x.push_back(r.path_length[i]);
       s.y.push_back(r.deviation_um[m][i][a]);
     }
@@ -102,16 +74,17 @@ LinePlot deviation_plot(const PredictedPath& r, std::size_t m) {
   d.name = "|d|";
   d.colour = "#000000";
   d.width = 1.8;
-  for (std::size_t i = 0; i < r.nominal.size(); ++i) {
+  for (std::size_t i : shown) {
     d.x.push_back(r.path_length[i]);
     d.y.push_back(r.deviation_um[m][i].norm());
     d.hover.push_back(hover_text(r, m, i));
   }
   plot.series.push_back(std::move(d));
+  plot.max_hover_targets = 100;
   return plot;
 }
 
-LinePlot comparison_plot(const PredictedPath& r) {
+LinePlot comparison_plot(const PredictedPath& r, const std::vector<std::size_t>& shown) {
   LinePlot plot;
   plot.id = "deviation-models";
   plot.title = "|d| along the path, all models";
@@ -122,13 +95,14 @@ LinePlot comparison_plot(const PredictedPath& r) {
     s.name = model_name(r.models[m]);
     s.colour = model_colour(r.models[m]);
     s.style = model::descriptor(r.models[m]).dashed ? SeriesStyle::dashed : SeriesStyle::line;
-    for (std::size_t i = 0; i < r.nominal.size(); ++i) {
+    for (std::size_t i : shown) {
       s.x.push_back(r.path_length[i]);
       s.y.push_back(r.deviation_um[m][i].norm());
       s.hover.push_back(hover_text(r, m, i));
     }
     plot.series.push_back(std::move(s));
   }
+  plot.max_hover_targets = 150;
   return plot;
 }
 
@@ -154,7 +128,7 @@ double auto_exaggeration(const PredictedPath& r) {
   return mag * (f >= 5.0 ? 5.0 : f >= 2.0 ? 2.0 : 1.0);
 }
 
-void render_predict_report(HtmlPage& page, const PredictedPath& r, double k) {
+void render_predict_report(HtmlPage& page, const PredictedPath& r, double k, double tolerance_um) {
   if (!(k > 0.0) || !std::isfinite(k)) k = auto_exaggeration(r);
   page.add_fact("program", r.program);
   page.add_fact("machine", r.machine);
@@ -175,34 +149,31 @@ void render_predict_report(HtmlPage& page, const PredictedPath& r, double k) {
   page.add_table(t);
   if (r.stride > 1)
     page.add_note(fmt::format(
-        "{} points in all; the plots show every {}th ({} points); the table covers all points.",
-        r.total_points, r.stride, r.nominal.size()));
+        "{} points in all; drawn: every {}th and the largest |d| of each stretch of {} ({} "
+        "points in the 3-D view, at most {} per curve in the plots); the table covers all points.",
+        r.total_points, r.stride, r.stride, r.nominal.size(), 2 * kPlotPoints));
 
   page.add_section("toolpath", "Toolpath: nominal and predicted");
+  ToolpathViewOptions vo;
+  vo.exaggerate = k;
+  vo.tolerance_um = tolerance_um;
   page.add_paragraph(fmt::format(
-      "The predicted toolpath is drawn as nominal + {:g} × deviation, so that errors of a few µm "
-      "become visible (the nominal path is dashed). Hover over a predicted path for the source "
-      "line and the deviation.",
-      k));
-  page.add_figures({toolpath_plot(r, k, "toolpath-iso",
-                                  fmt::format("Isometric view, deviation × {:g}", k), 0, 1, true)
-                        .render(900, 640)});
-  page.add_figures(
-      {toolpath_plot(r, k, "toolpath-xy", fmt::format("XY plane, deviation × {:g}", k), 0, 1, false)
-           .render(440, 420),
-       toolpath_plot(r, k, "toolpath-xz", fmt::format("XZ plane, deviation × {:g}", k), 0, 2, false)
-           .render(440, 420),
-       toolpath_plot(r, k, "toolpath-yz", fmt::format("YZ plane, deviation × {:g}", k), 1, 2, false)
-           .render(440, 420)});
+      "The predicted toolpath drawn as nominal + {:g} × deviation (the nominal path dashed grey), "
+      "coloured by |d| of the chosen model against the tolerance ({:g} µm; change it below). "
+      "Drag to rotate, wheel or +/− to zoom, the buttons for the isometric view and the planes; "
+      "hover over the path for the source line and the deviation.",
+      k, tolerance_um > 0.0 ? tolerance_um : auto_tolerance(r)));
+  page.add_html(render_toolpath_view(r, vo));
 
   page.add_section("deviation", "Deviation along the path");
   page.add_paragraph(
       "Components dx, dy, dz and the length |d| of the predicted deviation P' − P against the "
       "length travelled along the path (rapids included). Hover over |d| for the source line.");
   std::vector<std::string> figs;
-  if (r.models.size() > 1) figs.push_back(comparison_plot(r).render(900, 360));
+  const std::vector<std::size_t> shown = display_subset(r, kPlotPoints);
+  if (r.models.size() > 1) figs.push_back(comparison_plot(r, shown).render(900, 360));
   for (std::size_t m = 0; m < r.models.size(); ++m)
-    figs.push_back(deviation_plot(r, m).render(900, 360));
+    figs.push_back(deviation_plot(r, shown, m).render(900, 360));
   page.add_figures(figs);
 }
 

@@ -6,22 +6,57 @@
 #include "abbe/pipeline/interpreter_setup.hpp"
 #include "abbe/pipeline/model_set.hpp"
 #include "abbe/pipeline/program_path.hpp"
+#include "abbe/report/sha256.hpp"
 
 namespace abbe::report {
 namespace {
 
-// Drops every other kept point (stride doubles).
-void thin(PredictedPath& r) {
-  auto keep_even = [](auto& v) {
-    std::size_t j = 0;
-    for (std::size_t i = 0; i < v.size(); i += 2) v[j++] = v[i];
-    v.resize(j);
-  };
-  keep_even(r.nominal);
-  keep_even(r.line);
-  keep_even(r.path_length);
-  for (auto& d : r.deviation_um) keep_even(d);
-  r.stride *= 2;
+// One kept point.
+struct Kept {
+  std::size_t index = 0;
+  Eigen::Vector3d p;
+  std::size_t line = 0;
+  double length = 0.0;
+  std::vector<Eigen::Vector3d> d;  // per model
+  double norm(std::size_t m) const { return d[m].norm(); }
+};
+
+// A stretch of `stride` points: its first point and, per model, the point
+// of the largest |d| among the others.
+struct Bucket {
+  Kept regular;
+  std::vector<Kept> extreme;  // per model; empty d: none yet
+};
+
+void offer(Bucket& b, const Kept& k) {
+  if (b.extreme.size() < k.d.size()) b.extreme.resize(k.d.size());
+  for (std::size_t m = 0; m < k.d.size(); ++m)
+    if (b.extreme[m].d.empty() || k.norm(m) > b.extreme[m].norm(m)) b.extreme[m] = k;
+}
+
+// Merges the buckets pairwise (stride doubles): the first regular point
+// stays, the largest of the rest per model become the extremes.
+void thin(std::vector<Bucket>& buckets) {
+  std::size_t j = 0;
+  for (std::size_t i = 0; i < buckets.size(); i += 2) {
+    Bucket b = std::move(buckets[i]);
+    if (i + 1 < buckets.size()) {
+      const Bucket& c = buckets[i + 1];
+      offer(b, c.regular);
+      for (const Kept& e : c.extreme)
+        if (!e.d.empty()) offer(b, e);
+    }
+    buckets[j++] = std::move(b);
+  }
+  buckets.resize(j);
+}
+
+void append(PredictedPath& r, const Kept& k) {
+  r.index.push_back(k.index);
+  r.nominal.push_back(k.p);
+  r.line.push_back(k.line);
+  r.path_length.push_back(k.length);
+  for (std::size_t m = 0; m < k.d.size(); ++m) r.deviation_um[m].push_back(k.d[m]);
 }
 
 }  // namespace
@@ -35,6 +70,7 @@ PredictedPath predict_program(const machine::Machine& machine, std::istream& in,
   // The whole text is kept: the report shows source lines on hover.
   std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
   std::istringstream program(text);
+  r.sha256 = sha256_hex(text);
 
   pipeline::ModelSet models(machine, o.models);
   r.deviation_um.resize(models.size());
@@ -47,18 +83,30 @@ PredictedPath predict_program(const machine::Machine& machine, std::istream& in,
   double length = 0.0;
   Eigen::Vector3d previous = Eigen::Vector3d::Zero();
   const std::size_t max_points = std::max<std::size_t>(o.max_points, 16);
+  std::vector<Bucket> buckets;
   pipeline::run_path(program, file, pipeline::interpreter_config(machine), po,
                      [&](const path::PathPoint& pp) {
                        models.evaluate(pipeline::eval_point(pp), file, pp.line);
                        if (r.total_points > 0) length += (pp.p - previous).norm();
                        previous = pp.p;
+                       Kept k;
+                       k.index = r.total_points;
+                       k.p = pp.p;
+                       k.line = pp.line;
+                       k.length = length;
+                       k.d.resize(models.size());
+                       for (std::size_t i = 0; i < models.size(); ++i)
+                         k.d[i] = models.deviations()[i].e_um;
                        if (r.total_points % r.stride == 0) {
-                         r.nominal.push_back(pp.p);
-                         r.line.push_back(pp.line);
-                         r.path_length.push_back(length);
-                         for (std::size_t i = 0; i < models.size(); ++i)
-                           r.deviation_um[i].push_back(models.deviations()[i].e_um);
-                         if (r.nominal.size() >= max_points) thin(r);
+                         if (buckets.size() >= max_points) {
+                           thin(buckets);
+                           r.stride *= 2;
+                         }
+                       }
+                       if (r.total_points % r.stride == 0) {
+                         buckets.emplace_back().regular = std::move(k);
+                       } else {
+                         offer(buckets.back(), k);
                        }
                        ++r.total_points;
                        if (o.progress && (r.total_points & 1023) == 0) {
@@ -67,6 +115,22 @@ PredictedPath predict_program(const machine::Machine& machine, std::istream& in,
                        }
                      });
   if (o.progress) o.progress(text.size());
+  // Each stretch: its first point, then (in path order, once each) the
+  // points of a model's largest |d| that exceed that model's |d| there.
+  for (const Bucket& b : buckets) {
+    append(r, b.regular);
+    std::vector<const Kept*> extra;
+    for (std::size_t m = 0; m < b.extreme.size(); ++m) {
+      const Kept& e = b.extreme[m];
+      if (e.d.empty() || !(e.norm(m) > b.regular.norm(m))) continue;
+      if (std::none_of(extra.begin(), extra.end(),
+                       [&](const Kept* x) { return x->index == e.index; }))
+        extra.push_back(&e);
+    }
+    std::sort(extra.begin(), extra.end(),
+              [](const Kept* x, const Kept* y) { return x->index < y->index; });
+    for (const Kept* e : extra) append(r, *e);
+  }
 
   for (std::size_t i = 0; i < models.size(); ++i) {
     const pipeline::ModelStats& s = models.stats()[i];

@@ -115,8 +115,8 @@ std::string viridis(double t) {
 }
 
 std::string series_colour(std::size_t i) {
-  static constexpr std::array<const char*, 8> kColours{"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e",
-                                                       "#9467bd", "#8c564b", "#e377c2", "#17becf"};
+  static constexpr std::array<const char*, 8> kColours{"#0072b2", "#e69f00", "#56b4e9", "#cc79a7",
+                                                       "#000000", "#d55e00", "#888888", "#f0e442"};
   return kColours[i % kColours.size()];
 }
 

@@ -1,14 +1,17 @@
 #!/usr/bin/env bash
 # Browser test of the HTML reports (ctest label "browser", docs/report.md):
-# generates the predict, map, diagnose and compensate reports, renders each
-# in headless Chromium and in headless Firefox ESR, keeps the screenshots
-# (WORK/<name>.png, WORK/<name>.firefox.png) as test artifacts, and fails on
-# Chromium console errors, when the expected plots are missing from the
-# rendered DOM, when a screenshot is blank or of the wrong size, or when
-# Firefox lays the page out differently from Chromium
-# (tests/browser/png_compare.py). Installs Debian's chromium and
-# firefox-esr when missing (needs root or password-less sudo, else the test
-# is skipped with exit code 77). ABBE_SKIP_BROWSER=1 skips it.
+# generates the predict, map, diagnose, compensate and iso230 reports,
+# renders each in headless Chromium and in headless Firefox ESR, keeps the
+# screenshots (WORK/<name>.png, WORK/<name>.firefox.png) as test artifacts,
+# and fails on Chromium console errors, when the expected plots are missing
+# from the rendered DOM, when a screenshot is blank or of the wrong size, or
+# when Firefox lays the page out differently from Chromium
+# (tests/browser/png_compare.py). Then drives the 3-D toolpath of the
+# predict report with real mouse events over the DevTools protocol
+# (tests/browser/interaction.py: rotate, zoom, hover, tolerance).
+# Installs nothing: the browsers come from tools/install-deps.sh --test;
+# without chromium the test is skipped (exit code 77), without firefox-esr
+# the Firefox comparison is. ABBE_SKIP_BROWSER=1 skips it.
 #
 # usage: run_browser_test.sh ABBE SOURCE_DIR WORK_DIR
 set -u
@@ -23,31 +26,16 @@ fi
 
 browser=$(command -v chromium || command -v chromium-browser || true)
 if [ -z "$browser" ]; then
-  echo "chromium is not installed: installing Debian's chromium"
-  if [ "$(id -u)" = 0 ]; then
-    apt-get install -y chromium >/dev/null || { echo "apt-get install chromium failed: skipped"; exit 77; }
-  elif sudo -n true 2>/dev/null; then
-    sudo apt-get install -y chromium >/dev/null || { echo "apt-get install chromium failed: skipped"; exit 77; }
-  else
-    echo "not root and no password-less sudo: cannot install chromium: skipped"
-    exit 77
-  fi
-  browser=$(command -v chromium || command -v chromium-browser || true)
-  [ -n "$browser" ] || { echo "chromium still not found: skipped"; exit 77; }
+  echo "chromium is not installed (tools/install-deps.sh --test installs it): skipped"
+  exit 77
 fi
 echo "browser: $("$browser" --version 2>/dev/null)"
 firefox=$(command -v firefox-esr || command -v firefox || true)
-if [ -z "$firefox" ]; then
-  echo "firefox is not installed: installing Debian's firefox-esr"
-  if [ "$(id -u)" = 0 ]; then
-    apt-get install -y --no-install-recommends firefox-esr >/dev/null
-  elif sudo -n true 2>/dev/null; then
-    sudo apt-get install -y --no-install-recommends firefox-esr >/dev/null
-  fi
-  firefox=$(command -v firefox-esr || command -v firefox || true)
-  [ -n "$firefox" ] || { echo "firefox-esr cannot be installed: skipped"; exit 77; }
+if [ -n "$firefox" ]; then
+  echo "browser: $("$firefox" --version 2>/dev/null)"
+else
+  echo "firefox-esr is not installed (tools/install-deps.sh --test): no Firefox comparison"
 fi
-echo "browser: $("$firefox" --version 2>/dev/null)"
 width=1400
 height=3000
 
@@ -88,6 +76,7 @@ check_page() {  # check_page NAME ID...
   run_browser "$profile" --enable-logging=stderr --v=0 --window-size=$width,$height \
     --screenshot="$work/$name.png" "file://$page" >"$work/$name.screenshot.log" 2>&1
   local rc=$?
+  rm -rf "$profile"
   [ $rc = 0 ] || fail "$name: chromium --screenshot exited with $rc (see $work/$name.screenshot.log)"
   if [ ! -s "$work/$name.png" ] || [ "$(stat -c %s "$work/$name.png")" -lt 20000 ]; then
     fail "$name: the screenshot is missing or nearly empty"
@@ -95,6 +84,16 @@ check_page() {  # check_page NAME ID...
   python3 "$src/tests/browser/png_compare.py" size "$work/$name.png" $width $height ||
     fail "$name: the Chromium screenshot is blank or of the wrong size"
   # Firefox ESR: the same page, the same window; a fresh profile and HOME.
+  [ -n "$firefox" ] && check_firefox "$name"
+  if grep -E "Uncaught|ERROR:CONSOLE|CONSOLE\([0-9]+\).*[Ee]rror|Not allowed to load" \
+      "$work/$name.screenshot.log"; then
+    fail "$name: console errors while loading the page"
+  fi
+  check_dom "$@"
+}
+
+check_firefox() {  # check_firefox NAME
+  local name=$1 page="$work/$1.html" rc
   local ff_home
   ff_home=$(mktemp -d)
   HOME=$ff_home timeout 180 "$firefox" --headless --no-remote --profile "$ff_home" \
@@ -109,11 +108,10 @@ check_page() {  # check_page NAME ID...
   else
     fail "$name: the Firefox screenshot is missing, blank or of the wrong size"
   fi
-  if grep -E "Uncaught|ERROR:CONSOLE|CONSOLE\([0-9]+\).*[Ee]rror|Not allowed to load" \
-      "$work/$name.screenshot.log"; then
-    fail "$name: console errors while loading the page"
-  fi
-  rm -rf "$profile"
+}
+
+check_dom() {  # check_dom ID... (NAME and page from check_page)
+  local profile
   profile=$(mktemp -d)
   run_browser "$profile" --dump-dom "file://$page" >"$work/$name.dom.html" 2>"$work/$name.dom.log"
   rm -rf "$profile"
@@ -122,7 +120,7 @@ check_page() {  # check_page NAME ID...
     grep -q "id=\"$id\"" "$work/$name.dom.html" || fail "$name: plot or table '$id' not in the DOM"
   done
   # The page's script ran: it fills the table of contents and the plot count.
-  grep -q '<a href="#summary">\|<a href="#map-summary">' "$work/$name.dom.html" ||
+  grep -q '<a href="#summary">\|<a href="#map-summary">\|<a href="#iso230-summary">' "$work/$name.dom.html" ||
     fail "$name: the table of contents was not built (script did not run)"
   grep -Eq 'id="plot-count">[1-9][0-9]* plots<' "$work/$name.dom.html" ||
     fail "$name: the plot count was not filled in (script did not run)"
@@ -132,8 +130,14 @@ check_page() {  # check_page NAME ID...
   echo "$name: $(grep -o '<svg ' "$work/$name.dom.html" | wc -l) plots, screenshot $work/$name.png"
 }
 
-check_page predict summary-table toolpath-iso toolpath-xy toolpath-xz toolpath-yz \
+check_page predict summary-table toolpath-3d toolpath-3d-tol provenance \
   deviation-models deviation-htm deviation-ae-arm deviation-dual
+# The 3-D toolpath: rotate, zoom, hover, tolerance, with real input events.
+python3 "$src/tests/browser/interaction.py" "$browser" "$work/predict.html" ||
+  fail "predict: the 3-D toolpath interaction test failed"
+"$abbe" -q report iso230 "$src/machines/sample/runs.csv" -o "$work/iso230.html" ||
+  fail "abbe report iso230 exited with $?"
+check_page iso230 iso230-table iso230-x-exx iso230-x-eyx provenance
 "$abbe" -q report diagnose --measured "$src/machines/sample/measured-grid.csv" \
   --machine "$src/machines/sample/machine.yaml" -o "$work/diagnose.html" ||
   fail "abbe report diagnose exited with $?"

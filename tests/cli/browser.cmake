@@ -1,8 +1,9 @@
 # Browser test of the HTML reports (label "browser"): renders them in headless
-# Chromium (installed from Debian when missing), checks the console and the
-# DOM, and keeps the screenshots in <build>/tests/browser/*.png.
-# ABBE_SKIP_BROWSER=1 skips it (reported as skipped, as when chromium cannot
-# be installed).
+# Chromium and Firefox ESR (installed by tools/install-deps.sh, never by the
+# test), checks the console and the DOM, drives the 3-D toolpath with mouse
+# events (tests/browser/interaction.py) and keeps the screenshots in
+# <build>/tests/browser/*.png. ABBE_SKIP_BROWSER=1 skips it (reported as
+# skipped, as when chromium is not installed).
 add_test(NAME browser_report
          COMMAND ${CMAKE_CURRENT_LIST_DIR}/../browser/run_browser_test.sh
                  $<TARGET_FILE:abbe> ${PROJECT_SOURCE_DIR} ${CMAKE_CURRENT_BINARY_DIR}/browser)

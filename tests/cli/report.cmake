@@ -53,13 +53,23 @@ endfunction()
 
 # predict report of a thesis toolpath, all models.
 run_ok("report predict" report predict ${SRC}/nc-samples/thesis-toolpath-1.ngc
-       --machine ${MACHINE} --model all --exaggerate 2000 -o ${WORK}/predict.html)
+       --machine ${MACHINE} --model all --exaggerate 2000 --tolerance 20 -o ${WORK}/predict.html)
 expect_in(${WORK}/predict.html "report predict"
-  "<!DOCTYPE html>" "id=\"summary-table\"" "id=\"toolpath-iso\"" "id=\"toolpath-xy\""
-  "id=\"toolpath-xz\"" "id=\"toolpath-yz\"" "id=\"deviation-htm\"" "id=\"deviation-ae-arm\""
-  "id=\"deviation-dual\"" "XY plane, deviation × 2000" "predicted ae-arm (× 2000)"
-  ">x (mm)</text>" ">path length (mm)</text>" ">deviation (µm)</text>"
-  "<title>line 18: G1 X-650 F1000")
+  "<!DOCTYPE html>" "id=\"summary-table\"" "id=\"toolpath-3d\"" "id=\"toolpath-3d-data\""
+  "id=\"toolpath-3d-tol\" min=\"0\" step=\"any\" value=\"20\"" "{\"k\":2000,\"tol\":20,"
+  "\"18\":\"G1 X-650 F1000\"" "id=\"deviation-htm\"" "id=\"deviation-ae-arm\""
+  "id=\"deviation-dual\"" ">path length (mm)</text>" ">deviation (µm)</text>"
+  "<title>line 18: G1 X-650 F1000" "<footer id=\"provenance\">"
+  "report predict ${SRC}/nc-samples/thesis-toolpath-1.ngc")
+# Bounded: the 23-line program's report stays small.
+file(SIZE ${WORK}/predict.html predict_size)
+if(predict_size GREATER 307200)
+  message(FATAL_ERROR "the predict report of thesis-toolpath-1.ngc is ${predict_size} bytes (> 300 kB)")
+endif()
+# The footer holds the SHA-256 of the inputs.
+file(SHA256 ${SRC}/nc-samples/thesis-toolpath-1.ngc program_sha)
+file(SHA256 ${MACHINE} machine_sha)
+expect_in(${WORK}/predict.html "report predict footer" "${program_sha}" "${machine_sha}")
 # The summary table agrees with `abbe predict` on the same program.
 execute_process(COMMAND ${ABBE} predict ${SRC}/nc-samples/thesis-toolpath-1.ngc --machine ${MACHINE}
                         --model ae-arm --summary-only OUTPUT_VARIABLE summary RESULT_VARIABLE rc)
@@ -118,6 +128,24 @@ run_ok("report diagnose" report diagnose --measured ${SRC}/machines/sample/measu
 expect_in(${WORK}/diagnosis.html "report diagnose"
   "id=\"diagnose-models\"" "id=\"diagnose-effects\"" "id=\"residual-x\"" "id=\"residual-t\""
   ">s_x (mm)</text>" ">t (s)</text>" ">residual (µm)</text>" "<td>ae-arm + effects</td>")
+
+# ISO 230-2 report of the sample machine's runs: a chart per component.
+run_ok("report iso230" report iso230 ${SRC}/machines/sample/runs.csv -o ${WORK}/iso230.html)
+file(SHA256 ${SRC}/machines/sample/runs.csv runs_sha)
+expect_in(${WORK}/iso230.html "report iso230"
+  "id=\"iso230-table\"" "id=\"iso230-x-exx\"" "id=\"iso230-z-ezz\"" "<td>X</td><td>EXX</td>"
+  ">target position X (mm)</text>" "x̄↑ ± 2s↑" "x̄↓ ± 2s↓" "${runs_sha}")
+# The same from standard input; a runs file with one run per target: exit 1.
+execute_process(COMMAND ${ABBE} report iso230 - -o -
+                INPUT_FILE ${SRC}/tests/data/iso230/hand.csv OUTPUT_VARIABLE out RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0 OR NOT out MATCHES "id=\"iso230-x-exx\".*</html>\n$")
+  message(FATAL_ERROR "report iso230 - -o -: exit ${rc}")
+endif()
+execute_process(COMMAND ${ABBE} report iso230 ${SRC}/tests/data/iso230/one-run.csv
+                        -o ${WORK}/keep-iso.html RESULT_VARIABLE rc ERROR_VARIABLE err)
+if(NOT rc EQUAL 1 OR NOT err MATCHES "one-run.csv" OR EXISTS ${WORK}/keep-iso.html)
+  message(FATAL_ERROR "report iso230 one-run.csv: exit ${rc}\n${err}")
+endif()
 
 # Bad input: exit 1, file and line named, an existing output left alone.
 file(WRITE ${WORK}/bad.ngc "G0 X0\nG1 X10 Q7 F100\n")

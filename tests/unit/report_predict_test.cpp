@@ -78,7 +78,7 @@ TEST(ReportPredict, StatisticsMatchTheModelPointByPoint) {
   EXPECT_GT(std::abs(r.stats[0].max_um - r.stats[1].max_um), 0.1);
 }
 
-TEST(ReportPredict, ThinningKeepsStatisticsOfAllPoints) {
+TEST(ReportPredict, ThinningKeepsStatisticsOfAllPointsAndTheExtremes) {
   const machine::Machine m = machine::Machine::load(kMachine);
   PredictPathOptions full, thin;
   thin.max_points = 40;
@@ -86,15 +86,49 @@ TEST(ReportPredict, ThinningKeepsStatisticsOfAllPoints) {
   const PredictedPath rf = predict_program(m, a, "rect.ngc", full);
   const PredictedPath rt = predict_program(m, b, "rect.ngc", thin);
   EXPECT_EQ(rt.total_points, rf.total_points);
-  EXPECT_LT(rt.nominal.size(), 40u);
-  EXPECT_GE(rt.nominal.size(), 20u);
   EXPECT_GT(rt.stride, 1u);
+  // Every stride-th point, plus at most one extreme per stretch.
+  const std::size_t regular = (rf.total_points + rt.stride - 1) / rt.stride;
+  EXPECT_LE(regular, 40u);
+  EXPECT_GE(rt.nominal.size(), regular);
+  EXPECT_LE(rt.nominal.size(), 2 * regular);
   EXPECT_DOUBLE_EQ(rt.stats[0].max_um, rf.stats[0].max_um);
   EXPECT_DOUBLE_EQ(rt.stats[0].rms_um, rf.stats[0].rms_um);
+  ASSERT_EQ(rt.index.size(), rt.nominal.size());
+  std::size_t n_regular = 0;
   for (std::size_t i = 0; i < rt.nominal.size(); ++i) {
-    EXPECT_EQ(rt.nominal[i], rf.nominal[i * rt.stride]);
-    EXPECT_DOUBLE_EQ(rt.path_length[i], rf.path_length[i * rt.stride]);
+    const std::size_t j = rt.index[i];
+    if (i > 0) {
+      EXPECT_GT(j, rt.index[i - 1]);  // in path order
+    }
+    if (j % rt.stride == 0) {
+      EXPECT_EQ(j, n_regular * rt.stride);
+      ++n_regular;
+    } else {  // an extreme: larger than the regular point of its stretch
+      EXPECT_GT(rt.deviation_um[0][i].norm(), rf.deviation_um[0][j - j % rt.stride].norm());
+    }
+    EXPECT_EQ(rt.nominal[i], rf.nominal[j]);
+    EXPECT_DOUBLE_EQ(rt.path_length[i], rf.path_length[j]);
+    EXPECT_EQ(rt.deviation_um[0][i], rf.deviation_um[0][j]);
   }
+  EXPECT_EQ(n_regular, regular);
+  // The peak of |d| is drawn: the kept points hold the largest deviation.
+  double kept_max = 0.0;
+  for (const auto& d : rt.deviation_um[0]) kept_max = std::max(kept_max, d.norm());
+  EXPECT_DOUBLE_EQ(kept_max, rf.stats[0].max_um);
+
+  // Several models: each model's largest |d| is kept.
+  PredictPathOptions two = thin;
+  two.models = {model::ModelKind::htm, model::ModelKind::ae_arm};
+  std::istringstream c(kProgram);
+  const PredictedPath r2 = predict_program(m, c, "rect.ngc", two);
+  EXPECT_LE(r2.nominal.size(), 3 * ((r2.total_points + r2.stride - 1) / r2.stride));
+  for (std::size_t k = 0; k < 2; ++k) {
+    double mx = 0.0;
+    for (const auto& d : r2.deviation_um[k]) mx = std::max(mx, d.norm());
+    EXPECT_DOUBLE_EQ(mx, r2.stats[k].max_um) << k;
+  }
+  for (std::size_t i = 1; i < r2.index.size(); ++i) EXPECT_GT(r2.index[i], r2.index[i - 1]);
 }
 
 TEST(ReportPredict, BadProgramNamesFileAndLine) {
@@ -128,11 +162,11 @@ TEST(ReportPredict, PageHasEveryPlotAndTheSummary) {
   HtmlPage page("t");
   render_predict_report(page, r, 0.0);
   const std::string html = page.render();
-  for (const char* id :
-       {"toolpath-iso", "toolpath-xy", "toolpath-xz", "toolpath-yz", "deviation-models",
-        "deviation-htm", "deviation-ae-arm", "deviation-dual", "summary-table"})
+  for (const char* id : {"toolpath-3d", "toolpath-3d-data", "toolpath-3d-tol", "deviation-models",
+                         "deviation-htm", "deviation-ae-arm", "deviation-dual", "summary-table"})
     EXPECT_NE(html.find(std::string("id=\"") + id + "\""), std::string::npos) << id;
   EXPECT_NE(html.find("line 5: G1 X-650 F1000"), std::string::npos);
+  EXPECT_NE(html.find("\"5\":\"G1 X-650 F1000\""), std::string::npos);  // 3-D view hover text
   EXPECT_FALSE(std::regex_search(html, std::regex("\\bnan\\b|\\binf\\b", std::regex::icase)));
 }
 

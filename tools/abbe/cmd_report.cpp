@@ -11,8 +11,10 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <sstream>
 #include <string>
 
+#include "abbe/diagnose/iso230.hpp"
 #include "abbe/identify/workspace_map.hpp"
 #include "abbe/io/atomic_file.hpp"
 #include "abbe/io/input_error.hpp"
@@ -21,11 +23,13 @@
 #include "abbe/report/compensate_section.hpp"
 #include "abbe/report/diagnose_section.hpp"
 #include "abbe/report/html_page.hpp"
+#include "abbe/report/iso230_section.hpp"
 #include "abbe/report/map_section.hpp"
 #include "abbe/report/predict_section.hpp"
 #include "abbe/report/predicted_path.hpp"
-#include "dialect_option.hpp"
+#include "abbe/report/sha256.hpp"
 #include "command.hpp"
+#include "dialect_option.hpp"
 #include "input_stream.hpp"
 #include "progress.hpp"
 
@@ -39,15 +43,58 @@ struct ReportOptions {
   std::string output;
   std::string compensated;
   double exaggerate = 0.0;  // ≤ 0: automatic
+  double tolerance = 0.0;   // µm, ≤ 0: automatic
   double step = 5.0;
   double grid = 50.0;
   double tool_length = -1.0;
-  std::size_t max_points = 20000;
+  std::size_t max_points = 5000;
   gcode::DialectOptions dialect;
 };
 
 std::vector<model::ModelKind> parse_models(const std::string& m) {
   return model::parse_model_list(m);
+}
+
+// The command line as typed (Linux: /proc/self/cmdline), arguments with
+// spaces or quotes in single quotes.
+std::string command_line() {
+  std::ifstream f("/proc/self/cmdline", std::ios::binary);
+  std::string all{std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
+  std::string out;
+  std::size_t start = 0;
+  while (start < all.size()) {
+    std::size_t end = all.find('\0', start);
+    if (end == std::string::npos) end = all.size();
+    std::string arg = all.substr(start, end - start);
+    if (start == 0) {  // the program: its file name
+      const std::size_t slash = arg.rfind('/');
+      if (slash != std::string::npos) arg = arg.substr(slash + 1);
+    }
+    if (!out.empty()) out += ' ';
+    if (arg.empty() || arg.find_first_of(" \t'\"$\\;&|<>*?") != std::string::npos) {
+      std::string q = "'";
+      for (char c : arg) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+      out += q + "'";
+    } else {
+      out += arg;
+    }
+    start = end + 1;
+  }
+  return out.empty() ? "abbe report" : out;
+}
+
+// The footer: command line and SHA-256 of each input file ("-": the hash of
+// the bytes read, when known).
+void set_provenance(report::HtmlPage& page,
+                    const std::vector<std::pair<std::string, std::string>>& hashed) {
+  report::Provenance p;
+  p.command_line = command_line();
+  p.inputs = hashed;
+  page.set_provenance(std::move(p));
+}
+
+std::pair<std::string, std::string> hashed_file(const std::string& path) {
+  return {path, report::sha256_file(path)};
 }
 
 void write_page(const std::string& path, const report::HtmlPage& page) {
@@ -72,7 +119,9 @@ int run_report_predict(const ReportOptions& o, const GlobalOptions& g) {
   const report::PredictedPath path = report::predict_program(machine, *in, o.input, po);
   progress.finish();
   report::HtmlPage page(fmt::format("abbe: predicted toolpath of {}", o.input));
-  report::render_predict_report(page, path, o.exaggerate);
+  report::render_predict_report(page, path, o.exaggerate, o.tolerance);
+  set_provenance(
+      page, {{o.input == "-" ? "standard input" : o.input, path.sha256}, hashed_file(o.machine)});
   write_page(o.output, page);
   return kOk;
 }
@@ -95,6 +144,7 @@ int run_report_map(const ReportOptions& o) {
   report::HtmlPage page(fmt::format("abbe: workspace error map of {}", machine.name()));
   page.add_fact("tool length", fmt::format("{:g} mm", mo.tool_length));
   report::render_map_report(page, map, machine.name());
+  set_provenance(page, {hashed_file(o.machine)});
   write_page(o.output, page);
   return kOk;
 }
@@ -115,11 +165,12 @@ int run_report_compensate(const ReportOptions& o) {
     throw InputError({"<command line>", 0, 0, "--model", ""},
                      "report compensate takes one model (" + model::model_names_text(false) + ")");
   po.step = o.step;
-  po.max_points = o.max_points;
+  po.max_points = 20000;  // the distance statistics are over the kept points
   const report::CompensationComparison c = report::compare_compensation(
       machine, read_text(o.input), o.input, read_text(o.compensated), o.compensated, po);
   report::HtmlPage page(fmt::format("abbe: compensation of {}", o.input));
   report::render_compensate_report(page, c, o.exaggerate);
+  set_provenance(page, {hashed_file(o.input), hashed_file(o.compensated), hashed_file(o.machine)});
   write_page(o.output, page);
   return kOk;
 }
@@ -136,12 +187,36 @@ int run_report_diagnose(const ReportOptions& o) {
   const report::DiagnosisForReport d = report::diagnose_for_report(machine, data, dopt);
   report::HtmlPage page(fmt::format("abbe: diagnosis of {}", o.input));
   report::render_diagnose_report(page, d);
+  set_provenance(page, {hashed_file(o.input), hashed_file(o.machine)});
+  write_page(o.output, page);
+  return kOk;
+}
+
+int run_report_iso230(const ReportOptions& o) {
+  std::string text;
+  if (o.input == "-") {
+    text.assign(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>());
+  } else {
+    std::ifstream f(o.input, std::ios::binary);
+    if (!f)
+      throw InputError({o.input, 0, 0, "", ""},
+                       std::string("cannot open the runs file: ") + std::strerror(errno));
+    text.assign(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+  }
+  std::istringstream in(text);
+  const auto readings = diagnose::read_iso230_runs(in, o.input);
+  const auto results = diagnose::evaluate_iso230(readings, o.input);
+  report::HtmlPage page(fmt::format("abbe: ISO 230-2 evaluation of {}", o.input));
+  report::render_iso230_report(page, results);
+  set_provenance(page, {{o.input == "-" ? "standard input" : o.input, report::sha256_hex(text)}});
   write_page(o.output, page);
   return kOk;
 }
 
 const CommandRegistrar registrar(
-    "report", "Write an HTML report with plots: a program's predicted toolpath, or a workspace map",
+    "report",
+    "Write an HTML report: a program's predicted toolpath (3-D), a workspace map, a "
+    "compensation, a diagnosis or an ISO 230-2 evaluation",
     80, [](CLI::App& sub, const GlobalOptions& g) -> CommandAction {
       auto o = std::make_shared<ReportOptions>();
       const GlobalOptions* gp = &g;
@@ -159,6 +234,11 @@ const CommandRegistrar registrar(
           ->capture_default_str();
       predict->add_option("--exaggerate", o->exaggerate,
                           "Draw nominal + K·deviation (default: automatic)");
+      predict
+          ->add_option("--tolerance", o->tolerance,
+                       "Colour the 3-D toolpath by |d| against this tolerance, µm (default: "
+                       "the largest max |d| rounded up to 2 digits; changeable in the page)")
+          ->check(CLI::PositiveNumber);
       predict->add_option("--step", o->step, "Largest distance between points, mm")
           ->check(CLI::PositiveNumber)
           ->capture_default_str();
@@ -169,7 +249,8 @@ const CommandRegistrar registrar(
           ->required();
       predict->footer(
           "Example: abbe report predict nc-samples/thesis-toolpath-1.ngc "
-          "--machine machines/sample/machine.yaml --model all --exaggerate 2000 -o report.html");
+          "--machine machines/sample/machine.yaml --model all --exaggerate 2000 --tolerance 20 "
+          "-o report.html");
       CLI::App* map = sub.add_subcommand(
           "map", "Colour maps of |d| on slices of the workspace, htm and ae-arm side by side");
       map->add_option("--machine", o->machine, "Machine file (YAML)")->required();
@@ -216,7 +297,16 @@ const CommandRegistrar registrar(
       diag->footer(
           "Example: abbe report diagnose --measured machines/sample/measured-grid.csv "
           "--machine machines/sample/machine.yaml -o diagnosis.html");
-      return [o, gp, predict, map, comp, diag]() -> int {
+      CLI::App* iso = sub.add_subcommand(
+          "iso230", "ISO 230-2 chart (mean ± 2s per direction per target) and A/B/R/E/M table");
+      iso->add_option("runs", o->input,
+                      "Runs CSV: axis,component,target_mm,run,direction,deviation ('-' = stdin)")
+          ->required();
+      iso->add_option("-o,--output", o->output, "HTML file (written atomically), - for stdout")
+          ->required();
+      iso->footer("Example: abbe report iso230 machines/sample/runs.csv -o iso230.html");
+      return [o, gp, predict, map, comp, diag, iso]() -> int {
+        if (iso->parsed()) return run_report_iso230(*o);
         if (diag->parsed()) {
           if (o->model == "all") o->model = "ae-arm";
           return run_report_diagnose(*o);

@@ -8,6 +8,19 @@
 
 namespace abbe::report {
 
+// Where a report comes from, shown in its footer.
+struct Provenance {
+  std::string command_line;  // as typed (arguments quoted where needed)
+  // Inputs: (name as given, SHA-256 hex of its bytes).
+  std::vector<std::pair<std::string, std::string>> inputs;
+  // ISO 8601 UTC; empty: report_date().
+  std::string date;
+};
+
+// Now in UTC ("2026-11-25T21:04:27Z"), or the time in the environment
+// variable SOURCE_DATE_EPOCH (seconds) when set, for reproducible pages.
+std::string report_date();
+
 struct Table {
   std::string caption;
   std::vector<std::string> header;
@@ -29,6 +42,11 @@ class HtmlPage {
   // Figures (SVG elements from LinePlot/ColourMap) side by side, wrapping
   // to the next row when the window is narrow.
   void add_figures(const std::vector<std::string>& svgs);
+  // An HTML fragment as it is (e.g. render_toolpath_view); the caller
+  // escapes its text.
+  void add_html(const std::string& html);
+  // The footer: date, abbe version, command line, inputs and their SHA-256.
+  void set_provenance(Provenance p);
   // Facts shown under the title (key: value).
   void add_fact(const std::string& key, const std::string& value);
 
@@ -38,6 +56,7 @@ class HtmlPage {
   std::string title_;
   std::vector<std::pair<std::string, std::string>> facts_;
   std::string body_;
+  Provenance provenance_;
 };
 
 }  // namespace abbe::report

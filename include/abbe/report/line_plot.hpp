@@ -19,7 +19,7 @@ struct AxisSpec {
 enum class SeriesStyle { line, dashed, markers };
 
 struct Series {
-  std::string name;    // legend text
+  std::string name;    // legend text; empty: not in the legend
   std::string colour;  // "#rrggbb"; empty: series_colour(index)
   SeriesStyle style = SeriesStyle::line;
   double width = 1.5;  // line width or marker radius, px

@@ -1,8 +1,7 @@
 #pragma once
 // The sections of the predict report: the summary table per model, the
-// toolpath (isometric drawing and the XY, XZ and YZ planes) with the
-// deviation exaggerated (predicted' = nominal + K·deviation, as in the
-// thesis' toolpath figures), and the deviation along the path per model
+// interactive 3-D toolpath (toolpath_view.hpp) with the deviation exaggerated (predicted' = nominal
+// + K·deviation, as in the thesis' toolpath figures), and the deviation along the path per model
 // with the source line on hover.
 #include "abbe/report/html_page.hpp"
 #include "abbe/report/predicted_path.hpp"
@@ -17,7 +16,9 @@ double auto_exaggeration(const PredictedPath& path);
 // Z up; mm along every axis.
 Eigen::Vector2d isometric(const Eigen::Vector3d& p);
 
-// `exaggerate` ≤ 0 chooses auto_exaggeration.
-void render_predict_report(HtmlPage& page, const PredictedPath& path, double exaggerate);
+// `exaggerate` ≤ 0 chooses auto_exaggeration; `tolerance_um` ≤ 0 chooses
+// auto_tolerance (the colour scale of the 3-D toolpath).
+void render_predict_report(HtmlPage& page, const PredictedPath& path, double exaggerate,
+                           double tolerance_um = 0.0);
 
 }  // namespace abbe::report

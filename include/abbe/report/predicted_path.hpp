@@ -2,9 +2,12 @@
 // PredictedPath: what the predict report draws — the fragmented toolpath of
 // an NC program (nominal tool tips, source lines, path length) and the
 // deviation of each error model at every kept point, with the statistics of
-// all points. Long programs are thinned while streaming (every 2ᵏ-th point is
-// kept so that at most `max_points` remain); the statistics always cover
-// every point.
+// all points. Long programs are decimated for display while streaming: every
+// 2ᵏ-th point is kept so that at most `max_points` remain, and in every
+// stretch of 2ᵏ points the one of the largest |d| of each model is kept
+// too, so the peaks of the deviation survive (at most (1 + models) ×
+// max_points points; each model's largest |d| is among them); the
+// statistics always cover every point.
 #include <Eigen/Core>
 #include <cstdint>
 #include <functional>
@@ -47,10 +50,12 @@ struct ModelPathStats {
 struct PredictedPath {
   std::string program;  // file name ("-" for stdin)
   std::string machine;  // machine name
+  std::string sha256;   // of the program's bytes as read
   std::vector<model::ModelKind> models;
   std::size_t total_points = 0;  // all points of the program
-  std::size_t stride = 1;        // every stride-th point is kept
+  std::size_t stride = 1;        // every stride-th point is kept (and the extremes)
   // Kept points:
+  std::vector<std::size_t> index;                          // 0-based point number
   std::vector<Eigen::Vector3d> nominal;                    // tool tip P, mm
   std::vector<std::size_t> line;                           // source line
   std::vector<double> path_length;                         // mm from the start

@@ -37,7 +37,8 @@ std::string format_tick(double v, double step);
 // (dark blue → green → yellow), "#rrggbb"; t is clamped, NaN gives grey.
 std::string viridis(double t);
 
-// Distinct line colours for series i = 0, 1, …
+// Distinct line colours for series i = 0, 1, … (colour-blind safe: Okabe–Ito
+// without green, so no red/green pair)
 std::string series_colour(std::size_t i);
 
 }  // namespace abbe::report
