@@ -11,7 +11,7 @@ if(NOT CMAKE_SCRIPT_MODE_FILE)
                    --align best-fit --summary-only)
   set_tests_properties(cli_predict_align_best_fit PROPERTIES LABELS cli
     PASS_REGULAR_EXPRESSION
-    "part \\([0-9]+ cutting points\\), aligned by best-fit:\n.*\n  htm +absolute( +[0-9.]+){5}\n +aligned( +[0-9.]+){5}\n +setup +rotation \\([-0-9., ]+\\) µrad, centroid shift \\([-0-9., ]+\\) µm\n  ae-arm +absolute")
+    "part \\([0-9]+ cutting points\\), aligned by best-fit:\n.*\n  htm +absolute +[0-9.]+ +[0-9.]+ +[0-9.]+ +[0-9.]+ +[0-9.]+\n +aligned +[0-9.]+ +[0-9.]+ +[0-9.]+ +[0-9.]+ +[0-9.]+\n +setup +rotation \\([-0-9., ]+\\) µrad, centroid shift \\([-0-9., ]+\\) µm\n  ae-arm +absolute")
 
   # Rigid-body-only errors: nothing remains after the best fit (absolute > 0).
   add_test(NAME cli_predict_align_rigid_only_gives_zero

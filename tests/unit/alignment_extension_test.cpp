@@ -1,0 +1,60 @@
+// AlignmentExtension and program_setup (compensate --align): the extended
+// model predicts exactly the deviation left after the part's set-up, and a
+// machine with rigid-body-only errors leaves nothing to correct.
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <sstream>
+
+#include "abbe/machine/machine.hpp"
+#include "abbe/model/error_model.hpp"
+#include "abbe/pipeline/alignment_extension.hpp"
+
+namespace abbe {
+namespace {
+
+// A rectangle at z = −280 and its plunge (thesis toolpath 1's shape).
+const char* kProgram =
+    "G17 G21 G90 G94\nG0 X-350 Y-150\nG0 Z-270\nG1 Z-280 F300\nG1 X-650 F1000\nG1 Y-350\n"
+    "G1 X-350\nG1 Y-150\nG0 Z-200\n";
+
+pipeline::ModelAlignment setup_of(const machine::Machine& m) {
+  std::istringstream program(kProgram);
+  pipeline::AlignOptions ao;
+  ao.method = pipeline::AlignMethod::best_fit;
+  return pipeline::program_setup(program, "<test>", m, model::ModelKind::ae_arm, {}, ao);
+}
+
+TEST(AlignmentExtension, ExtendedModelPredictsTheAlignedDeviation) {
+  const machine::Machine m =
+      machine::Machine::load(std::string(ABBE_TEST_DATA_DIR) + "/machines/sample.yaml");
+  const pipeline::ModelAlignment a = setup_of(m);
+  EXPECT_GT(a.absolute.points, 100u);
+  EXPECT_LT(a.aligned.max_um, a.absolute.max_um);
+  const model::ErrorModel base(m, model::ModelKind::ae_arm);
+  const model::ErrorModel aligned =
+      base.with_extension(std::make_shared<const pipeline::AlignmentExtension>(a.motion));
+  model::ModelData d1, d2;
+  double largest = 0;
+  for (int i = 0; i <= 30; ++i) {
+    model::EvalPoint p;
+    p.p = {-650.0 + 10.0 * i, -150.0 - 6.0 * i, -280.0};
+    p.tool_length = m.tool_length();
+    const Eigen::Vector3d e = base.evaluate(p, d1).e_um;
+    const Eigen::Vector3d r = aligned.evaluate(p, d2).e_um;
+    EXPECT_LT((r - pipeline::aligned_deviation_um(a.motion, p.p, e)).norm(), 1e-9);
+    largest = std::max(largest, r.norm());
+  }
+  EXPECT_LE(largest, a.aligned.max_um + 1.0);  // inside the part, of the aligned size
+}
+
+TEST(AlignmentExtension, RigidOnlyMachineLeavesNothingToCorrect) {
+  const machine::Machine m =
+      machine::Machine::load(std::string(ABBE_TEST_DATA_DIR) + "/align/rigid-only.yaml");
+  const pipeline::ModelAlignment a = setup_of(m);
+  EXPECT_GT(a.absolute.max_um, 1.0);
+  EXPECT_LT(a.aligned.max_um, 1e-6);
+}
+
+}  // namespace
+}  // namespace abbe
