@@ -36,16 +36,19 @@ TEST(AlignmentExtension, ExtendedModelPredictsTheAlignedDeviation) {
       base.with_extension(std::make_shared<const pipeline::AlignmentExtension>(a.motion));
   model::ModelData d1, d2;
   double largest = 0;
-  for (int i = 0; i <= 30; ++i) {
+  for (int i = 0; i <= 60; ++i) {  // on two edges of the rectangle (part points)
     model::EvalPoint p;
-    p.p = {-650.0 + 10.0 * i, -150.0 - 6.0 * i, -280.0};
+    p.p = i <= 30 ? Eigen::Vector3d(-650.0 + 10.0 * i, -150.0, -280.0)
+                  : Eigen::Vector3d(-650.0, -150.0 - 200.0 * (i - 30) / 30.0, -280.0);
     p.tool_length = m.tool_length();
     const Eigen::Vector3d e = base.evaluate(p, d1).e_um;
     const Eigen::Vector3d r = aligned.evaluate(p, d2).e_um;
     EXPECT_LT((r - pipeline::aligned_deviation_um(a.motion, p.p, e)).norm(), 1e-9);
     largest = std::max(largest, r.norm());
   }
-  EXPECT_LE(largest, a.aligned.max_um + 1.0);  // inside the part, of the aligned size
+  // Of the size of the aligned part (between its fragment points: + 0.5 µm).
+  EXPECT_LE(largest, a.aligned.max_um + 0.5);
+  EXPECT_GT(largest, 0.5 * a.aligned.max_um);
 }
 
 TEST(AlignmentExtension, RigidOnlyMachineLeavesNothingToCorrect) {
@@ -53,7 +56,9 @@ TEST(AlignmentExtension, RigidOnlyMachineLeavesNothingToCorrect) {
       machine::Machine::load(std::string(ABBE_TEST_DATA_DIR) + "/align/rigid-only.yaml");
   const pipeline::ModelAlignment a = setup_of(m);
   EXPECT_GT(a.absolute.max_um, 1.0);
-  EXPECT_LT(a.aligned.max_um, 1e-6);
+  // ae-arm is first order: θ × arm is a linearised rotation, which the exact
+  // best fit removes up to θ²·arm ≈ (17 µrad)²·500 mm ≈ 1e-4 µm (measured 2.6e-5).
+  EXPECT_LT(a.aligned.max_um, 1e-3);
 }
 
 }  // namespace
