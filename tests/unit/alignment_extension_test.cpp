@@ -13,10 +13,11 @@
 namespace abbe {
 namespace {
 
-// A rectangle at z = −280 and its plunge (thesis toolpath 1's shape).
+// A rectangle at z = −280 and its plunge (thesis toolpath 1's shape), tool 1
+// (200 mm in the machine's tool table) with G43, so program Z is the tip.
 const char* kProgram =
-    "G17 G21 G90 G94\nG0 X-350 Y-150\nG0 Z-270\nG1 Z-280 F300\nG1 X-650 F1000\nG1 Y-350\n"
-    "G1 X-350\nG1 Y-150\nG0 Z-200\n";
+    "G17 G21 G90 G94\nT1 M6\nG43 H1\nG0 X-350 Y-150\nG0 Z-270\nG1 Z-280 F300\nG1 X-650 F1000\n"
+    "G1 Y-350\nG1 X-350\nG1 Y-150\nG0 Z-200\n";
 
 pipeline::ModelAlignment setup_of(const machine::Machine& m) {
   std::istringstream program(kProgram);
@@ -40,7 +41,8 @@ TEST(AlignmentExtension, ExtendedModelPredictsTheAlignedDeviation) {
     model::EvalPoint p;
     p.p = i <= 30 ? Eigen::Vector3d(-650.0 + 10.0 * i, -150.0, -280.0)
                   : Eigen::Vector3d(-650.0, -150.0 - 200.0 * (i - 30) / 30.0, -280.0);
-    p.tool_length = m.tool_length();
+    p.tool_length = 200.0;
+    p.dir = {-1, -1, -1};  // as the program reaches both edges (−X, then −Y)
     const Eigen::Vector3d e = base.evaluate(p, d1).e_um;
     const Eigen::Vector3d r = aligned.evaluate(p, d2).e_um;
     EXPECT_LT((r - pipeline::aligned_deviation_um(a.motion, p.p, e)).norm(), 1e-9);
