@@ -1,6 +1,8 @@
 // AlignmentExtension and program_setup (compensate --align): the extended
 // model predicts exactly the deviation left after the part's set-up, and a
 // machine with rigid-body-only errors leaves nothing to correct.
+#include "abbe/pipeline/alignment_extension.hpp"
+
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -8,7 +10,6 @@
 
 #include "abbe/machine/machine.hpp"
 #include "abbe/model/error_model.hpp"
-#include "abbe/pipeline/alignment_extension.hpp"
 
 namespace abbe {
 namespace {

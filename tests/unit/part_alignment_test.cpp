@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
 #include <random>
 
 #include "abbe/io/input_error.hpp"
