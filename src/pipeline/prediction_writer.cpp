@@ -28,15 +28,17 @@ void num3(Out& out, const Eigen::Vector3d& v, const char (&s0)[N0], const char (
 }  // namespace
 
 PredictionWriter::PredictionWriter(PathFormat format, std::vector<model::ModelKind> kinds,
-                                   ByteSink sink)
-    : format_(format), kinds_(std::move(kinds)), sink_(std::move(sink)) {
+                                   ByteSink sink, bool aligned)
+    : format_(format), kinds_(std::move(kinds)), sink_(std::move(sink)), aligned_(aligned) {
   for (auto k : kinds_) {
     const model::ModelDescriptor& d = model::descriptor(k);
     second_order_.push_back(d.second_order);
     json_keys_.push_back(fmt::format(", \"{}\": {{\"px\": ", d.name));
     row_max_ += 16 * (io::kFixed6MaxChars + 8) + json_keys_.back().size();
+    if (aligned_) row_max_ += 4 * (io::kFixed6MaxChars + 10);
   }
   pred_.resize(kinds_.size());
+  aligned_um_.assign(kinds_.size(), Eigen::Vector3d::Zero());
   buf_.reserve(kChunk + row_max_);
   const bool all = kinds_.size() > 1;
   if (format_ == PathFormat::csv) {
@@ -46,6 +48,7 @@ PredictionWriter::PredictionWriter(PathFormat format, std::vector<model::ModelKi
           all ? "_" + std::string(model::descriptor(kinds_[i]).column_suffix) : "";
       if (all) header += fmt::format(",px{0},py{0},pz{0},dx{0},dy{0},dz{0},d{0}", s);
       if (second_order_[i]) header += fmt::format(",dx2{0},dy2{0},dz2{0}", s);
+      if (aligned_) header += fmt::format(",adx{0},ady{0},adz{0},ad{0}", s);
     }
     if (!all) header += ",line";
     put(header + "\n");
@@ -55,8 +58,20 @@ PredictionWriter::PredictionWriter(PathFormat format, std::vector<model::ModelKi
 }
 
 void PredictionWriter::write(const model::EvalPoint& p, std::size_t line, const ModelSet& models) {
-  const std::vector<model::Deviation>& devs = models.deviations();
-  const std::vector<double>& norms = models.norms_um();
+  write_row(p, line, models.deviations(), models.norms_um());
+}
+
+void PredictionWriter::write(const model::EvalPoint& p, std::size_t line,
+                             const std::vector<model::Deviation>& devs,
+                             const std::vector<double>& norms,
+                             const std::vector<Eigen::Vector3d>& aligned_um) {
+  aligned_um_ = aligned_um;
+  write_row(p, line, devs, norms);
+}
+
+void PredictionWriter::write_row(const model::EvalPoint& p, std::size_t line,
+                                 const std::vector<model::Deviation>& devs,
+                                 const std::vector<double>& norms) {
   if (line != line_ || line_size_ == 0) {
     line_ = line;
     line_size_ = static_cast<std::size_t>(
@@ -73,6 +88,7 @@ void PredictionWriter::write(const model::EvalPoint& p, std::size_t line, const 
     const model::Deviation& d = devs[i];
     pred_[i] = p.p + units::kMmPerUm * d.e_um;
     magnitude += l1(d.e_um) + l1(d.second_order_um);
+    if (aligned_) magnitude += 2.0 * l1(aligned_um_[i]);
   }
   if (io::fixed6_fits(magnitude)) {
     const std::size_t old_size = buf_.size();
@@ -115,6 +131,11 @@ void PredictionWriter::row(Out& out, const model::EvalPoint& p,
       out.ch(',');
       out.num(norms[i]);
       if (second_order_[i]) num3(out, d.second_order_um, ",", ",", ",");
+      if (aligned_) {
+        num3(out, aligned_um_[i], ",", ",", ",");
+        out.ch(',');
+        out.num(aligned_um_[i].norm());
+      }
     }
     if (!all) {
       out.ch(',');
@@ -135,6 +156,11 @@ void PredictionWriter::row(Out& out, const model::EvalPoint& p,
       out.num(norms[i]);
       if (second_order_[i])
         num3(out, d.second_order_um, ", \"dx2\": ", ", \"dy2\": ", ", \"dz2\": ");
+      if (aligned_) {
+        num3(out, aligned_um_[i], ", \"adx\": ", ", \"ady\": ", ", \"adz\": ");
+        out.text(", \"ad\": ");
+        out.num(aligned_um_[i].norm());
+      }
       out.ch('}');
     }
     out.ch('}');

@@ -16,6 +16,8 @@
 #include "abbe/io/input_error.hpp"
 #include "abbe/machine/machine.hpp"
 #include "abbe/model/error_model.hpp"
+#include "abbe/pipeline/aligned_prediction.hpp"
+#include "abbe/pipeline/alignment_extension.hpp"
 #include "abbe/pipeline/interpreter_setup.hpp"
 #include "command.hpp"
 #include "dialect_option.hpp"
@@ -34,12 +36,40 @@ struct CompensateCliOptions {
   bool in_place = false;
   bool allow_unconverged = false;
   gcode::DialectOptions dialect;
+  std::string align = "none";  // best-fit: correct only what the part's set-up leaves
 };
 
 bool same_file(const std::string& a, const std::string& b) {
   std::error_code ec;
   if (std::filesystem::equivalent(a, b, ec)) return true;
   return std::filesystem::weakly_canonical(a, ec) == std::filesystem::weakly_canonical(b, ec);
+}
+
+// --align best-fit: the model predicts what remains after the part's set-up
+// (pipeline/alignment_extension.hpp); returns the line the summary reports.
+std::string align_model(const CompensateCliOptions& o, const machine::Machine& machine,
+                        model::ErrorModel& model) {
+  if (!o.m.extend.empty())
+    throw InputError({"<command line>", 0, 0, "--align", ""},
+                     "--align with --extend is not supported yet");
+  std::ifstream first(o.input, std::ios::binary);
+  if (!first)
+    throw InputError({o.input, 0, 0, "", ""},
+                     std::string("cannot open the input: ") + std::strerror(errno));
+  pipeline::PathOptions path;
+  path.dialect = o.dialect;
+  pipeline::AlignOptions ao;
+  ao.method = pipeline::parse_align_method(o.align);
+  const pipeline::ModelAlignment a =
+      pipeline::program_setup(first, o.input, machine, model.kind(), path, ao);
+  model = model.with_extension(std::make_shared<const pipeline::AlignmentExtension>(a.motion));
+  return fmt::format(
+      "  --align {}: the set-up takes out a rotation ({:.3f}, {:.3f}, {:.3f}) µrad and a shift "
+      "({:.4f}, {:.4f}, {:.4f}) µm of the part's centroid; predicted part max |e| {:.4f} µm, "
+      "{:.4f} µm after the set-up (corrected)\n",
+      o.align, a.rotation_urad.x(), a.rotation_urad.y(), a.rotation_urad.z(),
+      a.centroid_shift_um.x(), a.centroid_shift_um.y(), a.centroid_shift_um.z(), a.absolute.max_um,
+      a.aligned.max_um);
 }
 
 int run_compensate(CompensateCliOptions o, const GlobalOptions& g) {
@@ -56,7 +86,8 @@ int run_compensate(CompensateCliOptions o, const GlobalOptions& g) {
                      "the output is the input: give --in-place to replace it");
   }
   const machine::Machine machine = machine::Machine::load(o.m.machine);
-  const model::ErrorModel model = make_model(o.m, machine);
+  model::ErrorModel model = make_model(o.m, machine);
+  const std::string setup_text = o.align == "none" ? "" : align_model(o, machine, model);
   gcode::InterpreterConfig config = pipeline::interpreter_config(machine);
   config.dialect = o.dialect;
 
@@ -80,6 +111,7 @@ int run_compensate(CompensateCliOptions o, const GlobalOptions& g) {
       "{} out of range ({}), {} unconverged\n",
       o.input, s.lines, s.blocks_changed, s.pieces_inserted, s.points, s.max_correction_um,
       s.out_of_range_points, machine::to_string(machine.out_of_range()), s.unconverged_points);
+  text += setup_text;
   if (s.arcs_split_turns)
     text += fmt::format("  {} multi-turn arcs split into pieces (P word removed)\n",
                         s.arcs_split_turns);
@@ -130,6 +162,11 @@ const CommandRegistrar registrar(
           ->check(CLI::Range(0, 9));
       sub.add_flag("--renumber", o->c.renumber, "Give inserted pieces N numbers");
       sub.add_flag("--in-place", o->in_place, "Replace the input (atomically)");
+      sub.add_option("--align", o->align,
+                     "best-fit: correct only what remains after the part's set-up (a best fit "
+                     "of the predicted part over the cutting points)")
+          ->check(CLI::IsMember({"none", "best-fit"}))
+          ->capture_default_str();
       sub.add_flag("--allow-unconverged", o->allow_unconverged,
                    "Write the output even if some points did not converge");
       const GlobalOptions* gp = &g;

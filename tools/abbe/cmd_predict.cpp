@@ -14,12 +14,13 @@
 #include "abbe/io/atomic_file.hpp"
 #include "abbe/machine/machine.hpp"
 #include "abbe/model/model_kind.hpp"
+#include "abbe/pipeline/aligned_prediction.hpp"
 #include "abbe/pipeline/path_writer.hpp"
 #include "abbe/pipeline/predict.hpp"
 #include "abbe/pipeline/prediction_summary.hpp"
 #include "abbe/pipeline/prediction_writer.hpp"
-#include "dialect_option.hpp"
 #include "command.hpp"
+#include "dialect_option.hpp"
 #include "input_stream.hpp"
 #include "progress.hpp"
 
@@ -39,7 +40,62 @@ struct PredictOptions {
   bool points = false;  // input is a CSV of points even without the .csv extension
   bool summary_only = false;
   gcode::DialectOptions dialect;
+  std::string align = "none";  // the part's set-up (docs/models.md, "The part")
+  std::string datum[3];        // --datum-primary/secondary/tertiary: source lines
 };
+
+const char* const kDatumOption[3] = {"--datum-primary", "--datum-secondary", "--datum-tertiary"};
+
+// predict --align: the points are written after the alignment is known.
+int run_predict_aligned(const PredictOptions& o, const GlobalOptions& g,
+                        const machine::Machine& machine, const pipeline::PredictOptions& po,
+                        pipeline::PathFormat format) {
+  pipeline::AlignOptions ao;
+  ao.method = pipeline::parse_align_method(o.align);
+  if (ao.method == pipeline::AlignMethod::datums) {
+    for (int k = 0; k < 3; ++k)
+      if (o.datum[k].empty()) {
+        fmt::print(stderr, "abbe predict: --align datums needs {}\n", kDatumOption[k]);
+        return kUsage;
+      }
+    ao.primary = pipeline::LineSet::parse(o.datum[0], kDatumOption[0]);
+    ao.secondary = pipeline::LineSet::parse(o.datum[1], kDatumOption[1]);
+    ao.tertiary = pipeline::LineSet::parse(o.datum[2], kDatumOption[2]);
+  }
+  InputStream input(o.input, "the input");
+  std::unique_ptr<io::AtomicOutputFile> out;
+  std::unique_ptr<pipeline::PredictionWriter> writer;
+  if (!o.summary_only) {
+    out = std::make_unique<io::AtomicOutputFile>(o.output);
+    writer = std::make_unique<pipeline::PredictionWriter>(
+        format, po.models, [&](const char* d, std::size_t n) { out->write(d, n); }, true);
+  }
+  Progress progress("predict", 0, !g.quiet, "points");
+  const pipeline::AlignedPrediction prediction = pipeline::predict_aligned(
+      input.stream(), o.input, machine, po, ao,
+      [&](const model::EvalPoint&, std::size_t, const pipeline::ModelSet& models) {
+        if (progress.active() && (models.points() & 4095) == 0) progress.update(models.points());
+      },
+      [&](const model::EvalPoint& p, std::size_t line, const std::vector<model::Deviation>& devs,
+          const std::vector<double>& norms, const std::vector<Eigen::Vector3d>& aligned) {
+        if (writer) writer->write(p, line, devs, norms, aligned);
+      });
+  progress.finish();
+  const std::string json = pipeline::summary_json(prediction);
+  if (writer) {
+    writer->finish(json);
+    out->commit();
+  }
+  if (!o.summary_json.empty()) {
+    io::AtomicOutputFile js(o.summary_json);
+    const std::string body = json + "\n";
+    js.write(body.data(), body.size());
+    js.commit();
+  }
+  const bool points_on_stdout = writer && (o.output == "-" || o.output.empty());
+  std::fputs(pipeline::summary_table(prediction).c_str(), points_on_stdout ? stderr : stdout);
+  return kOk;
+}
 
 int run_predict(const PredictOptions& o, const GlobalOptions& g) {
   const machine::Machine machine = machine::Machine::load(o.machine);
@@ -54,6 +110,12 @@ int run_predict(const PredictOptions& o, const GlobalOptions& g) {
   if (!o.extend.empty())
     po.extension = std::make_shared<const diagnose::OverlayExtension>(
         diagnose::Overlay::load(o.extend), machine);
+  if (o.align != "none") return run_predict_aligned(o, g, machine, po, format);
+  for (int k = 0; k < 3; ++k)
+    if (!o.datum[k].empty()) {
+      fmt::print(stderr, "abbe predict: {} needs --align datums\n", kDatumOption[k]);
+      return kUsage;
+    }
 
   InputStream input(o.input, "the input");
   std::unique_ptr<io::AtomicOutputFile> out;
@@ -129,6 +191,17 @@ const CommandRegistrar registrar(
       sub.add_option("--summary-json", o->summary_json, "Also write the summary as JSON to FILE");
       sub.add_option("--extend", o->extend,
                      "Add the effects of an overlay written by `abbe diagnose --overlay`");
+      sub.add_option("--align", o->align,
+                     "Also report the deviation after the part's set-up: best-fit (least squares "
+                     "over the cutting points) or datums (3-2-1, --datum-*)")
+          ->check(CLI::IsMember({"none", "best-fit", "datums"}))
+          ->capture_default_str();
+      sub.add_option("--datum-primary", o->datum[0],
+                     "--align datums: source lines of the primary (plane) points, e.g. 12-30,45");
+      sub.add_option("--datum-secondary", o->datum[1],
+                     "--align datums: source lines of the secondary (line) points");
+      sub.add_option("--datum-tertiary", o->datum[2],
+                     "--align datums: source lines of the tertiary (point) points");
       return [o, gp] { return run_predict(*o, *gp); };
     });
 

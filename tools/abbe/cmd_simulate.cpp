@@ -16,6 +16,7 @@
 #include "abbe/io/input_error.hpp"
 #include "abbe/pipeline/program_path.hpp"
 #include "abbe/sim/laser_campaign.hpp"
+#include "abbe/sim/real_conventions.hpp"
 #include "abbe/sim/text_file.hpp"
 #include "abbe/sim/truth_file.hpp"
 #include "abbe/sim/validation_measurement.hpp"
@@ -70,17 +71,38 @@ double parse_um(const std::string& field, const std::string& text) {
   return v;
 }
 
-void write_campaign(const sim::GeneratedMachine& g, const std::string& dir) {
+// --conventions real: the campaign as laser software reports it
+// (sim/real_conventions.hpp); the truth file keeps the true reflector points.
+struct ConventionOptions {
+  std::string conventions = "absolute";
+  double reflector_error_mm = 0.0;
+  std::uint64_t reflector_seed = 1;
+};
+
+void write_campaign(const sim::GeneratedMachine& g, const std::string& dir,
+                    const ConventionOptions& conv = {}) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) bad_option("-o", "cannot create directory '" + dir + "': " + ec.message());
-  const sim::CampaignResult result = sim::run_campaign(g);
+  sim::CampaignResult result = sim::run_campaign(g);
   const std::filesystem::path d(dir);
   sim::write_text_file_atomically((d / "truth.yaml").string(), sim::truth_to_yaml(g));
+  sim::GeneratedMachine recorded = g;
+  if (conv.conventions == "real") {
+    sim::RealConventions rc;
+    rc.reflector_sigma_mm = conv.reflector_error_mm;
+    rc.seed = conv.reflector_seed;
+    const sim::ConventionRecord r = sim::apply_real_conventions(recorded, result, rc);
+    spdlog::info(
+        "real conventions: zeroed, straightness slopes removed, relative angles; squareness "
+        "changed by EC0Y {:+.3f}, EB0Z {:+.3f}, EA0Z {:+.3f} µrad; reflector error σ = {} mm",
+        r.squareness_change.ec0y, r.squareness_change.eb0z, r.squareness_change.ea0z,
+        conv.reflector_error_mm);
+  }
   sim::write_text_file_atomically((d / "runs.csv").string(), sim::runs_to_csv(result));
   sim::write_text_file_atomically((d / "errors.csv").string(), sim::table_to_csv(result));
   sim::write_text_file_atomically((d / "machine.yaml").string(),
-                                  sim::machine_to_yaml(g, result, "errors.csv"));
+                                  sim::machine_to_yaml(recorded, result, "errors.csv"));
   spdlog::info("wrote {}/{{truth.yaml,machine.yaml,errors.csv,runs.csv}} ({} readings)", dir,
                result.runs.size());
 }
@@ -100,6 +122,7 @@ struct CampaignOptions {
   int runs = 0;          // 0: keep
   double noise_scale = 1.0;
   std::string seed;  // empty: keep
+  ConventionOptions conventions;
 };
 
 struct MeasureOptions {
@@ -158,7 +181,7 @@ int run_campaign_cmd(const CampaignOptions& o) {
       bad_option("--seed", "expected a non-negative integer, got '" + o.seed + "'");
     g.campaign.seed = v;
   }
-  write_campaign(g, o.output);
+  write_campaign(g, o.output, o.conventions);
   return kOk;
 }
 
@@ -262,6 +285,18 @@ const CommandRegistrar registrar(
       campaign->add_option("--noise-scale", co->noise_scale, "Multiplies the reading noise");
       campaign->add_option("--seed", co->seed, "Seed of the reading noise");
       campaign->add_option("-o,--output", co->output, "Output directory")->required();
+      campaign
+          ->add_option("--conventions", co->conventions.conventions,
+                       "absolute (readings at exactly known reflectors) or real (zeroed, "
+                       "straightness slopes removed, relative angles; docs/models.md)")
+          ->check(CLI::IsMember({"absolute", "real"}))
+          ->capture_default_str();
+      campaign
+          ->add_option("--reflector-error", co->conventions.reflector_error_mm,
+                       "--conventions real: σ of the error of the recorded reflector points, mm")
+          ->check(CLI::NonNegativeNumber);
+      campaign->add_option("--reflector-seed", co->conventions.reflector_seed,
+                           "Seed of the reflector errors");
 
       auto me = std::make_shared<MeasureOptions>();
       CLI::App* measure = sub.add_subcommand(

@@ -7,6 +7,9 @@
 // the model table's column_suffix; second-order models add dx2,dy2,dz2). JSON:
 // {"points": [{"x":…, "line":…, "<model>": {"px":…}}, …], "summary": {…}}.
 // Nominal and predicted points in mm, deviations in µm, 6 decimals.
+// With `aligned` (abbe predict --align), each model's columns are followed by
+// the deviation after the part's alignment: adx,ady,adz,ad (JSON: the same
+// keys in the model's object).
 #include <fmt/format.h>
 
 #include <array>
@@ -24,12 +27,18 @@ namespace abbe::pipeline {
 
 class PredictionWriter {
  public:
-  PredictionWriter(PathFormat format, std::vector<model::ModelKind> kinds, ByteSink sink);
+  PredictionWriter(PathFormat format, std::vector<model::ModelKind> kinds, ByteSink sink,
+                   bool aligned = false);
   PredictionWriter(const PredictionWriter&) = delete;
   PredictionWriter& operator=(const PredictionWriter&) = delete;
 
   // One row: the point, its source line and the models' last evaluation.
   void write(const model::EvalPoint& point, std::size_t line, const ModelSet& models);
+  // One row of an aligned prediction: per model the deviation, |e| and the
+  // deviation after alignment (µm).
+  void write(const model::EvalPoint& point, std::size_t line,
+             const std::vector<model::Deviation>& devs, const std::vector<double>& norms_um,
+             const std::vector<Eigen::Vector3d>& aligned_um);
   // Writes the trailer (JSON: `summary_json` as the "summary" member) and
   // hands on what is buffered.
   void finish(std::string_view summary_json);
@@ -39,6 +48,8 @@ class PredictionWriter {
   template <class Out>
   void row(Out& out, const model::EvalPoint& p, const std::vector<model::Deviation>& devs,
            const std::vector<double>& norms) const;
+  void write_row(const model::EvalPoint& p, std::size_t line,
+                 const std::vector<model::Deviation>& devs, const std::vector<double>& norms);
   void put(std::string_view s) { buf_.append(s.data(), s.data() + s.size()); }
   void flush();
 
@@ -46,9 +57,11 @@ class PredictionWriter {
   std::vector<model::ModelKind> kinds_;
   std::vector<bool> second_order_;  // per model: writes dx2, dy2, dz2
   ByteSink sink_;
-  std::vector<std::string> json_keys_;  // `, "<model>": {"px": ` per model
-  std::size_t row_max_ = 192;           // bytes an in-place row may take
-  std::vector<Eigen::Vector3d> pred_;   // predicted tool tip per model, mm
+  std::vector<std::string> json_keys_;       // `, "<model>": {"px": ` per model
+  std::size_t row_max_ = 192;                // bytes an in-place row may take
+  std::vector<Eigen::Vector3d> pred_;        // predicted tool tip per model, mm
+  bool aligned_ = false;                     // adx,ady,adz,ad columns
+  std::vector<Eigen::Vector3d> aligned_um_;  // of the row being written
   fmt::memory_buffer buf_;
   std::size_t points_ = 0;
   std::array<char, 24> line_text_{};
