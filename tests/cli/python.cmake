@@ -1,15 +1,20 @@
 # Tests of the Python module (tests/python/test_*.py, python3-pytest),
 # registered when the module is built (-DABBE_PYTHON=ON). pytest's exit code
 # 5 (no test collected) is a failure too. In a sanitized build the Python
-# interpreter is not instrumented: the ASan runtime is preloaded and leak
-# checking is off (the interpreter keeps its allocations at exit).
+# interpreter is not instrumented: the ASan runtime (and libstdc++) is
+# preloaded and leak checking is off (the interpreter keeps its allocations
+# at exit).
 if(TARGET abbe_python)
   set(abbe_python_env "PYTHONPATH=${PROJECT_BINARY_DIR}/python" "ABBE_SOURCE_DIR=${PROJECT_SOURCE_DIR}"
                       "PYTHONDONTWRITEBYTECODE=1" "ABBE_EXE=$<TARGET_FILE:abbe>")
   if(ABBE_SANITIZE)
+    # libstdc++ too: ASan must find the real __cxa_throw when it starts, or
+    # the first C++ exception (abbe.InputError) aborts.
     execute_process(COMMAND ${CMAKE_CXX_COMPILER} -print-file-name=libasan.so
                     OUTPUT_VARIABLE abbe_libasan OUTPUT_STRIP_TRAILING_WHITESPACE)
-    list(APPEND abbe_python_env "LD_PRELOAD=${abbe_libasan}"
+    execute_process(COMMAND ${CMAKE_CXX_COMPILER} -print-file-name=libstdc++.so
+                    OUTPUT_VARIABLE abbe_libstdcxx OUTPUT_STRIP_TRAILING_WHITESPACE)
+    list(APPEND abbe_python_env "LD_PRELOAD=${abbe_libasan}:${abbe_libstdcxx}"
          "ASAN_OPTIONS=detect_leaks=0:abort_on_error=1")
   endif()
   add_test(NAME python_module
