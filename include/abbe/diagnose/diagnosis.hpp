@@ -29,12 +29,13 @@ struct Diagnosis {
   std::string model;
   std::size_t n_points = 0;
   std::size_t n_observations = 0;
-  std::vector<ResidualStats> models;  // htm, ae-arm, dual (without any overlay)
-  ResidualStats baseline;             // the diagnosed model (with --extend if given)
-  std::vector<SelectedTerm> effects;  // ordered by importance
-  ResidualStats extended;             // after the selected effects, in-sample
-  double holdout_rms_um = 0.0;        // extended model, held-out folds
-  double baseline_holdout_rms_um = 0.0;
+  std::vector<ResidualStats> models;     // htm, ae-arm, dual (without any overlay)
+  ResidualStats baseline;                // the diagnosed model (with --extend if given)
+  std::vector<SelectedTerm> effects;     // ordered by importance
+  std::vector<SelectedTerm> datum;       // what the datum (offsets, plate rotations) absorbed
+  ResidualStats extended;                // after the selected effects, in-sample
+  double holdout_rms_um = 0.0;           // extended model, held-out folds
+  double baseline_holdout_rms_um = 0.0;  // the model with the datum fitted, held-out folds
   double gain_percent = 0.0;
   double noise_um = 0.0;  // residual σ per observation after the fit
   int folds = 0;
