@@ -28,6 +28,9 @@ Diagnosis diagnose_problem(const Problem& pb, const DiagnoseOptions& o) {
                        ? 100.0 * (1.0 - d.holdout_rms_um / d.baseline_holdout_rms_um)
                        : 0.0;
   d.noise_um = sel.sigma_um;
+  const NoiseEstimate ne = estimate_noise(pb);
+  d.noise_independent_um = ne.sigma_um;
+  d.noise_method = ne.method;
   d.log = sel.log;
   return d;
 }

@@ -74,6 +74,8 @@ std::string report_json(const Diagnosis& d) {
       {"holdout_rms_um", d.holdout_rms_um}, {"baseline_holdout_rms_um", d.baseline_holdout_rms_um},
       {"gain_percent", d.gain_percent},     {"folds", d.folds}};
   j["noise_um"] = d.noise_um;
+  j["noise_independent_um"] = d.noise_independent_um;
+  j["noise_method"] = d.noise_method;
   j["steps"] = d.log;
   return j.dump(2) + "\n";
 }
@@ -117,6 +119,9 @@ std::string report_text(const Diagnosis& d) {
       "%); noise σ ≈ {:.3f} µm\n",
       d.baseline.rms_um, d.extended.rms_um, d.folds, d.baseline_holdout_rms_um, d.holdout_rms_um,
       d.gain_percent, d.noise_um);
+  if (d.noise_method != "none" && !d.noise_method.empty())
+    s += fmt::format("noise from the data alone ({}): σ ≈ {:.3f} µm\n", d.noise_method,
+                     d.noise_independent_um);
   return s;
 }
 

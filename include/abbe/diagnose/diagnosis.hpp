@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "abbe/diagnose/candidates.hpp"
+#include "abbe/diagnose/noise.hpp"
 #include "abbe/diagnose/overlay.hpp"
 #include "abbe/diagnose/residuals.hpp"
 #include "abbe/diagnose/selection.hpp"
@@ -38,6 +39,10 @@ struct Diagnosis {
   double baseline_holdout_rms_um = 0.0;  // the model with the datum fitted, held-out folds
   double gain_percent = 0.0;
   double noise_um = 0.0;  // residual σ per observation after the fit
+  // σ per observation from the data alone (noise.hpp): repeated points or
+  // neighbour differences; 0 when the data allow neither.
+  double noise_independent_um = 0.0;
+  std::string noise_method;
   int folds = 0;
   std::vector<std::string> log;
 };
