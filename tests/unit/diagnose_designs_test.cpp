@@ -372,7 +372,9 @@ bool identifiable(Design d, const Hidden& h) {
       // reversals the same step, i→j and j→i squareness the same line, every
       // coupling a parabola, and 37 mm targets alias the periods; only a drift
       // in time (there and back) is told apart.
-      return h.shape == Shape::drift;
+      // (A drift proportional to the position is a scale growing in time:
+      // not told apart either.)
+      return h.shape == Shape::drift && !h.proportional;
   }
   return false;
 }
@@ -602,7 +604,7 @@ int seeds() {
 
 struct Rates {
   int n_id = 0, id_right = 0, id_wrong = 0;
-  int n_un = 0, un_ambiguous = 0, un_wrong = 0;  // "ambiguous" here: ambiguous or none
+  int n_un = 0, un_ambiguous = 0, un_wrong = 0;  // "ambiguous" here: ambiguous or nothing named
   int n_null = 0, null_clean = 0;
   int gain_ok = 0, n_gain = 0;
 };
@@ -637,7 +639,7 @@ Rates sweep(Design design) {
     } else {
       ++r.n_un;
       const bool amb = c.verdict == Verdict::ambiguous || c.verdict == Verdict::none;
-      r.un_ambiguous += c.verdict == Verdict::ambiguous ? 1 : 0;
+      r.un_ambiguous += amb ? 1 : 0;
       r.un_wrong += c.verdict == Verdict::wrong ? 1 : 0;
       tag = c.verdict == Verdict::wrong ? "unidentifiable, WRONG NAME"
             : amb                       ? "unidentifiable, not named"
@@ -651,7 +653,7 @@ Rates sweep(Design design) {
   auto pct = [](int a, int b) { return b ? 100.0 * a / b : 0.0; };
   std::cerr << fmt::format(
       "RATES | {} | identifiable: right {}/{} ({:.0f} %), wrong {} | not identifiable: "
-      "ambiguous {}/{} ({:.0f} %), wrong {} ({:.0f} %) | null clean {}/{} | gain >= 0.7 oracle "
+      "ambiguous or silent {}/{} ({:.0f} %), wrong {} ({:.0f} %) | null clean {}/{} | gain >= 0.7 oracle "
       "{}/{} ({:.0f} %)\n",
       design_name(design), r.id_right, r.n_id, pct(r.id_right, r.n_id), r.id_wrong, r.un_ambiguous,
       r.n_un, pct(r.un_ambiguous, r.n_un), r.un_wrong, pct(r.un_wrong, r.n_un), r.null_clean,
@@ -676,11 +678,16 @@ void check(const Rates& r, const Floor& f) {
   EXPECT_GE(frac(r.gain_ok, r.n_gain), f.gain_ok);
 }
 
-TEST(DiagnoseDesigns, Grid) { check(sweep(Design::grid), {0.0, 1.0, 1.0, 0.0, 0.0}); }
-TEST(DiagnoseDesigns, Plane) { check(sweep(Design::plane), {0.0, 1.0, 1.0, 0.0, 0.0}); }
-TEST(DiagnoseDesigns, Toolpath) { check(sweep(Design::toolpath), {0.0, 1.0, 1.0, 0.0, 0.0}); }
-TEST(DiagnoseDesigns, Ballbar) { check(sweep(Design::ballbar), {0.0, 1.0, 1.0, 0.0, 0.0}); }
-TEST(DiagnoseDesigns, Diagonals) { check(sweep(Design::diagonals), {0.0, 1.0, 1.0, 0.0, 0.0}); }
+// Floors: {identifiable named right ≥, identifiable wrong ≤, not identifiable
+// wrong ≤, null clean ≥, gain ≥ 70 % of the oracle ≥} (measured 40-seed rates
+// in docs/diagnosis.md, less a margin of about one case in ten).
+TEST(DiagnoseDesigns, Grid) { check(sweep(Design::grid), {0.9, 0.05, 0.05, 0.9, 0.9}); }
+TEST(DiagnoseDesigns, Plane) { check(sweep(Design::plane), {0.75, 0.05, 0.05, 0.9, 0.75}); }
+TEST(DiagnoseDesigns, Toolpath) { check(sweep(Design::toolpath), {0.8, 0.1, 0.05, 0.9, 0.9}); }
+TEST(DiagnoseDesigns, Ballbar) { check(sweep(Design::ballbar), {0.8, 0.1, 0.05, 0.9, 0.9}); }
+TEST(DiagnoseDesigns, Diagonals) {
+  check(sweep(Design::diagonals), {0.0, 0.05, 0.1, 0.9, 0.0});
+}
 
 }  // namespace
 }  // namespace abbe::diagnose
