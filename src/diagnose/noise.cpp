@@ -32,9 +32,9 @@ NoiseEstimate estimate_noise(const Problem& pb) {
   for (std::size_t o = 0; o < pb.obs.size(); ++o) {
     const Observation& ob = pb.obs[o];
     const PointContext& pc = pb.points[ob.point];
-    const Key k{pc.set,     q(pc.p.x(), 1e-3), q(pc.p.y(), 1e-3), q(pc.p.z(), 1e-3),
-                pc.dir[0],  pc.dir[1],         pc.dir[2],         q(ob.u.x(), 1e-6),
-                q(ob.u.y(), 1e-6), q(ob.u.z(), 1e-6)};
+    const Key k{
+        pc.set,    q(pc.p.x(), 1e-3), q(pc.p.y(), 1e-3), q(pc.p.z(), 1e-3), pc.dir[0],
+        pc.dir[1], pc.dir[2],         q(ob.u.x(), 1e-6), q(ob.u.y(), 1e-6), q(ob.u.z(), 1e-6)};
     const double y = pb.y[static_cast<Eigen::Index>(o)];
     const auto it = first.find(k);
     if (it == first.end()) {

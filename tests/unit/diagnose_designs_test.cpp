@@ -653,7 +653,8 @@ Rates sweep(Design design) {
   auto pct = [](int a, int b) { return b ? 100.0 * a / b : 0.0; };
   std::cerr << fmt::format(
       "RATES | {} | identifiable: right {}/{} ({:.0f} %), wrong {} | not identifiable: "
-      "ambiguous or silent {}/{} ({:.0f} %), wrong {} ({:.0f} %) | null clean {}/{} | gain >= 0.7 oracle "
+      "ambiguous or silent {}/{} ({:.0f} %), wrong {} ({:.0f} %) | null clean {}/{} | gain >= 0.7 "
+      "oracle "
       "{}/{} ({:.0f} %)\n",
       design_name(design), r.id_right, r.n_id, pct(r.id_right, r.n_id), r.id_wrong, r.un_ambiguous,
       r.n_un, pct(r.un_ambiguous, r.n_un), r.un_wrong, pct(r.un_wrong, r.n_un), r.null_clean,
@@ -685,9 +686,7 @@ TEST(DiagnoseDesigns, Grid) { check(sweep(Design::grid), {0.9, 0.05, 0.05, 0.9, 
 TEST(DiagnoseDesigns, Plane) { check(sweep(Design::plane), {0.75, 0.05, 0.05, 0.9, 0.75}); }
 TEST(DiagnoseDesigns, Toolpath) { check(sweep(Design::toolpath), {0.8, 0.1, 0.05, 0.9, 0.9}); }
 TEST(DiagnoseDesigns, Ballbar) { check(sweep(Design::ballbar), {0.8, 0.1, 0.05, 0.9, 0.9}); }
-TEST(DiagnoseDesigns, Diagonals) {
-  check(sweep(Design::diagonals), {0.0, 0.05, 0.1, 0.9, 0.0});
-}
+TEST(DiagnoseDesigns, Diagonals) { check(sweep(Design::diagonals), {0.0, 0.05, 0.1, 0.9, 0.0}); }
 
 }  // namespace
 }  // namespace abbe::diagnose

@@ -5,14 +5,13 @@
 // motion and increasing time, plus helpers to turn the measurement into
 // measured data and to fit an oracle.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <random>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
 
 #include "abbe/diagnose/diagnosis.hpp"
 #include "abbe/diagnose/selection.hpp"
@@ -50,8 +49,8 @@ inline VirtualMachine build_virtual_machine(bool strip_short_waves, const std::s
       }
     const sim::CampaignResult r = sim::run_campaign(g);
     // One directory per process: ctest runs tests of this binary in parallel.
-    const auto dir = std::filesystem::path(::testing::TempDir()) /
-                     (name + "_" + std::to_string(::getpid()));
+    const auto dir =
+        std::filesystem::path(::testing::TempDir()) / (name + "_" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     { std::ofstream(dir / "errors.csv") << sim::table_to_csv(r); }
     machine::Machine m =
