@@ -1,5 +1,6 @@
 #include "abbe/diagnose/candidates.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace abbe::diagnose {
@@ -99,14 +100,19 @@ CandidateSet build_candidates(const Problem& pb, const CandidateOptions& o) {
         cs.scanned.push_back(std::move(f));
       }
     }
-  // Setup: offset per set and direction, rotation per set about each axis
-  // around the set's centroid.
+  // Setup: the offset per set and direction is the datum (always fitted);
+  // a rotation per set about each axis around the set's centroid is a
+  // candidate, except for a plate (a set in one plane whose normal direction
+  // is not measured), where the rotation in the plane is datum too.
   for (const std::string& set : pb.sets) {
     Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
     double n = 0.0;
     for (const PointContext& pc : pb.points)
       if (pc.set == set) {
         c += pc.p;
+        lo = lo.cwiseMin(pc.p);
+        hi = hi.cwiseMax(pc.p);
         n += 1.0;
       }
     c /= std::max(n, 1.0);
@@ -117,7 +123,7 @@ CandidateSet build_candidates(const Problem& pb, const CandidateOptions& o) {
       t.axis = i;
       t.direction = i;
       t.set = set;
-      add(t);
+      cs.datum.push_back(t);
     }
     for (int a = 0; a < 3; ++a) {
       // A rotation about a moves the directions ⟂ a along the other two coordinates.
@@ -129,7 +135,12 @@ CandidateSet build_candidates(const Problem& pb, const CandidateOptions& o) {
       t.axis = a;
       t.set = set;
       t.centre = c;
-      add(t);
+      const bool plate = hi[a] - lo[a] < 1e-9 && !present(a) && present(b) && present(d);
+      if (plate) {
+        cs.datum.push_back(t);
+      } else {
+        add(t);
+      }
     }
   }
   // Unexplained: smooth functions of one variable or of a pair.

@@ -16,16 +16,21 @@ Diagnosis diagnose_problem(const Problem& pb, const DiagnoseOptions& o) {
   const CandidateSet cs = build_candidates(pb, o.candidates);
   const SelectionResult sel = select_effects(pb, cs, o.selection);
   d.effects = sel.terms;
+  d.datum = sel.datum;
   d.extended = residual_stats(pb, sel.residual);
   d.extended.model = pb.base_model + "+effects";
   const double np = std::max<double>(static_cast<double>(d.n_points), 1.0);
   d.holdout_rms_um = std::sqrt(std::max(sel.cv_sse, 0.0) / np);
-  // The baseline has no fitted parameters: its held-out residual is the residual.
-  d.baseline_holdout_rms_um = std::sqrt(sel.baseline_sse / np);
+  // The baseline is the model with the datum fitted (every measurement has
+  // one): the gain is what the effects add to it, both held out.
+  d.baseline_holdout_rms_um = std::sqrt(sel.datum_cv_sse / np);
   d.gain_percent = d.baseline_holdout_rms_um > 0.0
                        ? 100.0 * (1.0 - d.holdout_rms_um / d.baseline_holdout_rms_um)
                        : 0.0;
   d.noise_um = sel.sigma_um;
+  const NoiseEstimate ne = estimate_noise(pb);
+  d.noise_independent_um = ne.sigma_um;
+  d.noise_method = ne.method;
   d.log = sel.log;
   return d;
 }

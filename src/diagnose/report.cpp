@@ -52,13 +52,30 @@ std::string report_json(const Diagnosis& d) {
     e["explained_fraction"] = st.explained_fraction;
     e["description"] = t.description();
     e["ambiguous_with"] = st.ambiguous_with;
+    // The design cannot tell this effect from its alternatives: not a name.
+    e["status"] = st.ambiguous_with.empty() ? "named" : "ambiguous";
     j["effects"].push_back(e);
+  }
+  j["datum"] = json::array();
+  for (const SelectedTerm& st : d.datum) {
+    const Term& t = st.term;
+    json e;
+    e["kind"] = term_name(t.kind);
+    e["set"] = t.set;
+    e["axis"] = axis_of(t);
+    e["label"] = t.label();
+    e["value"] = t.coef.empty() ? 0.0 : t.coef[0];
+    e["stderr"] = t.stderr_.empty() ? 0.0 : t.stderr_[0];
+    e["explained_fraction"] = st.explained_fraction;
+    j["datum"].push_back(e);
   }
   j["extended"] = {
       {"rms_um", d.extended.rms_um},        {"max_um", d.extended.max_um},
       {"holdout_rms_um", d.holdout_rms_um}, {"baseline_holdout_rms_um", d.baseline_holdout_rms_um},
       {"gain_percent", d.gain_percent},     {"folds", d.folds}};
   j["noise_um"] = d.noise_um;
+  j["noise_independent_um"] = d.noise_independent_um;
+  j["noise_method"] = d.noise_method;
   j["steps"] = d.log;
   return j.dump(2) + "\n";
 }
@@ -69,6 +86,16 @@ std::string report_text(const Diagnosis& d) {
   s += fmt::format("  {:<8} {:>10} {:>10}\n", "model", "rms µm", "max µm");
   for (const ResidualStats& m : d.models)
     s += fmt::format("  {:<8} {:>10.3f} {:>10.3f}\n", m.model, m.rms_um, m.max_um);
+  if (!d.datum.empty()) {
+    double absorbed = 0.0;
+    for (const SelectedTerm& st : d.datum) absorbed += st.explained_fraction;
+    s += fmt::format("datum (fitted, not an effect; {:.1f} % of the residual):", 100.0 * absorbed);
+    for (const SelectedTerm& st : d.datum)
+      s += fmt::format(" [{} {:.3g} ± {:.2g}]", st.term.label(),
+                       st.term.coef.empty() ? 0.0 : st.term.coef[0],
+                       st.term.stderr_.empty() ? 0.0 : st.term.stderr_[0]);
+    s += "\n";
+  }
   if (d.effects.empty()) {
     s += "effects: none above the noise floor\n";
   } else {
@@ -82,7 +109,8 @@ std::string report_text(const Diagnosis& d) {
       if (!st.ambiguous_with.empty()) {
         std::string a;
         for (const auto& x : st.ambiguous_with) a += (a.empty() ? "" : "; ") + x;
-        s += fmt::format("  {:<14} ambiguous with: {}\n", "", a);
+        s += fmt::format("  {:<14} AMBIGUOUS (not a name: this design cannot tell it from): {}\n",
+                         "", a);
       }
     }
   }
@@ -91,6 +119,9 @@ std::string report_text(const Diagnosis& d) {
       "%); noise σ ≈ {:.3f} µm\n",
       d.baseline.rms_um, d.extended.rms_um, d.folds, d.baseline_holdout_rms_um, d.holdout_rms_um,
       d.gain_percent, d.noise_um);
+  if (d.noise_method != "none" && !d.noise_method.empty())
+    s += fmt::format("noise from the data alone ({}): σ ≈ {:.3f} µm\n", d.noise_method,
+                     d.noise_independent_um);
   return s;
 }
 

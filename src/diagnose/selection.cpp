@@ -19,9 +19,10 @@ using Vec = Eigen::VectorXd;
 
 struct Cached {
   Term term;
-  Mat C;    // observations × k
-  Mat CtC;  // k × k
-  Mat QtC;  // p × k, extended as Q grows
+  Mat C;                        // observations × k
+  Mat CtC;                      // k × k
+  Mat QtC;                      // p × k, extended as Q grows
+  std::vector<double> aliases;  // cyclic: other periods that fit these points as well
 };
 
 // ΔRSS of adding C to the selected span Q (r ⟂ Q). Returns −1 when C lies in
@@ -154,9 +155,33 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
   const std::vector<int> folds = point_folds(np, o.folds, o.seed);
 
   // Named candidates without a searched parameter: columns cached once.
+  // The datum: always in the fit, before any effect.
+  Mat Q(n, 0);
+  Mat X(n, 0);
+  std::vector<Term> chosen;
+  std::vector<std::vector<std::string>> ambiguous;
+  for (const Term& t : cs.datum) {
+    const Mat C = term_columns(pb, t);
+    if (!(C.squaredNorm() > 0.0)) continue;  // invisible in these data
+    const Eigen::Index before = Q.cols();
+    append_orthonormal(Q, C);
+    if (Q.cols() == before) continue;  // already in the span of the datum
+    Mat Xn(n, X.cols() + C.cols());
+    Xn << X, C;
+    X = std::move(Xn);
+    chosen.push_back(t);
+    ambiguous.emplace_back();
+  }
+  const std::size_t n_datum = chosen.size();
+  Vec r = y - Q * (Q.transpose() * y);
+  res.datum_sse = r.squaredNorm();
+  double cv_prev = X.cols() > 0 ? cross_validated_sse(pb, X, y, folds, o.folds) : res.baseline_sse;
+  res.datum_cv_sse = cv_prev;
+
   std::vector<Cached> named;
   for (const Term& t : cs.fixed) {
-    Cached c{t, term_columns(pb, t), Mat(), Mat(0, t.columns())};
+    Cached c{t, term_columns(pb, t), Mat(), Mat(), {}};
+    c.QtC = Q.transpose() * c.C;
     c.CtC = c.C.transpose() * c.C;
     if (c.CtC.diagonal().maxCoeff() <= 0.0) continue;  // invisible in these data
     named.push_back(std::move(c));
@@ -180,12 +205,6 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     }
   }
 
-  Mat Q(n, 0);
-  Vec r = y;
-  std::vector<Term> chosen;
-  std::vector<std::vector<std::string>> ambiguous;
-  Mat X(n, 0);
-  double cv_prev = res.baseline_sse;
   const double tests_named = std::max(cs.named_tests, 1);
   const double tests_generic = std::max(cs.generic_tests, 1);
   // Subsample for the period scan.
@@ -198,6 +217,8 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     if (dof_base < 4.0) break;
     Mat R, W;
     point_sums(pb, r, R, W);
+    // ΔRSS ≥ n·(f·σ̂)²: the practical floor in units of σ̂².
+    const double practical = static_cast<double>(n) * o.min_effect_rms * o.min_effect_rms;
 
     // Searched families: pick the parameter by a quick projection, then
     // evaluate the best of each family exactly.
@@ -205,6 +226,7 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     std::array<std::vector<double>, 3> power_cache;  // per axis: [freq][dir][re, im]
     for (const ScanFamily& f : cs.scanned) {
       Term t = f.base;
+      std::vector<double> aliases;
       if (t.kind == TermKind::cyclic) {
         const auto j = static_cast<std::size_t>(t.axis);
         auto& acc = power_cache[j];
@@ -238,15 +260,25 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
         }
         std::size_t best = 0;
         double best_pow = -1.0;
+        std::vector<double> pow(f.grid.size());
         for (std::size_t q = 0; q < f.grid.size(); ++q) {
           const std::size_t at = 6 * q + 2 * static_cast<std::size_t>(t.direction);
           const double pw = acc[at] * acc[at] + acc[at + 1] * acc[at + 1];
+          pow[q] = pw;
           if (pw > best_pow) {
             best_pow = pw;
             best = q;
           }
         }
         t.period_mm = f.grid[best];
+        // Aliases: other peaks (local maxima away from the best) that reach
+        // nearly the same power — on regularly spaced levels a period and its
+        // aliases give the same samples, and the design cannot tell them apart.
+        for (std::size_t q = 1; q + 1 < pow.size(); ++q) {
+          const std::size_t gap = q > best ? q - best : best - q;
+          if (gap <= 4 || pow[q] < pow[q - 1] || pow[q] < pow[q + 1]) continue;
+          if (pow[q] >= o.alias_power * best_pow) aliases.push_back(f.grid[q]);
+        }
       } else {  // thermal_drift: the time constant with the largest normalised projection
         double best_score = -1.0;
         for (double tau : f.grid) {
@@ -267,7 +299,7 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
           }
         }
       }
-      Cached c{t, term_columns(pb, t), Mat(), Mat()};
+      Cached c{t, term_columns(pb, t), Mat(), Mat(), std::move(aliases)};
       c.CtC = c.C.transpose() * c.C;
       c.QtC = Q.transpose() * c.C;
       scanned.push_back(std::move(c));
@@ -285,7 +317,8 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
       if (d <= 0.0) return;
       const int k = c.term.columns();
       const double s2 = std::max(rr - d, 1e-300) / std::max(dof_base - k, 1.0);
-      scores.push_back({&c, d, s2 * chi2_upper_quantile(k, o.alpha / tests_named)});
+      scores.push_back(
+          {&c, d, s2 * std::max(chi2_upper_quantile(k, o.alpha / tests_named), practical)});
     };
     for (const Cached& c : named) consider(c);
     for (const Cached& c : scanned) consider(c);
@@ -314,7 +347,8 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
         const double d = b.dot(ldlt.solve(b));
         const int k = g.term.columns();
         const double s2 = std::max(rr - d, 1e-300) / std::max(dof_base - k, 1.0);
-        const double thr = s2 * chi2_upper_quantile(k, o.alpha / tests_generic);
+        const double thr =
+            s2 * std::max(chi2_upper_quantile(k, o.alpha / tests_generic), practical);
         if (d > thr && d - thr > g_best_excess) {
           g_best_excess = d - thr;
           g_best_d = d;
@@ -338,14 +372,27 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
       delta_rss(best_named->c->C, best_named->c->CtC, best_named->c->QtC, r, &beta_b);
       Vec fb = best_named->c->C * beta_b;
       if (Q.cols() > 0) fb -= Q * (best_named->c->QtC * beta_b);
+      // Parsimony: an alternative that costs more (columns, plus one for a
+      // period or time constant found by search) and explains no more is
+      // not a rival explanation of the same structure.
+      auto cost = [&](const Term& t) {
+        const bool searched = t.kind == TermKind::cyclic || t.kind == TermKind::thermal_drift;
+        return t.columns() + (searched ? 1 : 0);
+      };
       for (const Score& s : scores) {
         if (&s == best_named || s.d < 0.9 * best_named->d) continue;
+        if (cost(s.c->term) > cost(best_named->c->term)) continue;
         Vec beta;
         delta_rss(s.c->C, s.c->CtC, s.c->QtC, r, &beta);
         Vec fc = s.c->C * beta;
         if (Q.cols() > 0) fc -= Q * (s.c->QtC * beta);
         const double corr = std::abs(fb.dot(fc)) / std::max(fb.norm() * fc.norm(), 1e-300);
         if (corr > o.ambiguous_corr) amb.push_back(s.c->term.label());
+      }
+      for (double period : best_named->c->aliases) {
+        Term alias = pick;
+        alias.period_mm = period;
+        amb.push_back(alias.label());
       }
     } else if (have_generic) {
       pick = g_best;
@@ -401,10 +448,11 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
 
   // Final joint fit of every chosen term.
   res.cv_sse = cv_prev;
-  res.residual = y;
-  if (chosen.empty()) {
-    res.sigma_um = std::sqrt(y.squaredNorm() / std::max<double>(static_cast<double>(n), 1.0));
-    return res;
+  res.residual = r;
+  if (chosen.size() == n_datum) {
+    res.sigma_um =
+        std::sqrt(r.squaredNorm() / std::max<double>(static_cast<double>(n - X.cols()), 1.0));
+    if (chosen.empty()) return res;
   }
   // Two stages: the named effects jointly, then the smooth (unexplained)
   // remainder on what they leave, so that the smooth functions cannot take
@@ -466,9 +514,10 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
       }
       // SS this term alone removes given the others of its stage: βᵀ V⁻¹ β.
       const double drop = bt.dot(Vt.ldlt().solve(bt));
-      st.explained_fraction = res.baseline_sse > 0.0 ? drop / res.baseline_sse : 0.0;
+      const double of = i < n_datum ? res.baseline_sse : res.datum_sse;
+      st.explained_fraction = of > 0.0 ? drop / of : 0.0;
       st.ambiguous_with = ambiguous[i];
-      res.terms.push_back(std::move(st));
+      (i < n_datum ? res.datum : res.terms).push_back(std::move(st));
       col += k;
     }
   }

@@ -67,6 +67,17 @@ void render_diagnose_report(HtmlPage& page, const DiagnosisForReport& r) {
       "Held-out check ({} folds): rms {:.3f} µm without the effects, {:.3f} µm with them, a gain "
       "of {:.1f} %. Noise estimate after the fit: {:.3f} µm per observation.",
       d.folds, d.baseline_holdout_rms_um, d.holdout_rms_um, d.gain_percent, d.noise_um));
+  if (!d.noise_method.empty() && d.noise_method != "none")
+    page.add_paragraph(fmt::format("Noise from the data alone ({}): {:.3f} µm per observation.",
+                                   d.noise_method, d.noise_independent_um));
+  if (!d.datum.empty()) {
+    std::string datum;
+    for (const auto& st : d.datum)
+      datum += fmt::format("{}{} = {:.3g} ± {:.2g}", datum.empty() ? "" : "; ", st.term.label(),
+                           st.term.coef.empty() ? 0.0 : st.term.coef[0],
+                           st.term.stderr_.empty() ? 0.0 : st.term.stderr_[0]);
+    page.add_paragraph("Datum of the measurement (always fitted, not an effect): " + datum + ".");
+  }
 
   Table e;
   e.id = "diagnose-effects";
@@ -76,7 +87,10 @@ void render_diagnose_report(HtmlPage& page, const DiagnosisForReport& r) {
   const char* axes = "XYZ";
   for (std::size_t i = 0; i < d.effects.size(); ++i) {
     const auto& term = d.effects[i].term;
-    e.rows.push_back({std::to_string(i + 1), diagnose::kind_id(term.kind),
+    const bool ambiguous = !d.effects[i].ambiguous_with.empty();
+    e.rows.push_back({std::to_string(i + 1),
+                      ambiguous ? std::string("ambiguous: ") + diagnose::kind_id(term.kind)
+                                : std::string(diagnose::kind_id(term.kind)),
                       term.axis >= 0 && term.axis < 3 ? std::string(1, axes[term.axis]) : "-",
                       fmt::format("{:.1f} %", 100.0 * d.effects[i].explained_fraction),
                       term.description()});

@@ -12,6 +12,11 @@ if(NOT CMAKE_SCRIPT_MODE_FILE)
            COMMAND $<TARGET_FILE:abbe_tests> --gtest_filter=DiagnoseHiddenEffect.*)
   set_tests_properties(diagnose_hidden_effect_sweep PROPERTIES LABELS slow TIMEOUT 1800
                        ENVIRONMENT ABBE_DIAGNOSE_SEEDS=200)
+  # The honest harness on real measurement designs, 200 seeds per design.
+  add_test(NAME diagnose_designs_sweep
+           COMMAND $<TARGET_FILE:abbe_tests> --gtest_filter=DiagnoseDesigns.*)
+  set_tests_properties(diagnose_designs_sweep PROPERTIES LABELS slow TIMEOUT 3600
+                       ENVIRONMENT ABBE_DIAGNOSE_SEEDS=200)
   return()
 endif()
 

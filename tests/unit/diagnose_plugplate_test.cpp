@@ -49,12 +49,13 @@ struct PlateSetup {
   bool found = false;
 };
 
-// The setup of a plate from its diagnosis: offsets at the set centroid moved to
-// the origin with the rotation (Δ = θ·e_z × (0 − c)).
+// The setup of a plate from its diagnosis (the datum: a plate's offsets and
+// rotation are always fitted): offsets at the set centroid moved to the
+// origin with the rotation (Δ = θ·e_z × (0 − c)).
 PlateSetup setup_of(const Diagnosis& d) {
   PlateSetup s;
   Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  for (const auto& st : d.effects) {
+  for (const auto& st : d.datum) {
     const Term& t = st.term;
     if (t.kind == TermKind::setup_rotation && t.axis == 2) {
       s.rot_urad = t.coef[0];
@@ -62,7 +63,7 @@ PlateSetup setup_of(const Diagnosis& d) {
       s.found = true;
     }
   }
-  for (const auto& st : d.effects) {
+  for (const auto& st : d.datum) {
     const Term& t = st.term;
     if (t.kind == TermKind::setup_offset && t.direction == 0) s.ox = t.coef[0];
     if (t.kind == TermKind::setup_offset && t.direction == 1) s.oy = t.coef[0];

@@ -26,6 +26,11 @@ struct ScanFamily {
 };
 
 struct CandidateSet {
+  // The datum of the data (always fitted, never an effect): an offset per
+  // `set` and measured direction, plus, for a set that lies in one plane
+  // whose normal direction is not measured (a plate), its rotation in that
+  // plane (docs/diagnosis.md, "Datum").
+  std::vector<Term> datum;
   std::vector<Term> fixed;          // named kinds without a searched parameter
   std::vector<ScanFamily> scanned;  // named kinds with one
   std::vector<Term> generic;        // unexplained (direction = −1: one per present direction)

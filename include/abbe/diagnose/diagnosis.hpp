@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "abbe/diagnose/candidates.hpp"
+#include "abbe/diagnose/noise.hpp"
 #include "abbe/diagnose/overlay.hpp"
 #include "abbe/diagnose/residuals.hpp"
 #include "abbe/diagnose/selection.hpp"
@@ -29,14 +30,19 @@ struct Diagnosis {
   std::string model;
   std::size_t n_points = 0;
   std::size_t n_observations = 0;
-  std::vector<ResidualStats> models;  // htm, ae-arm, dual (without any overlay)
-  ResidualStats baseline;             // the diagnosed model (with --extend if given)
-  std::vector<SelectedTerm> effects;  // ordered by importance
-  ResidualStats extended;             // after the selected effects, in-sample
-  double holdout_rms_um = 0.0;        // extended model, held-out folds
-  double baseline_holdout_rms_um = 0.0;
+  std::vector<ResidualStats> models;     // htm, ae-arm, dual (without any overlay)
+  ResidualStats baseline;                // the diagnosed model (with --extend if given)
+  std::vector<SelectedTerm> effects;     // ordered by importance
+  std::vector<SelectedTerm> datum;       // what the datum (offsets, plate rotations) absorbed
+  ResidualStats extended;                // after the selected effects, in-sample
+  double holdout_rms_um = 0.0;           // extended model, held-out folds
+  double baseline_holdout_rms_um = 0.0;  // the model with the datum fitted, held-out folds
   double gain_percent = 0.0;
   double noise_um = 0.0;  // residual σ per observation after the fit
+  // σ per observation from the data alone (noise.hpp): repeated points or
+  // neighbour differences; 0 when the data allow neither.
+  double noise_independent_um = 0.0;
+  std::string noise_method;
   int folds = 0;
   std::vector<std::string> log;
 };

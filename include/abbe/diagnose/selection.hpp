@@ -27,6 +27,15 @@ struct SelectionOptions {
   int max_terms = 12;
   double name_ratio = 0.7;  // a named kind must explain this share of the best smooth fit
   double ambiguous_corr = 0.98;
+  // Practical significance: an effect is named only when the RMS of what it
+  // removes per observation is at least this fraction of the noise σ̂ (a
+  // structure far below the noise changes no prediction, however many
+  // points make it "significant"; e.g. the interpolation error of noisy
+  // laser tables on a dense grid).
+  double min_effect_rms = 0.3;
+  // A cyclic period is ambiguous when another peak of the periodogram (not a
+  // neighbour) reaches this share of the best peak's power (aliasing).
+  double alias_power = 0.9;
   std::size_t scan_points = 20000;  // points used to locate a period peak
   // Optional: called at the start of each selection step (0-based), e.g. for
   // a progress bar.
@@ -41,11 +50,18 @@ struct SelectedTerm {
 
 struct SelectionResult {
   std::vector<SelectedTerm> terms;  // ordered by explained_fraction
-  Eigen::VectorXd residual;         // after the final fit, per observation
-  double sigma_um = 0.0;            // noise estimate per observation after the fit
-  double cv_sse = 0.0;              // held-out SSE of the selected model
-  double baseline_sse = 0.0;        // SSE of the residual without extension
-  std::vector<std::string> log;     // one line per step
+  // The datum (offsets per set and direction, plate rotations): fitted with
+  // the effects, reported apart; explained_fraction is its share of the raw
+  // residual. The effects' explained_fraction is their share of what is
+  // left after the datum.
+  std::vector<SelectedTerm> datum;
+  Eigen::VectorXd residual;      // after the final fit, per observation
+  double sigma_um = 0.0;         // noise estimate per observation after the fit
+  double cv_sse = 0.0;           // held-out SSE of the selected model
+  double baseline_sse = 0.0;     // SSE of the residual without extension
+  double datum_sse = 0.0;        // in-sample SSE after the datum alone
+  double datum_cv_sse = 0.0;     // held-out SSE of the datum alone (the gain's baseline)
+  std::vector<std::string> log;  // one line per step
 };
 
 SelectionResult select_effects(const Problem& problem, const CandidateSet& candidates,

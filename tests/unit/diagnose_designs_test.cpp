@@ -1,0 +1,692 @@
+// The honest hidden-effect harness (issue 16): effects are generated from
+// physical shapes that are NOT candidate columns of the diagnosis — a pitch
+// error with its second harmonic, a drift that is not an exponential, a
+// coupling about an off-centre point, a scale or squareness whose zero is
+// the measurement's own datum, a backlash that grows along the travel — on
+// a virtual machine whose laser campaign has its noise on; each measurement
+// carries an unknown datum offset per set. The designs are the real ones: a
+// regular volumetric grid (serpentine, walked both ways; dx dy dz), one
+// plate (dx dy), points along a toolpath at one Z (dx dy dz), ballbar
+// circles in XY, XZ and YZ both ways (dn only) and the four body diagonals
+// (displacement along the line). The gain is scored on a fresh,
+// independent measurement of the same truth machine (new noise, new datum)
+// against an oracle that knows the hidden deviation exactly.
+//
+// A case counts as identifiable when the design can tell the hidden shape
+// from the rest of the catalogue (identifiable(), by the design's geometry)
+// and the oracle gains at least 5 % on the fresh measurement.
+// Outcome classes per case: `right` (kind, axis, direction and sign of the
+// hidden effect named; parts of the same shape allowed, see consistent()),
+// `ambiguous` (the truth reported only among alternatives), `wrong` (a name
+// that is not the truth nor part of its shape), `none` (nothing named).
+// The measured rates are printed as a table (docs/diagnosis.md) and the
+// assertions hold the rates reached now, so that a regression fails.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <map>
+#include <random>
+
+#include "abbe/diagnose/diagnosis.hpp"
+#include "abbe/io/measured_data.hpp"
+#include "abbe/io/units.hpp"
+#include "abbe/sim/laser_campaign.hpp"
+#include "abbe/sim/truth_generator.hpp"
+#include "abbe/sim/validation_measurement.hpp"
+#include "diagnose_vm_test.hpp"
+
+namespace abbe::diagnose {
+namespace {
+
+constexpr double kNoise = 0.5;  // µm, per measured component
+
+// The virtual machine with its laser campaign's noise ON (the model does not
+// match the truth exactly: that mismatch is part of every data set), waves
+// shorter than two table intervals removed (else every data set holds the
+// generator's 10 mm screw cycle, itself a hidden effect).
+const testing::VirtualMachine& noisy_vm() {
+  static const testing::VirtualMachine vm = [] {
+    sim::GeneratorOptions go;
+    go.seed = 7;
+    go.profile = "mazak";
+    sim::GeneratedMachine g = sim::generate_machine(go);
+    for (auto& axis : g.truth.axes)
+      for (auto& c : axis.components) {
+        std::vector<sim::Wave> keep;
+        for (const auto& w : c.waves)
+          if (w.wavelength >= 2.0 * go.spacing_mm) keep.push_back(w);
+        c.waves = keep;
+      }
+    const sim::CampaignResult r = sim::run_campaign(g);
+    const auto dir = std::filesystem::path(::testing::TempDir()) /
+                     ("abbe_designs_vm_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    { std::ofstream(dir / "errors.csv") << sim::table_to_csv(r); }
+    machine::Machine m =
+        machine::Machine::parse(sim::machine_to_yaml(g, r, "errors.csv"), "<vm>", dir.string());
+    return testing::VirtualMachine{std::move(g), std::move(m)};
+  }();
+  return vm;
+}
+
+// ---------------------------------------------------------------- designs
+enum class Design { grid, plane, toolpath, ballbar, diagonals };
+const char* design_name(Design d) {
+  switch (d) {
+    case Design::grid:
+      return "grid 12x8x5, serpentine both ways (dx dy dz)";
+    case Design::plane:
+      return "one plate at one Z (dx dy)";
+    case Design::toolpath:
+      return "toolpath at one Z (dx dy dz)";
+    case Design::ballbar:
+      return "ballbar XY/XZ/YZ both ways (dn)";
+    case Design::diagonals:
+      return "four body diagonals (along the line)";
+  }
+  return "";
+}
+
+struct Sample {
+  sim::TipState tip;
+  Eigen::Vector3d n = Eigen::Vector3d::Zero();  // zero: dx dy dz (or dx dy on the plate)
+};
+
+struct Box {
+  Eigen::Vector3d lo, hi;
+};
+Box box() {
+  Box b;
+  sim::default_box(noisy_vm().generated.truth, noisy_vm().generated.truth.tool_length, b.lo, b.hi);
+  return b;
+}
+
+void set_dirs(std::vector<Sample>& v, Eigen::Vector3d prev) {
+  std::array<int, 3> dir{0, 0, 0};
+  for (Sample& s : v) {
+    for (int i = 0; i < 3; ++i) {
+      if (s.tip.p[i] > prev[i] + 1e-9) dir[static_cast<std::size_t>(i)] = 1;
+      if (s.tip.p[i] < prev[i] - 1e-9) dir[static_cast<std::size_t>(i)] = -1;
+    }
+    s.tip.dir = dir;
+    prev = s.tip.p;
+  }
+}
+
+std::vector<Sample> make_design(Design d) {
+  const Box b = box();
+  const double L = noisy_vm().generated.truth.tool_length;
+  std::vector<Sample> out;
+  auto push = [&](const Eigen::Vector3d& p, const std::string& set,
+                  const Eigen::Vector3d& n = Eigen::Vector3d::Zero()) {
+    Sample s;
+    s.tip.p = p;
+    s.tip.tool_length = L;
+    s.tip.set = set;
+    s.n = n;
+    out.push_back(s);
+  };
+  auto lerp = [&](int a, double f) { return b.lo[a] + (b.hi[a] - b.lo[a]) * f; };
+  switch (d) {
+    case Design::grid: {
+      // 12 × 8 × 5 levels, serpentine, then the same walk backwards.
+      std::vector<Eigen::Vector3d> walk;
+      bool xu = true, yu = true;
+      for (int kz = 4; kz >= 0; --kz) {
+        for (int ky = 0; ky < 8; ++ky) {
+          const int yy = yu ? ky : 7 - ky;
+          for (int kx = 0; kx < 12; ++kx) {
+            const int xx = xu ? kx : 11 - kx;
+            walk.emplace_back(lerp(0, xx / 11.0), lerp(1, yy / 7.0), lerp(2, kz / 4.0));
+          }
+          xu = !xu;
+        }
+        yu = !yu;
+      }
+      for (const auto& p : walk) push(p, "grid");
+      for (auto it = walk.rbegin(); it != walk.rend(); ++it) push(*it, "grid");
+      break;
+    }
+    case Design::plane: {
+      // A plate of 13 × 9 holes at 50 mm pitch on the table, z = top − 100.
+      const double z = b.hi.z() - 100.0;
+      const Eigen::Vector3d c = 0.5 * (b.lo + b.hi);
+      for (int ky = 0; ky < 9; ++ky)
+        for (int kx = 0; kx < 13; ++kx) {
+          const int xx = ky % 2 == 0 ? kx : 12 - kx;
+          push({c.x() + 50.0 * (xx - 6), c.y() + 50.0 * (ky - 4), z}, "plate");
+        }
+      break;
+    }
+    case Design::toolpath: {
+      // A pocket at one Z: raster in X with a 23 mm stepover, a point every
+      // 3.7 mm of path, then a circular contour of r = 180 mm.
+      const double z = b.hi.z() - 150.0;
+      const Eigen::Vector3d c = 0.5 * (b.lo + b.hi);
+      const double x0 = b.lo.x() + 60.0, x1 = b.hi.x() - 60.0;
+      bool up = true;
+      for (double y = b.lo.y() + 40.0; y <= b.hi.y() - 40.0; y += 23.0) {
+        for (double s = 0.0; s <= x1 - x0; s += 3.7) push({up ? x0 + s : x1 - s, y, z}, "path");
+        up = !up;
+      }
+      for (double a = 0.0; a < units::kTwoPi; a += 3.7 / 180.0)
+        push({c.x() + 180.0 * std::cos(a), c.y() + 180.0 * std::sin(a), z}, "path");
+      break;
+    }
+    case Design::ballbar: {
+      // r = 150 mm about the box centre, a reading every 2°, CCW then CW,
+      // one set per plane (the ballbar is re-placed).
+      const Eigen::Vector3d c = 0.5 * (b.lo + b.hi);
+      const int planes[3][2] = {{0, 1}, {0, 2}, {1, 2}};
+      const char* names[3] = {"XY", "XZ", "YZ"};
+      for (int pl = 0; pl < 3; ++pl)
+        for (int way : {1, -1})
+          for (int k = 0; k < 180; ++k) {
+            const double a = way * units::kTwoPi * k / 180.0;
+            Eigen::Vector3d n = Eigen::Vector3d::Zero();
+            n[planes[pl][0]] = std::cos(a);
+            n[planes[pl][1]] = std::sin(a);
+            push(c + 150.0 * n, names[pl], n);
+          }
+      break;
+    }
+    case Design::diagonals: {
+      // ISO 230-6: each body diagonal of the box (inset 30 mm), a target every
+      // 37 mm, there and back; one set per line (the laser is re-aligned).
+      const Eigen::Vector3d lo = b.lo + Eigen::Vector3d::Constant(30.0);
+      const Eigen::Vector3d hi = b.hi - Eigen::Vector3d::Constant(30.0);
+      for (int k = 0; k < 4; ++k) {
+        Eigen::Vector3d a = lo, e = hi;
+        if (k & 1) std::swap(a.x(), e.x());
+        if (k & 2) std::swap(a.y(), e.y());
+        const Eigen::Vector3d u = (e - a).normalized();
+        const double len = (e - a).norm();
+        const int m = static_cast<int>(len / 37.0);
+        const std::string set = fmt::format("diag{}", k + 1);
+        for (int i = 0; i <= m; ++i) push(a + u * (len * i / m), set, u);
+        for (int i = m; i >= 0; --i) push(a + u * (len * i / m), set, u);
+      }
+      break;
+    }
+  }
+  set_dirs(out, Eigen::Vector3d(0.0, 0.0, -L));
+  double t = 0.0;
+  // A plate report has no time column (t = 0).
+  const double dt = d == Design::plane      ? 0.0
+                    : d == Design::ballbar  ? 8.0
+                    : d == Design::toolpath ? 2.0
+                                            : 5.0;
+  for (Sample& s : out) {
+    s.tip.time = t;
+    t += dt;
+  }
+  return out;
+}
+
+// ---------------------------------------------------------- hidden shapes
+enum class Shape { none, scale, squareness, reversal, pitch, drift, coupling };
+const char* shape_name(Shape s) {
+  switch (s) {
+    case Shape::none:
+      return "none";
+    case Shape::scale:
+      return "scale";
+    case Shape::squareness:
+      return "squareness";
+    case Shape::reversal:
+      return "reversal";
+    case Shape::pitch:
+      return "pitch+harmonic";
+    case Shape::drift:
+      return "drift t/(t+tau)";
+    case Shape::coupling:
+      return "coupling off-centre";
+  }
+  return "";
+}
+
+struct Hidden {
+  Shape shape = Shape::none;
+  int axis = 0, with = -1, dir = 0;  // driving axis, coupling partner, deviation direction
+  double a = 0.0;                    // magnitude (µm at the reach of the data)
+  double zero = 0.0, zero2 = 0.0;    // datum of scale/squareness, coupling centre
+  double period = 0.0, ph1 = 0.0, ph2 = 0.0, tau = 0.0;
+  bool proportional = false;  // drift ∝ s_dir
+  double sign = 1.0;
+  std::string text;
+
+  Eigen::Vector3d at(const sim::TipState& tip, const Box& b) const {
+    Eigen::Vector3d s = tip.p;
+    s.z() += tip.tool_length;
+    Eigen::Vector3d d = Eigen::Vector3d::Zero();
+    const Eigen::Vector3d half = 0.5 * (b.hi - b.lo);
+    switch (shape) {
+      case Shape::none:
+        break;
+      case Shape::scale:
+      case Shape::squareness:
+        d[dir] = a * (s[axis] - zero) / (2.0 * half[axis]);
+        break;
+      case Shape::reversal: {
+        const double mid = 0.5 * (b.lo[axis] + b.hi[axis]) + (axis == 2 ? tip.tool_length : 0.0);
+        d[dir] = 0.5 * a * tip.dir[static_cast<std::size_t>(axis)] *
+                 (1.0 + 0.2 * (s[axis] - mid) / half[axis]);
+        break;
+      }
+      case Shape::pitch: {
+        const double w = units::kTwoPi * s[axis] / period;
+        d[dir] = a * (std::sin(w + ph1) + 0.35 * std::sin(2.0 * w + ph2)) / 1.2;
+        break;
+      }
+      case Shape::drift: {
+        double g = a * tip.time / (tip.time + tau);
+        if (proportional) g *= (s[dir] - zero) / (2.0 * half[dir]);
+        d[dir] = g;
+        break;
+      }
+      case Shape::coupling:
+        d[dir] = a * (s[axis] - zero) * (s[with] - zero2) / (4.0 * half[axis] * half[with]);
+        break;
+    }
+    return d;
+  }
+};
+
+Hidden draw(std::mt19937_64& rng, const Box& b, double L) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  Hidden h;
+  h.shape = static_cast<Shape>(1 + rng() % 6);
+  h.axis = static_cast<int>(rng() % 3);
+  h.dir = h.axis;
+  h.sign = u(rng) < 0.5 ? -1.0 : 1.0;
+  h.a = h.sign * (3.0 + 17.0 * u(rng)) * kNoise;
+  auto axis_range = [&](int a, double f) {
+    return (a == 2 ? L : 0.0) + b.lo[a] + (b.hi[a] - b.lo[a]) * f;
+  };
+  switch (h.shape) {
+    case Shape::scale:
+      h.zero = axis_range(h.axis, u(rng));  // the measurement's datum, anywhere
+      break;
+    case Shape::squareness:
+      h.dir = (h.axis + 1 + static_cast<int>(rng() % 2)) % 3;
+      h.zero = axis_range(h.axis, u(rng));
+      break;
+    case Shape::pitch:
+      h.period = 8.0 + 32.0 * u(rng);
+      h.ph1 = units::kTwoPi * u(rng);
+      h.ph2 = units::kTwoPi * u(rng);
+      break;
+    case Shape::drift:
+      h.tau = 600.0 + 2400.0 * u(rng);
+      h.proportional = u(rng) < 0.5;
+      h.zero = axis_range(h.dir, u(rng));
+      break;
+    case Shape::coupling:
+      h.with = (h.axis + 1 + static_cast<int>(rng() % 2)) % 3;
+      if (h.with < h.axis) std::swap(h.with, h.axis);
+      h.dir = static_cast<int>(rng() % 3);
+      h.zero = axis_range(h.axis, 0.2 + 0.6 * u(rng));
+      h.zero2 = axis_range(h.with, 0.2 + 0.6 * u(rng));
+      break;
+    default:
+      break;
+  }
+  h.text =
+      fmt::format("{} axis {} dir {}{} {:+.2f} µm", shape_name(h.shape), "XYZ"[h.axis],
+                  "XYZ"[h.dir], h.with >= 0 ? fmt::format(" with {}", "XYZ"[h.with]) : "", h.a);
+  if (h.shape == Shape::pitch) h.text += fmt::format(" period {:.1f} mm", h.period);
+  if (h.shape == Shape::drift)
+    h.text += fmt::format(" tau {:.0f} s{}", h.tau, h.proportional ? " x s" : "");
+  return h;
+}
+
+// Can the design tell this effect apart from the others of the catalogue
+// (and from its datum)? The design's geometry decides (docs/diagnosis.md).
+bool identifiable(Design d, const Hidden& h) {
+  switch (d) {
+    case Design::grid:
+      // Regular levels ≥ 50 mm apart alias every period of 8–40 mm.
+      return h.shape != Shape::pitch;
+    case Design::plane:
+      // z fixed, dz not measured, plate placement (offset + rotation) unknown.
+      if (h.dir == 2 || h.axis == 2 || h.with == 2) return false;
+      if (h.shape == Shape::squareness) return false;  // X→Y and Y→X differ by a rotation
+      if (h.shape == Shape::drift) return false;       // no time on a plate report
+      if (h.shape == Shape::pitch) return false;       // 50 mm pitch aliases the period
+      return true;
+    case Design::toolpath:
+      if (h.axis == 2 || h.with == 2) return false;  // z fixed
+      // d_z ∝ x (or y) at one z is a rotation of the datum about Y (or X).
+      if (h.shape == Shape::squareness && h.dir == 2) return false;
+      if (h.shape == Shape::scale && h.dir == 2) return false;
+      return true;
+    case Design::ballbar:
+      // Only the symmetric part of a squareness reaches dn.
+      return h.shape != Shape::squareness;
+    case Design::diagonals:
+      // Along a body diagonal the three scales give the same slope, the three
+      // reversals the same step, i→j and j→i squareness the same line, every
+      // coupling a parabola, and 37 mm targets alias the periods; only a drift
+      // in time (there and back) is told apart.
+      // (A drift proportional to the position is a scale growing in time:
+      // not told apart either.)
+      return h.shape == Shape::drift && !h.proportional;
+  }
+  return false;
+}
+
+// ------------------------------------------------------------- measuring
+io::MeasuredData measure(const std::vector<Sample>& design, const Hidden& h, std::uint64_t seed,
+                         bool plane) {
+  const auto& vm = noisy_vm();
+  const Box b = box();
+  std::vector<sim::TipState> tips;
+  for (const Sample& s : design) tips.push_back(s.tip);
+  const auto pts = sim::measure(vm.generated.truth, tips, kNoise, seed);
+  // The measurement's datum: an unknown offset per set and direction.
+  std::mt19937_64 rng(seed * 7919 + 13);
+  std::normal_distribution<double> datum(0.0, 15.0);
+  std::map<std::string, Eigen::Vector3d> offset;
+  io::MeasuredData d;
+  d.file = "<design>";
+  d.has_column = {!design.front().n.any(), !design.front().n.any(),
+                  !plane && !design.front().n.any()};
+  d.has_dn = design.front().n.any();
+  std::size_t line = 2;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const sim::TipState& tip = pts[i].tip;
+    if (!offset.count(tip.set)) offset[tip.set] = {datum(rng), datum(rng), datum(rng)};
+    const Eigen::Vector3d dev = pts[i].deviation_um + h.at(tip, b) + offset[tip.set];
+    io::MeasuredRow r;
+    r.p = tip.p;
+    r.t = tip.time;
+    for (std::size_t k = 0; k < 3; ++k) r.v[k] = static_cast<std::int8_t>(tip.dir[k]);
+    r.tool_length = tip.tool_length;
+    r.set = tip.set;
+    r.line = line++;
+    if (d.has_dn) {
+      r.n = design[i].n;
+      r.dn = r.n.dot(dev);
+    } else {
+      for (int k = 0; k < (plane ? 2 : 3); ++k) r.d[static_cast<std::size_t>(k)] = dev[k];
+    }
+    d.rows.push_back(r);
+  }
+  return d;
+}
+
+// Least-squares removal of the datum (offset per set and direction; plates
+// also a rotation about Z) from per-observation residuals.
+Eigen::VectorXd remove_datum(const Problem& pb, const Eigen::VectorXd& r, bool plate) {
+  const int per = plate ? 4 : 3;
+  const auto ns = static_cast<Eigen::Index>(pb.sets.size());
+  Eigen::MatrixXd X = Eigen::MatrixXd::Zero(r.size(), per * ns);
+  std::map<std::string, Eigen::Vector3d> centre;
+  std::map<std::string, double> count;
+  for (const auto& pc : pb.points) {
+    centre[pc.set] += pc.p;
+    count[pc.set] += 1.0;
+  }
+  for (std::size_t o = 0; o < pb.obs.size(); ++o) {
+    const auto& ob = pb.obs[o];
+    const PointContext& pc = pb.points[ob.point];
+    const auto si = static_cast<Eigen::Index>(std::find(pb.sets.begin(), pb.sets.end(), pc.set) -
+                                              pb.sets.begin());
+    const auto row = static_cast<Eigen::Index>(o);
+    for (int i = 0; i < 3; ++i) X(row, per * si + i) = ob.u[i];
+    if (plate) {
+      const Eigen::Vector3d q = pc.p - centre[pc.set] / count[pc.set];
+      X(row, per * si + 3) = 1e-3 * (-q.y() * ob.u.x() + q.x() * ob.u.y());
+    }
+  }
+  const Eigen::VectorXd beta = X.colPivHouseholderQr().solve(r);
+  return r - X * beta;
+}
+
+double rms(const Eigen::VectorXd& r) {
+  return std::sqrt(r.squaredNorm() / std::max<double>(static_cast<double>(r.size()), 1.0));
+}
+
+bool is_datum(const Term& t) {
+  return t.kind == TermKind::setup_offset || t.kind == TermKind::setup_rotation;
+}
+
+// Is the term the hidden effect, or a part of its shape (the linear part of
+// an off-centre coupling is a squareness/scale along its axes; a drift
+// proportional to s_dir may be named with or without the axis)?
+bool consistent(const Term& t, const Hidden& h) {
+  if (t.direction != h.dir && t.kind != TermKind::unexplained) return false;
+  switch (h.shape) {
+    case Shape::scale:
+      return t.kind == TermKind::scale && t.axis == h.axis;
+    case Shape::squareness:
+      return t.kind == TermKind::squareness && t.axis == h.axis;
+    case Shape::reversal:
+      return t.kind == TermKind::reversal && t.axis == h.axis;
+    case Shape::pitch:
+      return t.kind == TermKind::cyclic && t.axis == h.axis;
+    case Shape::drift:
+      // A scale that grows in time has a mean scale over the measurement.
+      if (h.proportional && t.kind == TermKind::scale) return t.axis == h.dir;
+      return t.kind == TermKind::thermal_drift;
+    case Shape::coupling:
+      if (t.kind == TermKind::coupling) return t.axis == h.axis && t.with_axis == h.with;
+      return (t.kind == TermKind::scale || t.kind == TermKind::squareness) &&
+             (t.axis == h.axis || t.axis == h.with);
+    case Shape::none:
+      return false;
+  }
+  return false;
+}
+
+// The named term that is the hidden effect itself (not only a part).
+bool is_truth(const Term& t, const Hidden& h) {
+  if (!consistent(t, h)) return false;
+  if (h.shape == Shape::coupling) return t.kind == TermKind::coupling;
+  return true;
+}
+
+// Sign check: the fitted first parameter has the sign of the hidden one
+// (only for the shapes whose sign the catalogue's parameter carries).
+bool sign_right(const Term& t, const Hidden& h) {
+  if (t.coef.empty()) return true;
+  switch (h.shape) {
+    case Shape::scale:
+    case Shape::squareness:
+    case Shape::reversal:
+      return t.coef[0] * h.sign > 0.0;
+    default:
+      return true;
+  }
+}
+
+enum class Verdict { right, ambiguous, wrong, none };
+
+// An effect that even the oracle cannot use (held-out gain below 5 % on the
+// fresh measurement) is below what this design resolves: counted with the
+// not identifiable ones (a name is then wrong, silence or `ambiguous` right).
+constexpr double kResolvable = 0.05;
+
+struct Case {
+  Verdict verdict = Verdict::none;
+  bool gain_ok = false;
+  double gain = 0.0, oracle = 0.0;
+  std::string found;
+};
+
+Case run_case(Design design, const Hidden& h, std::uint64_t seed) {
+  const auto& vm = noisy_vm();
+  const auto samples = make_design(design);
+  const bool plane = design == Design::plane;
+  const io::MeasuredData data = measure(samples, h, seed, plane);
+  const Problem pb = build_problem(vm.machine, data, model::ModelKind::ae_arm, nullptr);
+  DiagnoseOptions opt;
+  opt.selection.seed = seed;
+  const Diagnosis d = diagnose_problem(pb, opt);
+
+  Case c;
+  bool truth_named = false, truth_ambiguous = false, wrong = false, any = false;
+  for (const SelectedTerm& st : d.effects) {
+    double ss = 0.0;
+    for (const Observation& ob : pb.obs) {
+      const double v = ob.u.dot(st.term.evaluate(pb.points[ob.point]));
+      ss += v * v;
+    }
+    std::string alt;
+    for (const auto& a : st.ambiguous_with) alt += (alt.empty() ? " ~ " : " | ") + a;
+    c.found += fmt::format(" [{} {:.2f}{}]", st.term.label(),
+                           std::sqrt(ss / static_cast<double>(pb.obs.size())), alt);
+    if (is_datum(st.term)) continue;
+    if (st.term.kind == TermKind::unexplained) continue;
+    any = true;
+    if (h.shape != Shape::none && consistent(st.term, h)) {
+      if (!sign_right(st.term, h)) {
+        wrong = true;
+      } else if (st.ambiguous_with.empty() && is_truth(st.term, h)) {
+        truth_named = true;
+      } else {
+        truth_ambiguous = true;
+      }
+      continue;
+    }
+    // A name that is not the truth: ambiguous when it says so, wrong when not.
+    if (!st.ambiguous_with.empty()) {
+      truth_ambiguous = true;
+    } else {
+      wrong = true;
+    }
+  }
+  if (wrong) {
+    c.verdict = Verdict::wrong;
+  } else if (truth_named) {
+    c.verdict = Verdict::right;
+  } else if (truth_ambiguous || any) {
+    c.verdict = Verdict::ambiguous;
+  } else {
+    c.verdict = Verdict::none;
+  }
+
+  // Gain on a fresh measurement of the same truth machine (new noise, new datum).
+  const io::MeasuredData fresh = measure(samples, h, seed + 100000, plane);
+  const Problem fp = build_problem(vm.machine, fresh, model::ModelKind::ae_arm, nullptr);
+  Eigen::VectorXd ext = fp.y, orc = fp.y;
+  const Box b = box();
+  for (std::size_t o = 0; o < fp.obs.size(); ++o) {
+    const auto& ob = fp.obs[o];
+    const PointContext& pc = fp.points[ob.point];
+    Eigen::Vector3d pred = Eigen::Vector3d::Zero();
+    for (const SelectedTerm& st : d.effects)
+      if (!is_datum(st.term)) pred += st.term.evaluate(pc);
+    const auto row = static_cast<Eigen::Index>(o);
+    ext[row] -= ob.u.dot(pred);
+    sim::TipState tip;
+    tip.p = pc.p;
+    tip.tool_length = pc.s.z() - pc.p.z();
+    tip.dir = pc.dir;
+    tip.time = pc.t;
+    orc[row] -= ob.u.dot(h.at(tip, b));
+  }
+  const double base = rms(remove_datum(fp, fp.y, plane));
+  c.gain = 1.0 - rms(remove_datum(fp, ext, plane)) / base;
+  c.oracle = 1.0 - rms(remove_datum(fp, orc, plane)) / base;
+  c.gain_ok = c.gain >= 0.7 * c.oracle;
+  return c;
+}
+
+int seeds() {
+  const char* s = std::getenv("ABBE_DIAGNOSE_SEEDS");  // the `slow` sweep sets 200
+  return s ? std::max(1, std::atoi(s)) : 40;
+}
+
+struct Rates {
+  int n_id = 0, id_right = 0, id_wrong = 0;
+  int n_un = 0, un_ambiguous = 0, un_wrong = 0;  // "ambiguous" here: ambiguous or nothing named
+  int n_null = 0, null_clean = 0;
+  int gain_ok = 0, n_gain = 0;
+};
+
+Rates sweep(Design design) {
+  const int n = seeds();
+  Rates r;
+  const Box b = box();
+  const double L = noisy_vm().generated.truth.tool_length;
+  for (int i = 0; i < n; ++i) {
+    std::mt19937_64 rng(static_cast<std::uint64_t>(7000 + 31 * i + static_cast<int>(design)));
+    const auto seed = static_cast<std::uint64_t>(100 + i);
+    // Every fourth case is null data.
+    Hidden h;
+    if (i % 4 != 3) h = draw(rng, b, L);
+    const Case c = run_case(design, h, seed);
+    std::string tag;
+    if (h.shape == Shape::none) {
+      ++r.n_null;
+      const bool clean = c.verdict == Verdict::none;
+      r.null_clean += clean ? 1 : 0;
+      tag = clean ? "null ok" : "null NAMED";
+    } else if (identifiable(design, h) && c.oracle >= kResolvable) {
+      ++r.n_id;
+      r.id_right += c.verdict == Verdict::right ? 1 : 0;
+      r.id_wrong += c.verdict == Verdict::wrong ? 1 : 0;
+      tag = c.verdict == Verdict::right   ? "right"
+            : c.verdict == Verdict::wrong ? "WRONG"
+                                          : "missed";
+      ++r.n_gain;
+      r.gain_ok += c.gain_ok ? 1 : 0;
+    } else {
+      ++r.n_un;
+      const bool amb = c.verdict == Verdict::ambiguous || c.verdict == Verdict::none;
+      r.un_ambiguous += amb ? 1 : 0;
+      r.un_wrong += c.verdict == Verdict::wrong ? 1 : 0;
+      tag = c.verdict == Verdict::wrong ? "unidentifiable, WRONG NAME"
+            : amb                       ? "unidentifiable, not named"
+                                        : "unidentifiable";
+      if (c.verdict == Verdict::right) tag = "unidentifiable, named (lucky)";
+    }
+    std::cerr << fmt::format(
+        "{} | seed {:3d} | {:<55} | {:<28} | gain {:5.2f} oracle {:5.2f} |{}\n",
+        design_name(design), i, h.text, tag, c.gain, c.oracle, c.found);
+  }
+  auto pct = [](int a, int b) { return b ? 100.0 * a / b : 0.0; };
+  std::cerr << fmt::format(
+      "RATES | {} | identifiable: right {}/{} ({:.0f} %), wrong {} | not identifiable: "
+      "ambiguous or silent {}/{} ({:.0f} %), wrong {} ({:.0f} %) | null clean {}/{} | gain >= 0.7 "
+      "oracle "
+      "{}/{} ({:.0f} %)\n",
+      design_name(design), r.id_right, r.n_id, pct(r.id_right, r.n_id), r.id_wrong, r.un_ambiguous,
+      r.n_un, pct(r.un_ambiguous, r.n_un), r.un_wrong, pct(r.un_wrong, r.n_un), r.null_clean,
+      r.n_null, r.gain_ok, r.n_gain, pct(r.gain_ok, r.n_gain));
+  return r;
+}
+
+// The assertions hold the rates measured at the last change of the engine
+// (docs/diagnosis.md, "Measured rates"), as fractions with a small margin
+// for the seed count: the issue's targets are not all reached yet and the
+// table says which.
+struct Floor {
+  double id_right, id_wrong_max, un_wrong_max, null_clean, gain_ok;
+};
+
+void check(const Rates& r, const Floor& f) {
+  auto frac = [](int a, int b) { return b ? static_cast<double>(a) / b : 1.0; };
+  EXPECT_GE(frac(r.id_right, r.n_id), f.id_right);
+  EXPECT_LE(frac(r.id_wrong, r.n_id), f.id_wrong_max);
+  EXPECT_LE(frac(r.un_wrong, r.n_un), f.un_wrong_max);
+  EXPECT_GE(frac(r.null_clean, r.n_null), f.null_clean);
+  EXPECT_GE(frac(r.gain_ok, r.n_gain), f.gain_ok);
+}
+
+// Floors: {identifiable named right ≥, identifiable wrong ≤, not identifiable
+// wrong ≤, null clean ≥, gain ≥ 70 % of the oracle ≥} (measured 40-seed rates
+// in docs/diagnosis.md, less a margin of about one case in ten).
+TEST(DiagnoseDesigns, Grid) { check(sweep(Design::grid), {0.9, 0.05, 0.05, 0.9, 0.9}); }
+TEST(DiagnoseDesigns, Plane) { check(sweep(Design::plane), {0.75, 0.05, 0.05, 0.9, 0.75}); }
+TEST(DiagnoseDesigns, Toolpath) { check(sweep(Design::toolpath), {0.8, 0.1, 0.05, 0.9, 0.9}); }
+TEST(DiagnoseDesigns, Ballbar) { check(sweep(Design::ballbar), {0.8, 0.1, 0.05, 0.9, 0.9}); }
+TEST(DiagnoseDesigns, Diagonals) { check(sweep(Design::diagonals), {0.0, 0.05, 0.1, 0.9, 0.0}); }
+
+}  // namespace
+}  // namespace abbe::diagnose
