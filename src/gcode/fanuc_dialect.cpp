@@ -82,7 +82,7 @@ constexpr std::array<CarriedCode, 10> kCarried{{
     {gcode_id(5, 1), "QR"},
     {gcode_id(8), "P"},
     {gcode_id(103), "P"},
-    {gcode_id(187), "P"},
+    {gcode_id(187), "PE"},  // Haas: P smoothing level, E corner tolerance
     {gcode_id(13, 1), ""},  // polar coordinate interpolation cancel
     {gcode_id(15), ""},     // polar coordinate command cancel
     {gcode_id(50), ""},     // scaling cancel
@@ -202,7 +202,9 @@ void adapt_fanuc_block(Block& block, std::string_view raw_line, bool inch, Integ
     if (id == gcode_id(21)) block_inch = false;
     if (id == gcode_id(4)) dwell = true;
     if (is_fanuc_cycle(id)) cycle = true;
-    if (id == gcode_id(82) || id == gcode_id(89)) cycle_dwell = true;
+    if (id == gcode_id(74) || id == gcode_id(82) || id == gcode_id(84) || id == gcode_id(86) ||
+        id == gcode_id(89))
+      cycle_dwell = true;
     if (id == gcode_id(4) || id == gcode_id(10) || is_fanuc_cycle(id) || id == gcode_id(2) ||
         id == gcode_id(3) || id == gcode_id(64))
       other_codes = true;
@@ -226,7 +228,10 @@ void adapt_fanuc_block(Block& block, std::string_view raw_line, bool inch, Integ
       drop = std::any_of(kCarried.begin(), kCarried.end(),
                          [id](const CarriedCode& c) { return c.id == id; });
     } else if (w.letter == 'M') {
-      drop = code_of(w) == gcode_id(98) || code_of(w) == gcode_id(99);
+      // M98/M99 (the runner follows them) and M29 (rigid tapping mode: the
+      // S word stays the spindle speed, the tapping cycle is G84/G74).
+      drop = code_of(w) == gcode_id(98) || code_of(w) == gcode_id(99) ||
+             code_of(w) == gcode_id(29);
     } else if (w.letter != 'N' && (drop_letters & letter_bit(w.letter))) {
       drop = true;
     } else {

@@ -43,6 +43,9 @@ gcode::InterpreterConfig make_config(const InterpretOptions& o) {
   if (!o.machine.empty()) {
     config = pipeline::interpreter_config(machine::Machine::load(o.machine));
   }
+  // The tool-tip path does not depend on the length of a G43 tool: a tool
+  // without one in the table is accepted (one warning, tool_length unknown).
+  config.allow_unknown_tool_length = true;
   config.dialect = o.dialect;
   if (o.tool_length) {
     if (!std::isfinite(*o.tool_length))
