@@ -86,8 +86,10 @@ void convert_motion(ExecState& st, const BlockPlan& b, const Emit& emit) {
   } else if (is_cycle(motion)) {
     convert_cycle(st, b, emit);
   } else if (motion == gcode_id(80)) {
-    st.motion_mode = motion;
+    st.motion_mode =
+        st.config.dialect.dialect == Dialect::fanuc ? st.fanuc_group01 : gcode_id(80);
   }
+  if (motion >= gcode_id(0) && motion <= gcode_id(3)) st.fanuc_group01 = motion;
 }
 
 void convert_straight(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& end,

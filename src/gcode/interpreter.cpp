@@ -61,6 +61,10 @@ BlockPlan plan_block(const ModalState& st, const BlockCodes& c, const BlockConte
   for (char a : kAxisLetters)
     if (!first_axis && c.has(a)) first_axis = c.word(a);
 
+  if ((b.non_modal == gcode_id(28, 1) || b.non_modal == gcode_id(30, 1)) && c.has_axis_word())
+    ctx.fail(first_axis, fmt::format("{} takes no axis words (it stores the current position)",
+                                     gcode_name(b.non_modal)));
+
   // The motion this block makes (rs274ngc: an explicit motion code, or the
   // modal one when axis words are present and nothing else uses them).
   if (motion_code) {
@@ -82,9 +86,6 @@ BlockPlan plan_block(const ModalState& st, const BlockCodes& c, const BlockConte
     ctx.fail(non_modal->word, "G92 without axis words");
   if (b.non_modal == gcode_id(52) && !c.has_axis_word())
     ctx.fail(non_modal->word, "G52 without axis words");
-  if ((b.non_modal == gcode_id(28, 1) || b.non_modal == gcode_id(30, 1)) && c.has_axis_word())
-    ctx.fail(first_axis, fmt::format("{} takes no axis words (it stores the current position)",
-                                     gcode_name(b.non_modal)));
   if (g92_axes && c.has_rotary_word())
     for (char a : {'A', 'B', 'C'})
       if (c.has(a))

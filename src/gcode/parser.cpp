@@ -95,10 +95,10 @@ BlockReader::BlockReader(BlockReader&&) noexcept = default;
 void BlockReader::refill() {
   // Keep the unfinished line at the front; grow if it fills the buffer.
   const std::size_t kept = end_ - begin_;
-  if (kept > kMaxLineBytes)
+  if (kept >= kMaxLineBytes)
     throw InputError(SourceLocation{file_, line_number_ + 1, 0, "", ""},
-                     fmt::format("line is longer than {} bytes (is this a text file with line "
-                                 "ends?)",
+                     fmt::format("line reaches {} bytes without a line end (is this a text "
+                                 "file?)",
                                  kMaxLineBytes));
   if (kept > 0 && begin_ > 0) std::memmove(buffer_.get(), buffer_.get() + begin_, kept);
   begin_ = 0;

@@ -68,7 +68,7 @@ expect_failure("rotary.ngc:3:4: error: rotary axis A moves" ${ABBE} path ${WORK}
 # A file without line ends is refused after 1 MiB, not buffered without end.
 string(REPEAT "G0X1" 300000 long_line)
 file(WRITE ${WORK}/no-newline.ngc "${long_line}")
-expect_failure("no-newline.ngc:1: error: line is longer than 1048576 bytes"
+expect_failure("no-newline.ngc:1: error: line reaches 1048576 bytes without a line end"
                ${ABBE} path ${WORK}/no-newline.ngc)
 
 # A move needing more than 1e9 points is bad input at its line (exit 1).
