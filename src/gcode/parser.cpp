@@ -25,7 +25,7 @@ constexpr std::size_t kChunkBytes = std::size_t{1} << 20;
 // A line longer than this is refused: no G-code line comes near it, and a
 // file without line ends (a binary file, /dev/zero) must not be buffered
 // without limit.
-constexpr std::size_t kMaxLineBytes = std::size_t{1} << 20;
+constexpr std::size_t kMaxLineBytes = std::size_t{16} << 20;
 
 void reset(Block& block, std::size_t line_number) {
   block.line = line_number;

@@ -65,10 +65,10 @@ expect_failure("tool 7 has no length in the tool table (G43 H7)"
 file(WRITE ${WORK}/rotary.ngc "G21\nG0 X0 A0\nG0 A90\n")
 expect_failure("rotary.ngc:3:4: error: rotary axis A moves" ${ABBE} path ${WORK}/rotary.ngc)
 
-# A file without line ends is refused after 1 MiB, not buffered without end.
-string(REPEAT "G0X1" 300000 long_line)
+# A file without line ends is refused at 16 MiB, not buffered without end.
+string(REPEAT "(cccccccccccccc)" 1100000 long_line)
 file(WRITE ${WORK}/no-newline.ngc "${long_line}")
-expect_failure("no-newline.ngc:1: error: line reaches 1048576 bytes without a line end"
+expect_failure("no-newline.ngc:1: error: line reaches 16777216 bytes without a line end"
                ${ABBE} path ${WORK}/no-newline.ngc)
 
 # A move needing more than 1e9 points is bad input at its line (exit 1).
