@@ -33,16 +33,17 @@ expect_canon(newcomer)
 
 # The stored G28/G30 positions come from the machine file (home_positions).
 file(READ ${SRC}/machines/sample/machine.yaml yaml)
-string(REPLACE "table: sample-errors.csv" "table: ${SRC}/machines/sample/sample-errors.csv" yaml
+string(REPLACE "table: errors.csv" "table: ${SRC}/machines/sample/errors.csv" yaml
                "${yaml}")
 string(REGEX REPLACE "\nsquareness:" "\nhome_positions:\n  G28: [-100, -50, -20]\n  G30: [-1, -2, -3]\nsquareness:"
                      yaml "${yaml}")
 file(WRITE ${WORK}/machine.yaml "${yaml}")
 file(WRITE ${WORK}/g28.ngc "G21 G90\nG0 X1 Y2 Z-200\nG28\nG30 Y0\nM2\n")
 run(${ABBE} interpret ${WORK}/g28.ngc --canon --machine ${WORK}/machine.yaml)
-# The sample machine's tool (130 mm) hangs below the stored spindle position.
-set(expected "N2 STRAIGHT_TRAVERSE(1.000000, 2.000000, -200.000000) F=0.000000 TL=130.000000
-N3 STRAIGHT_TRAVERSE(1.000000, 2.000000, -200.000000) F=0.000000 TL=130.000000
+# The sample machine's tool (130 mm, no G43: the program drives the spindle
+# nose) hangs below the stored spindle position.
+set(expected "N2 STRAIGHT_TRAVERSE(1.000000, 2.000000, -330.000000) F=0.000000 TL=130.000000
+N3 STRAIGHT_TRAVERSE(1.000000, 2.000000, -330.000000) F=0.000000 TL=130.000000
 N3 STRAIGHT_TRAVERSE(-100.000000, -50.000000, -150.000000) F=0.000000 TL=130.000000
 N4 STRAIGHT_TRAVERSE(-100.000000, 0.000000, -150.000000) F=0.000000 TL=130.000000
 N4 STRAIGHT_TRAVERSE(-100.000000, -2.000000, -150.000000) F=0.000000 TL=130.000000
