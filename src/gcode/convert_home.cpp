@@ -20,7 +20,8 @@ void convert_home(ExecState& st, const BlockPlan& b, const Emit& emit) {
   // The intermediate point: the axis words in the current distance mode.
   Eigen::Vector3d via = st.pos;
   for (int a = 0; a < 3; ++a)
-    if (const Word* w = c.word(kAxisLetters[a])) via[a] = st.incremental ? st.pos[a] + w->value : w->value;
+    if (const Word* w = c.word(kAxisLetters[a]))
+      via[a] = st.incremental ? st.pos[a] + w->value : w->value;
   auto traverse = [&](const Eigen::Vector3d& target) {
     Motion m;
     m.kind = MotionKind::rapid;

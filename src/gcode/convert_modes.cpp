@@ -105,9 +105,10 @@ void convert_tool_length(ExecState& st, const BlockPlan& b) {
         st.tool_length_unknown = true;
         if (!st.unknown_tool_warned) {
           st.unknown_tool_warned = true;
-          spdlog::warn("{}:{}: tool {} has no length in the tool table (G43 H{}): the tool-tip "
-                       "path does not depend on it, the tool_length column says unknown",
-                       st.file, b.ctx.line, h, h);
+          spdlog::warn(
+              "{}:{}: tool {} has no length in the tool table (G43 H{}): the tool-tip "
+              "path does not depend on it, the tool_length column says unknown",
+              st.file, b.ctx.line, h, h);
         }
       } else {
         b.ctx.fail(c.has('H') ? c.word('H') : tool_length->word,

@@ -43,8 +43,7 @@ void check_feed(const ExecState& st, const BlockPlan& b, const char* gname) {
     return;
   }
   if (st.feed_mm == 0.0) {
-    if (gname[1] == '1')
-      b.ctx.fail(b.motion_word, "G1 with zero feed rate (no F word yet)");
+    if (gname[1] == '1') b.ctx.fail(b.motion_word, "G1 with zero feed rate (no F word yet)");
     b.ctx.fail(b.motion_word, fmt::format("arc ({}) with zero feed rate (no F word yet)", gname));
   }
   if (st.feed_mode == FeedMode::units_per_rev && st.spindle == 0.0)
@@ -86,8 +85,7 @@ void convert_motion(ExecState& st, const BlockPlan& b, const Emit& emit) {
   } else if (is_cycle(motion)) {
     convert_cycle(st, b, emit);
   } else if (motion == gcode_id(80)) {
-    st.motion_mode =
-        st.config.dialect.dialect == Dialect::fanuc ? st.fanuc_group01 : gcode_id(80);
+    st.motion_mode = st.config.dialect.dialect == Dialect::fanuc ? st.fanuc_group01 : gcode_id(80);
   }
   if (motion >= gcode_id(0) && motion <= gcode_id(3)) st.fanuc_group01 = motion;
 }
@@ -197,9 +195,9 @@ void convert_cycle(ExecState& st, const BlockPlan& b, const Emit& emit) {
   if (st.feed_mm == 0.0)
     ctx.fail(motion_word, fmt::format("canned cycle ({}) with zero feed rate", gname));
   if (st.feed_rate_mm(0.0) == 0.0)
-    ctx.fail(motion_word,
-             fmt::format("canned cycle ({}) in feed per revolution (G95) with spindle speed 0",
-                         gname));
+    ctx.fail(
+        motion_word,
+        fmt::format("canned cycle ({}) in feed per revolution (G95) with spindle speed 0", gname));
   const PlaneAxes ax = named_axes(st.plane);
   const bool continued = st.motion_mode == motion;
   double r_value = st.cycle_r;
@@ -251,7 +249,8 @@ void convert_cycle(ExecState& st, const BlockPlan& b, const Emit& emit) {
     ctx.fail(motion_word, "spindle not turning clockwise (M3) in tapping cycle G84");
   if (motion == gcode_id(74) && st.spindle_direction != -1)
     ctx.fail(motion_word, "spindle not turning counter-clockwise (M4) in tapping cycle G74");
-  if (motion == gcode_id(74) || motion == gcode_id(84)) cyc.dwell = c.has('P') ? c.word('P')->value : 0.0;
+  if (motion == gcode_id(74) || motion == gcode_id(84))
+    cyc.dwell = c.has('P') ? c.word('P')->value : 0.0;
   if (motion == gcode_id(82) || motion == gcode_id(86) || motion == gcode_id(89)) {
     if (!continued && !c.has('P'))
       ctx.fail(motion_word, fmt::format("dwell time (P) missing for canned cycle {}", gname));

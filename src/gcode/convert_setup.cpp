@@ -37,8 +37,8 @@ void set_work_offset(ExecState& st, const BlockPlan& b, int l) {
     b.ctx.fail(p, fmt::format("P word (coordinate system) of G10 L{} must be 0 to 9", l));
   const int system = static_cast<int>(std::lround(p->value));
   if (system > 6)
-    b.ctx.fail(p, fmt::format("coordinate system beyond G59 (G10 L{} P{}) is not supported", l,
-                              system));
+    b.ctx.fail(
+        p, fmt::format("coordinate system beyond G59 (G10 L{} P{}) is not supported", l, system));
   if (const Word* r = c.word('R'))
     if (r->value != 0.0)
       b.ctx.fail(r, fmt::format("coordinate system rotation (G10 L{} R) is not supported", l));

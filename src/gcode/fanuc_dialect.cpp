@@ -48,7 +48,8 @@ int code_of(const Word& w) { return static_cast<int>(std::lround(w.value * 10.0)
 
 bool written_with_point(const Word& w, std::string_view raw_line) {
   if (w.end > raw_line.size() || w.number_begin > w.end) return true;  // not from this text
-  return raw_line.substr(w.number_begin, w.end - w.number_begin).find('.') != std::string_view::npos;
+  return raw_line.substr(w.number_begin, w.end - w.number_begin).find('.') !=
+         std::string_view::npos;
 }
 
 const Word* find_code(const Block& block, char letter, int id) {
@@ -136,7 +137,8 @@ FanucFlow fanuc_flow(const Block& block, const BlockContext& ctx) {
   const Word* m98 = find_code(block, 'M', gcode_id(98));
   const Word* m99 = find_code(block, 'M', gcode_id(99));
   if (const Word* m97 = find_code(block, 'M', gcode_id(97)))
-    ctx.fail(m97, "local subprogram call (M97) is not supported; use M98 with an O-numbered program");
+    ctx.fail(m97,
+             "local subprogram call (M97) is not supported; use M98 with an O-numbered program");
   if (const Word* m198 = find_code(block, 'M', gcode_id(198)))
     ctx.fail(m198, "subprogram call from external memory (M198) is not supported");
   if (m98 && m99) ctx.fail(m99, "M98 and M99 in one block");
@@ -230,8 +232,7 @@ void adapt_fanuc_block(Block& block, std::string_view raw_line, bool inch, Integ
     } else if (w.letter == 'M') {
       // M98/M99 (the runner follows them) and M29 (rigid tapping mode: the
       // S word stays the spindle speed, the tapping cycle is G84/G74).
-      drop = code_of(w) == gcode_id(98) || code_of(w) == gcode_id(99) ||
-             code_of(w) == gcode_id(29);
+      drop = code_of(w) == gcode_id(98) || code_of(w) == gcode_id(99) || code_of(w) == gcode_id(29);
     } else if (w.letter != 'N' && (drop_letters & letter_bit(w.letter))) {
       drop = true;
     } else {

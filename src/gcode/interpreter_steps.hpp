@@ -18,7 +18,7 @@ namespace abbe::gcode::detail {
 struct ExecState : ModalState {
   InterpreterConfig config;
   std::string file;
-  Block adapted;                     // the block in RS274/NGC when the program is in another dialect
+  Block adapted;  // the block in RS274/NGC when the program is in another dialect
   const Block* read_block = nullptr;  // what the last execute() read
   // Fanuc/Haas: canned cycles are a modal group of their own (09), so the
   // last G0-G3 is still in force after G80 (LinuxCNC: no motion mode).
@@ -71,11 +71,11 @@ void convert_plane(ExecState& st, const BlockPlan& b);                    // G17
 void convert_units(ExecState& st, const BlockPlan& b);                    // G20/G21
 void convert_tool_length(ExecState& st, const BlockPlan& b);              // G43/G49
 void convert_coord_system(ExecState& st, const BlockPlan& b);             // G54-G59
-void convert_path_control(ExecState& st, const BlockPlan& b);    // G61/G61.1/G64
+void convert_path_control(ExecState& st, const BlockPlan& b);             // G61/G61.1/G64
 void convert_distance_modes(ExecState& st, const BlockPlan& b);  // G90/G91, G90.1/G91.1, G98/G99
 void convert_setup(ExecState& st, const BlockPlan& b);           // G10 L1/L2/L10/L20
-void convert_home(ExecState& st, const BlockPlan& b, const Emit& emit);  // G28/G30, .1
-void convert_axis_offsets(ExecState& st, const BlockPlan& b);    // G92 family, G52
+void convert_home(ExecState& st, const BlockPlan& b, const Emit& emit);    // G28/G30, .1
+void convert_axis_offsets(ExecState& st, const BlockPlan& b);              // G92 family, G52
 void convert_motion(ExecState& st, const BlockPlan& b, const Emit& emit);  // G0-G3, cycles, G80
 void convert_stop(ExecState& st, const BlockPlan& b);                      // M2/M30
 

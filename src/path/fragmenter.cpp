@@ -1,11 +1,11 @@
 #include "abbe/path/fragmenter.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
-
-#include <fmt/format.h>
 
 #include "abbe/io/input_error.hpp"
 #include "abbe/io/units.hpp"
@@ -37,11 +37,11 @@ Fragmenter::Fragmenter(FragmentOptions options) : options_(options) {
 std::size_t Fragmenter::segments(double length, const gcode::Motion& motion) const {
   const double q = length / options_.step;
   if (!(q <= kMaxSegments))
-    throw InputError(SourceLocation{options_.file, motion.line, 0, "", ""},
-                     fmt::format("a {} of {:.6g} mm needs more than {:.0e} points at step {} mm "
-                                 "(a typo in a coordinate?)",
-                                 gcode::to_string(motion.kind), length, kMaxSegments,
-                                 options_.step));
+    throw InputError(
+        SourceLocation{options_.file, motion.line, 0, "", ""},
+        fmt::format("a {} of {:.6g} mm needs more than {:.0e} points at step {} mm "
+                    "(a typo in a coordinate?)",
+                    gcode::to_string(motion.kind), length, kMaxSegments, options_.step));
   return std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(q)));
 }
 

@@ -266,8 +266,8 @@ TEST(Interpreter, HomeThroughTheIntermediatePoint) {
   InterpreterConfig config;
   config.g28_position = {10, 20, 30};
   config.g30_position = {-1, -2, -3};
-  const auto m = run_lines({"G0 X1 Y2 Z3", "G28 G91 Z1", "G90 G28.1", "G0 X5", "G28", "G30 Y7"},
-                           config);
+  const auto m =
+      run_lines({"G0 X1 Y2 Z3", "G28 G91 Z1", "G90 G28.1", "G0 X5", "G28", "G30 Y7"}, config);
   ASSERT_EQ(m.size(), 8u);
   expect_near(m[1].end, {1, 2, 4});    // intermediate point: Z one up (G91)
   expect_near(m[2].end, {1, 2, 30});   // only Z goes home
@@ -290,9 +290,9 @@ TEST(Interpreter, HomeIsInMachineCoordinatesWhateverTheOffsets) {
 }
 
 TEST(Interpreter, G10SetsWorkOffsetsAndToolLengths) {
-  const auto m = run_lines(
-      {"G0 X10 Y10 Z10", "G10 L20 P1 X2", "G0 X2", "G10 L2 P2 X-5", "G55 G0 X0", "G10 L1 P3 Z40",
-       "G43 H3 G0 Z0", "G10 L10 P4 Z1", "G43 H4 G0 Z1"});
+  const auto m =
+      run_lines({"G0 X10 Y10 Z10", "G10 L20 P1 X2", "G0 X2", "G10 L2 P2 X-5", "G55 G0 X0",
+                 "G10 L1 P3 Z40", "G43 H3 G0 Z0", "G10 L10 P4 Z1", "G43 H4 G0 Z1"});
   ASSERT_EQ(m.size(), 5u);
   expect_near(m[1].end, {10, 10, 10});  // L20: the current point reads X2
   expect_near(m[2].end, {-5, 10, 10});  // L2: G55's origin at X-5
@@ -315,9 +315,9 @@ TEST(Interpreter, FeedModesGiveTheFeedRateOfEachMove) {
                             "G95 S500 G1 X0 F0.2", "G94 G1 X1 F300"});
   ASSERT_EQ(m.size(), 5u);
   EXPECT_DOUBLE_EQ(m[0].feed, 100.0);
-  EXPECT_DOUBLE_EQ(m[1].feed, 60.0);  // 30 mm in 1/2 min
+  EXPECT_DOUBLE_EQ(m[1].feed, 60.0);                                  // 30 mm in 1/2 min
   EXPECT_NEAR(m[2].feed, 2.0 * 3.14159265358979 * 10.0 * 0.5, 1e-9);  // full circle in 2 min
-  EXPECT_DOUBLE_EQ(m[3].feed, 100.0);  // 0.2 mm/rev at 500 rpm
+  EXPECT_DOUBLE_EQ(m[3].feed, 100.0);                                 // 0.2 mm/rev at 500 rpm
   EXPECT_DOUBLE_EQ(m[4].feed, 300.0);
   EXPECT_NE(error_of({"G93 G1 X1 F1", "X2"}).find("F word missing in inverse-time"),
             std::string::npos);

@@ -20,8 +20,8 @@
 #include "abbe/io/input_error.hpp"
 #include "abbe/machine/machine.hpp"
 #include "abbe/pipeline/interpreter_setup.hpp"
-#include "dialect_option.hpp"
 #include "command.hpp"
+#include "dialect_option.hpp"
 #include "input_stream.hpp"
 #include "interpreter_options.hpp"
 

@@ -86,8 +86,8 @@ struct BlockCodes {
   bool has(char letter) const { return (letter_mask >> (letter - 'A')) & 1U; }
   // X, Y, Z or a rotary word A, B, C (rs274ngc: any axis word makes a move).
   bool has_axis_word() const {
-    constexpr std::uint32_t kAxes = (1U << ('X' - 'A')) | (1U << ('Y' - 'A')) |
-                                    (1U << ('Z' - 'A')) | kRotaryLetters;
+    constexpr std::uint32_t kAxes =
+        (1U << ('X' - 'A')) | (1U << ('Y' - 'A')) | (1U << ('Z' - 'A')) | kRotaryLetters;
     return (letter_mask & kAxes) != 0;
   }
   static constexpr std::uint32_t kRotaryLetters = 0x7U;  // A, B, C

@@ -39,9 +39,9 @@ struct ModalState {
   Eigen::Vector3d pos = Eigen::Vector3d::Zero();
   int coord_index = 0;  // G54 = 0 … G59 = 5
   // Work offsets of G54 … G59, mm (from the configuration; G10 L2/L20 set them).
-  std::array<Eigen::Vector3d, 6> work_offsets{
-      Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
-      Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  std::array<Eigen::Vector3d, 6> work_offsets{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
+                                              Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
+                                              Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   // Stored positions of G28 / G30 (machine coordinates of the spindle nose,
   // mm; from the configuration, G28.1 / G30.1 store the current one).
   Eigen::Vector3d g28_home = Eigen::Vector3d::Zero();

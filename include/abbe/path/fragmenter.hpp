@@ -16,8 +16,8 @@
 namespace abbe::path {
 
 struct FragmentOptions {
-  double step = 5.0;            // mm, > 0
-  double rapid_rate = 10000.0;  // mm/min, > 0; also used for a feed motion with feed 0
+  double step = 5.0;               // mm, > 0
+  double rapid_rate = 10000.0;     // mm/min, > 0; also used for a feed motion with feed 0
   std::string file = "<program>";  // named in the error of a motion that needs too many points
 };
 
