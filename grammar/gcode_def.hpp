@@ -32,9 +32,10 @@ const auto digits = number_parser<false>{};  // digit , { digit }
 const auto number = number_parser<true>{};   // [ "+" | "-" ] , blanks , unsigned real
 // A number must not run on into another digit, a second '.' or an exponent.
 const auto number_end = !char_("0-9.eE");
-// Letters of words abbe reads. A B C U V W (other axes), E, N and O are not
-// here: N and O have their own rules, the rest is refused by the caller.
-const auto word_letter = char_("DFGHIJKLMPQRSTXYZdfghijklmpqrstxyz");
+// Letters of words abbe reads. U V W (other axes), N and O are not here: N
+// and O have their own rules, the rest is refused by the caller. A B C
+// (rotary axes) and E are read: the interpreter decides on them.
+const auto word_letter = char_("ABCDEFGHIJKLMPQRSTXYZabcdefghijklmpqrstxyz");
 
 // Expressions (rs274ngc's read_real_value and read_real_expression).
 // Operators by precedence, each level left-associative.

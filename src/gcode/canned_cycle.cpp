@@ -48,6 +48,20 @@ Eigen::Vector3d expand_canned_cycle(const CannedCycle& c,
         move(Kind::feed, aa, bb, c.r);
         move(Kind::traverse, aa, bb, clear);  // also when clear == R (rs274ngc does)
         break;
+      case gcode_id(74):
+      case gcode_id(84):
+        // Tapping (rs274ngc): feed in, reverse the spindle, dwell P (0 when
+        // not given), feed out to the clearance level, spindle forward.
+        move(Kind::feed, aa, bb, c.bottom);
+        emit(CycleStep{Kind::dwell, Eigen::Vector3d(aa, bb, c.bottom), c.dwell});
+        move(Kind::feed, aa, bb, clear);
+        break;
+      case gcode_id(86):
+        // Boring: feed in, dwell P, stop the spindle, rapid out, restart.
+        move(Kind::feed, aa, bb, c.bottom);
+        emit(CycleStep{Kind::dwell, Eigen::Vector3d(aa, bb, c.bottom), c.dwell});
+        move(Kind::traverse, aa, bb, clear);
+        break;
       case gcode_id(89):
         move(Kind::feed, aa, bb, c.bottom);
         emit(CycleStep{Kind::dwell, Eigen::Vector3d(aa, bb, c.bottom), c.dwell});

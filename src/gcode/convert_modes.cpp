@@ -1,5 +1,6 @@
 // The convert_* steps that change modes and the frame (no motion but G4).
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include <cmath>
 
@@ -7,11 +8,24 @@
 
 namespace abbe::gcode::detail {
 
+void convert_feed_mode(ExecState& st, const BlockPlan& b) {
+  const auto& g = b.codes.group(GGroup::feed_mode);
+  if (!g) return;
+  const FeedMode mode = g->code == gcode_id(93)   ? FeedMode::inverse_time
+                        : g->code == gcode_id(95) ? FeedMode::units_per_rev
+                                                  : FeedMode::units_per_minute;
+  // rs274ngc: entering or leaving inverse time sets the feed rate to 0.
+  if (mode != st.feed_mode &&
+      (mode == FeedMode::inverse_time || st.feed_mode == FeedMode::inverse_time))
+    st.feed_mm = 0.0;
+  st.feed_mode = mode;
+}
+
 void convert_feed_speed_tool(ExecState& st, const BlockPlan& b) {
   const BlockCodes& c = b.codes;
   if (const Word* f = c.word('F')) {
     if (f->value < 0) b.ctx.fail(f, "negative feed rate (F)");
-    st.feed_mm = f->value * st.unit();
+    st.feed_mm = st.feed_mode == FeedMode::inverse_time ? f->value : f->value * st.unit();
   }
   if (const Word* s = c.word('S')) {
     if (s->value < 0) b.ctx.fail(s, "negative spindle speed (S)");
@@ -23,6 +37,8 @@ void convert_feed_speed_tool(ExecState& st, const BlockPlan& b) {
     st.selected_tool = static_cast<int>(std::lround(t->value));
   }
   if (c.group(MGroup::tool_change)) st.tool_in_spindle = st.selected_tool;
+  if (const auto& m = c.group(MGroup::spindle))
+    st.spindle_direction = m->code == 3 ? 1 : m->code == 4 ? -1 : 0;
 }
 
 void convert_dwell(ExecState& st, const BlockPlan& b, const Emit& emit) {
@@ -78,12 +94,26 @@ void convert_tool_length(ExecState& st, const BlockPlan& b) {
       h = static_cast<int>(std::lround(hw->value));
     }
     double length = 0.0;
+    st.tool_length_unknown = false;
     if (h != 0) {
       const auto it = st.config.tool_lengths.find(h);
-      if (it == st.config.tool_lengths.end())
+      if (it != st.config.tool_lengths.end()) {
+        length = it->second;
+      } else if (st.config.allow_unknown_tool_length) {
+        // The tip path does not depend on L while G43 is active (s - L with
+        // s = P + L): taken as 0, reported unknown.
+        st.tool_length_unknown = true;
+        if (!st.unknown_tool_warned) {
+          st.unknown_tool_warned = true;
+          spdlog::warn(
+              "{}:{}: tool {} has no length in the tool table (G43 H{}): the tool-tip "
+              "path does not depend on it, the tool_length column says unknown",
+              st.file, b.ctx.line, h, h);
+        }
+      } else {
         b.ctx.fail(c.has('H') ? c.word('H') : tool_length->word,
                    fmt::format("tool {} has no length in the tool table (G43 H{})", h, h));
-      length = it->second;
+      }
     }
     st.g43 = true;
     st.tool_length_mm = length;
@@ -91,6 +121,7 @@ void convert_tool_length(ExecState& st, const BlockPlan& b) {
   } else {
     st.g43 = false;
     st.tool_length_mm = 0.0;
+    st.tool_length_unknown = false;
   }
   st.pos.z() -= new_tlo - st.tlo;
   st.tlo = new_tlo;
@@ -101,6 +132,22 @@ void convert_coord_system(ExecState& st, const BlockPlan& b) {
     const Eigen::Vector3d old = st.g5x();
     st.coord_index = (g->code - gcode_id(54)) / 10;
     st.pos += old - st.g5x();
+  }
+}
+
+void convert_path_control(ExecState& st, const BlockPlan& b) {
+  const auto& g = b.codes.group(GGroup::path_control);
+  if (!g) return;
+  if (g->code == gcode_id(61)) {
+    st.path_control = PathControl::exact_path;
+  } else if (g->code == gcode_id(61, 1)) {
+    st.path_control = PathControl::exact_stop;
+  } else {
+    st.path_control = PathControl::blending;
+    const Word* p = b.codes.word('P');
+    const Word* q = b.codes.word('Q');
+    st.blend_tolerance = p ? p->value : 0.0;
+    st.naive_cam_tolerance = q ? q->value : st.blend_tolerance;
   }
 }
 
@@ -119,6 +166,14 @@ void convert_axis_offsets(ExecState& st, const BlockPlan& b) {
       if (const Word* w = b.codes.word(kAxisLetters[a])) {
         st.g92[a] += st.pos[a] - w->value;
         st.pos[a] = w->value;
+      }
+    st.g92_saved = st.g92;
+  } else if (b.non_modal == gcode_id(52)) {
+    // LinuxCNC's G52 sets the same offset as G92, to the values written.
+    for (int a = 0; a < 3; ++a)
+      if (const Word* w = b.codes.word(kAxisLetters[a])) {
+        st.pos[a] += st.g92[a] - w->value;
+        st.g92[a] = w->value;
       }
     st.g92_saved = st.g92;
   } else if (b.non_modal == gcode_id(92, 1) || b.non_modal == gcode_id(92, 2)) {

@@ -31,6 +31,26 @@ PlaneAxes named_axes(Plane plane) {
   return {a[0], a[1], a[2]};
 }
 
+// A feed move needs a feed rate: an F word in its block in G93 (rs274ngc),
+// a spindle speed in G95.
+void check_feed(const ExecState& st, const BlockPlan& b, const char* gname) {
+  if (st.feed_mode == FeedMode::inverse_time) {
+    if (!b.codes.has('F'))
+      b.ctx.fail(b.motion_word,
+                 fmt::format("F word missing in inverse-time feed mode (G93) for {}", gname));
+    if (st.feed_mm == 0.0)
+      b.ctx.fail(b.codes.word('F'), fmt::format("zero inverse-time feed rate (G93) for {}", gname));
+    return;
+  }
+  if (st.feed_mm == 0.0) {
+    if (gname[1] == '1') b.ctx.fail(b.motion_word, "G1 with zero feed rate (no F word yet)");
+    b.ctx.fail(b.motion_word, fmt::format("arc ({}) with zero feed rate (no F word yet)", gname));
+  }
+  if (st.feed_mode == FeedMode::units_per_rev && st.spindle == 0.0)
+    b.ctx.fail(b.motion_word,
+               fmt::format("{} in feed per revolution mode (G95) with spindle speed 0", gname));
+}
+
 }  // namespace
 
 void convert_motion(ExecState& st, const BlockPlan& b, const Emit& emit) {
@@ -65,20 +85,20 @@ void convert_motion(ExecState& st, const BlockPlan& b, const Emit& emit) {
   } else if (is_cycle(motion)) {
     convert_cycle(st, b, emit);
   } else if (motion == gcode_id(80)) {
-    st.motion_mode = motion;
+    st.motion_mode = st.config.dialect.dialect == Dialect::fanuc ? st.fanuc_group01 : gcode_id(80);
   }
+  if (motion >= gcode_id(0) && motion <= gcode_id(3)) st.fanuc_group01 = motion;
 }
 
 void convert_straight(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& end,
                       const Emit& emit) {
   const bool rapid = b.motion == gcode_id(0);
-  if (!rapid && st.feed_mm == 0.0)
-    b.ctx.fail(b.motion_word, "G1 with zero feed rate (no F word yet)");
+  if (!rapid) check_feed(st, b, "G1");
   Motion m;
   m.kind = rapid ? MotionKind::rapid : MotionKind::linear;
   m.start = st.tip(st.pos);
   m.end = st.tip(end);
-  m.feed = rapid ? 0.0 : st.feed_mm;
+  m.feed = rapid ? 0.0 : st.feed_rate_mm((m.end - m.start).norm());
   st.pos = end;
   st.motion_mode = b.motion;
   emit(m);
@@ -90,8 +110,7 @@ void convert_arc(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& end, 
   const int motion = b.motion;
   const Word* motion_word = b.motion_word;
   const char* gname = motion == gcode_id(2) ? "G2" : "G3";
-  if (st.feed_mm == 0.0)
-    ctx.fail(motion_word, fmt::format("arc ({}) with zero feed rate (no F word yet)", gname));
+  check_feed(st, b, gname);
   const PlaneAxes ax = named_axes(st.plane);
   const bool ijk = c.has('I') || c.has('J') || c.has('K');
   if (!c.has('R') && !ijk)
@@ -147,7 +166,19 @@ void convert_arc(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& end, 
   m.end = st.tip(end);
   m.center = st.tip(centre3);
   m.rotation = (motion == gcode_id(2) ? -1 : 1) * turns;
-  m.feed = st.feed_mm;
+  if (st.feed_mode == FeedMode::inverse_time) {
+    // The length of the helix: sweep · radius in the plane, the normal axis linear.
+    const Eigen::Vector2d s0 = start2 - centre.centre;
+    const Eigen::Vector2d e0 = end2 - centre.centre;
+    double sweep = std::atan2(s0.x() * e0.y() - s0.y() * e0.x(), s0.dot(e0));
+    if (motion == gcode_id(2)) sweep = -sweep;
+    if (sweep < 1e-6) sweep += units::kTwoPi;
+    sweep += units::kTwoPi * (turns - 1);
+    const double planar = 0.5 * (s0.norm() + e0.norm()) * sweep * st.unit();
+    m.feed = st.feed_rate_mm(std::hypot(planar, (end[ax.normal] - st.pos[ax.normal]) * st.unit()));
+  } else {
+    m.feed = st.feed_rate_mm(0.0);
+  }
   st.pos = end;
   st.motion_mode = motion;
   emit(m);
@@ -159,8 +190,14 @@ void convert_cycle(ExecState& st, const BlockPlan& b, const Emit& emit) {
   const int motion = b.motion;
   const Word* motion_word = b.motion_word;
   const std::string gname = gcode_name(motion);
+  if (st.feed_mode == FeedMode::inverse_time)
+    ctx.fail(motion_word, fmt::format("canned cycle ({}) in inverse-time feed mode (G93)", gname));
   if (st.feed_mm == 0.0)
     ctx.fail(motion_word, fmt::format("canned cycle ({}) with zero feed rate", gname));
+  if (st.feed_rate_mm(0.0) == 0.0)
+    ctx.fail(
+        motion_word,
+        fmt::format("canned cycle ({}) in feed per revolution (G95) with spindle speed 0", gname));
   const PlaneAxes ax = named_axes(st.plane);
   const bool continued = st.motion_mode == motion;
   double r_value = st.cycle_r;
@@ -208,7 +245,13 @@ void convert_cycle(ExecState& st, const BlockPlan& b, const Emit& emit) {
         fmt::format("R plane below the hole bottom in canned cycle {} (R < {})", gname, cc_letter));
   cyc.retract_to_r = st.retract_to_r;
   cyc.repeats = repeats;
-  if (motion == gcode_id(82) || motion == gcode_id(89)) {
+  if (motion == gcode_id(84) && st.spindle_direction != 1)
+    ctx.fail(motion_word, "spindle not turning clockwise (M3) in tapping cycle G84");
+  if (motion == gcode_id(74) && st.spindle_direction != -1)
+    ctx.fail(motion_word, "spindle not turning counter-clockwise (M4) in tapping cycle G74");
+  if (motion == gcode_id(74) || motion == gcode_id(84))
+    cyc.dwell = c.has('P') ? c.word('P')->value : 0.0;
+  if (motion == gcode_id(82) || motion == gcode_id(86) || motion == gcode_id(89)) {
     if (!continued && !c.has('P'))
       ctx.fail(motion_word, fmt::format("dwell time (P) missing for canned cycle {}", gname));
     cyc.dwell = c.has('P') ? c.word('P')->value : st.cycle_p;
@@ -249,7 +292,7 @@ void convert_cycle(ExecState& st, const BlockPlan& b, const Emit& emit) {
       m.kind = step.kind == CycleStep::Kind::feed ? MotionKind::linear : MotionKind::rapid;
       m.start = st.tip(st.pos);
       m.end = st.tip(target);
-      m.feed = step.kind == CycleStep::Kind::feed ? st.feed_mm : 0.0;
+      m.feed = step.kind == CycleStep::Kind::feed ? st.feed_rate_mm(0.0) : 0.0;
       st.pos = target;
     }
     emit(m);

@@ -48,7 +48,8 @@ int code_of(const Word& w) { return static_cast<int>(std::lround(w.value * 10.0)
 
 bool written_with_point(const Word& w, std::string_view raw_line) {
   if (w.end > raw_line.size() || w.number_begin > w.end) return true;  // not from this text
-  return raw_line.substr(w.number_begin, w.end - w.number_begin).find('.') != std::string_view::npos;
+  return raw_line.substr(w.number_begin, w.end - w.number_begin).find('.') !=
+         std::string_view::npos;
 }
 
 const Word* find_code(const Block& block, char letter, int id) {
@@ -82,7 +83,7 @@ constexpr std::array<CarriedCode, 10> kCarried{{
     {gcode_id(5, 1), "QR"},
     {gcode_id(8), "P"},
     {gcode_id(103), "P"},
-    {gcode_id(187), "P"},
+    {gcode_id(187), "PE"},  // Haas: P smoothing level, E corner tolerance
     {gcode_id(13, 1), ""},  // polar coordinate interpolation cancel
     {gcode_id(15), ""},     // polar coordinate command cancel
     {gcode_id(50), ""},     // scaling cancel
@@ -136,7 +137,8 @@ FanucFlow fanuc_flow(const Block& block, const BlockContext& ctx) {
   const Word* m98 = find_code(block, 'M', gcode_id(98));
   const Word* m99 = find_code(block, 'M', gcode_id(99));
   if (const Word* m97 = find_code(block, 'M', gcode_id(97)))
-    ctx.fail(m97, "local subprogram call (M97) is not supported; use M98 with an O-numbered program");
+    ctx.fail(m97,
+             "local subprogram call (M97) is not supported; use M98 with an O-numbered program");
   if (const Word* m198 = find_code(block, 'M', gcode_id(198)))
     ctx.fail(m198, "subprogram call from external memory (M198) is not supported");
   if (m98 && m99) ctx.fail(m99, "M98 and M99 in one block");
@@ -202,7 +204,9 @@ void adapt_fanuc_block(Block& block, std::string_view raw_line, bool inch, Integ
     if (id == gcode_id(21)) block_inch = false;
     if (id == gcode_id(4)) dwell = true;
     if (is_fanuc_cycle(id)) cycle = true;
-    if (id == gcode_id(82) || id == gcode_id(89)) cycle_dwell = true;
+    if (id == gcode_id(74) || id == gcode_id(82) || id == gcode_id(84) || id == gcode_id(86) ||
+        id == gcode_id(89))
+      cycle_dwell = true;
     if (id == gcode_id(4) || id == gcode_id(10) || is_fanuc_cycle(id) || id == gcode_id(2) ||
         id == gcode_id(3) || id == gcode_id(64))
       other_codes = true;
@@ -226,7 +230,9 @@ void adapt_fanuc_block(Block& block, std::string_view raw_line, bool inch, Integ
       drop = std::any_of(kCarried.begin(), kCarried.end(),
                          [id](const CarriedCode& c) { return c.id == id; });
     } else if (w.letter == 'M') {
-      drop = code_of(w) == gcode_id(98) || code_of(w) == gcode_id(99);
+      // M98/M99 (the runner follows them) and M29 (rigid tapping mode: the
+      // S word stays the spindle speed, the tapping cycle is G84/G74).
+      drop = code_of(w) == gcode_id(98) || code_of(w) == gcode_id(99) || code_of(w) == gcode_id(29);
     } else if (w.letter != 'N' && (drop_letters & letter_bit(w.letter))) {
       drop = true;
     } else {

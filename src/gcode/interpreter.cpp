@@ -1,10 +1,12 @@
 #include "abbe/gcode/interpreter.hpp"
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include "abbe/io/input_error.hpp"
 #include "fanuc_dialect.hpp"
@@ -15,23 +17,28 @@ namespace abbe::gcode {
 
 namespace detail {
 
-constexpr char kAxisLetters[3] = {'X', 'Y', 'Z'};
+constexpr char kAxisLetters[6] = {'X', 'Y', 'Z', 'A', 'B', 'C'};
 
 Eigen::Vector3d ExecState::tip(const Eigen::Vector3d& p) const {
   Eigen::Vector3d s;
   if (inch) {
     s = (p + g5x() + g92 + Eigen::Vector3d(0, 0, tlo)) * units::kMmPerInch;
   } else {
-    s = p + config.work_offsets[static_cast<std::size_t>(coord_index)] + g92 +
-        Eigen::Vector3d(0, 0, tlo);
+    s = p + work_offsets[static_cast<std::size_t>(coord_index)] + g92 + Eigen::Vector3d(0, 0, tlo);
   }
   s.z() -= active_length_mm();
   return s;
 }
 
 bool is_cycle(int code) {
-  return code == gcode_id(73) || code == gcode_id(81) || code == gcode_id(82) ||
-         code == gcode_id(83) || code == gcode_id(85) || code == gcode_id(89);
+  return code == gcode_id(73) || code == gcode_id(74) || code == gcode_id(81) ||
+         code == gcode_id(82) || code == gcode_id(83) || code == gcode_id(84) ||
+         code == gcode_id(85) || code == gcode_id(86) || code == gcode_id(89);
+}
+
+bool uses_axis_words(int non_modal) {
+  return non_modal == gcode_id(92) || non_modal == gcode_id(10) || non_modal == gcode_id(28) ||
+         non_modal == gcode_id(30) || non_modal == gcode_id(52);
 }
 
 bool is_integer(double v) { return std::abs(v - std::round(v)) < 1e-6; }
@@ -52,10 +59,14 @@ BlockPlan plan_block(const ModalState& st, const BlockCodes& c, const BlockConte
   const auto& motion_code = c.group(GGroup::motion);
   const auto& non_modal = c.group(GGroup::non_modal);
   b.non_modal = non_modal ? non_modal->code : -1;
-  const bool g92_axes = b.non_modal == gcode_id(92);
+  const bool g92_axes = uses_axis_words(b.non_modal);
   const Word* first_axis = nullptr;
   for (char a : kAxisLetters)
     if (!first_axis && c.has(a)) first_axis = c.word(a);
+
+  if ((b.non_modal == gcode_id(28, 1) || b.non_modal == gcode_id(30, 1)) && c.has_axis_word())
+    ctx.fail(first_axis, fmt::format("{} takes no axis words (it stores the current position)",
+                                     gcode_name(b.non_modal)));
 
   // The motion this block makes (rs274ngc: an explicit motion code, or the
   // modal one when axis words are present and nothing else uses them).
@@ -64,8 +75,8 @@ BlockPlan plan_block(const ModalState& st, const BlockCodes& c, const BlockConte
     b.motion_word = motion_code->word;
     if (g92_axes && c.has_axis_word())
       ctx.fail(b.motion_word,
-               fmt::format("cannot use two G codes that both use axis words ({} and G92)",
-                           gcode_name(b.motion)));
+               fmt::format("cannot use two G codes that both use axis words ({} and {})",
+                           gcode_name(b.motion), gcode_name(b.non_modal)));
   } else if (c.has_axis_word() && !g92_axes) {
     if (st.motion_mode == gcode_id(80))
       ctx.fail(first_axis, "axis words without a motion code (no motion mode is active)");
@@ -74,7 +85,16 @@ BlockPlan plan_block(const ModalState& st, const BlockCodes& c, const BlockConte
   }
   if (b.motion == gcode_id(80) && c.has_axis_word() && !g92_axes)
     ctx.fail(first_axis, "axis words with G80 (canned cycle cancel)");
-  if (g92_axes && !c.has_axis_word()) ctx.fail(non_modal->word, "G92 without axis words");
+  if (b.non_modal == gcode_id(92) && !c.has_axis_word())
+    ctx.fail(non_modal->word, "G92 without axis words");
+  if (b.non_modal == gcode_id(52) && !c.has_axis_word())
+    ctx.fail(non_modal->word, "G52 without axis words");
+  if (g92_axes && c.has_rotary_word())
+    for (char a : {'A', 'B', 'C'})
+      if (c.has(a))
+        ctx.fail(c.word(a), fmt::format("rotary axis word {} with {} is not supported "
+                                        "(3-axis machines: X, Y, Z)",
+                                        a, gcode_name(b.non_modal)));
 
   const auto& path = c.group(GGroup::path_control);
   const auto& tool_length = c.group(GGroup::tool_length);
@@ -84,12 +104,50 @@ BlockPlan plan_block(const ModalState& st, const BlockCodes& c, const BlockConte
   return b;
 }
 
+// Rotary words (A, B, C) are accepted while their axis does not move: abbe
+// models 3-axis machines. One warning per program; a move is refused by name.
+void check_rotary_words(ExecState& st, const BlockPlan& b) {
+  const BlockCodes& c = b.codes;
+  if (!c.has_rotary_word()) return;
+  for (int i = 0; i < 3; ++i) {
+    const char letter = static_cast<char>('A' + i);
+    const Word* w = c.word(letter);
+    if (!w) continue;
+    const double current = st.rotary[static_cast<std::size_t>(i)];
+    const double target = st.incremental ? current + w->value : w->value;
+    if (target != current)
+      b.ctx.fail(w, fmt::format("rotary axis {} moves (from {}{} to {}{}): abbe models 3-axis "
+                                "machines (X, Y, Z)",
+                                letter, letter, current, letter, target));
+  }
+  if (!st.rotary_warned) {
+    st.rotary_warned = true;
+    spdlog::warn("{}:{}: rotary axis words (A, B, C) that never move are ignored (3-axis model)",
+                 st.file, b.ctx.line);
+  }
+}
+
+double ExecState::feed_rate_mm(double length_mm) const {
+  switch (feed_mode) {
+    case FeedMode::inverse_time:
+      return length_mm * feed_mm;  // the move takes 1/F minutes
+    case FeedMode::units_per_rev:
+      return feed_mm * std::abs(spindle);
+    case FeedMode::units_per_minute:
+      break;
+  }
+  return feed_mm;
+}
+
 }  // namespace detail
 
 Interpreter::Interpreter(InterpreterConfig config, std::string file)
     : state_(std::make_unique<detail::ExecState>()) {
   state_->config = std::move(config);
   state_->file = std::move(file);
+  state_->work_offsets = state_->config.work_offsets;
+  state_->g28_home = state_->config.g28_position;
+  state_->g30_home = state_->config.g30_position;
   // Initial position is the tool tip; without G43 the program drives s = P + L·e_z.
   state_->pos = state_->config.initial_position - state_->config.work_offsets[0];
   state_->pos.z() += state_->config.default_tool_length;
@@ -135,9 +193,29 @@ void Interpreter::execute(const Block& written, std::string_view raw_line, const
 void Interpreter::execute_evaluated(const Block& written, std::string_view raw_line,
                                     const MotionSink& sink) {
   detail::ExecState& st = *state_;
-  if (st.ended || written.words.empty()) return;
-  // read
+  if (st.ended) return;
   const BlockContext ctx{st.file, written.line, raw_line};
+  if (st.config.dialect.dialect == Dialect::linuxcnc && !st.text_seen) {
+    // rs274ngc: a '%' as the first non-blank line opens a tape that the next
+    // '%' ends; a '%' anywhere else is an error.
+    if (raw_line.find_first_not_of(" \t\r") != std::string_view::npos) st.text_seen = true;
+    if (written.percent) {
+      st.percent_opened = true;
+      return;
+    }
+  }
+  if (written.percent) {
+    if (st.config.dialect.dialect == Dialect::linuxcnc) {
+      if (!st.percent_opened)
+        ctx.fail(nullptr,
+                 "'%' after the start of the program (rs274ngc allows '%' only as the first "
+                 "line and as the end of such a program)");
+      st.ended = true;
+    }
+    return;
+  }
+  if (written.words.empty()) return;
+  // read
   const Block* source = &written;
   if (st.config.dialect.dialect == Dialect::fanuc) {
     st.adapted = written;
@@ -149,25 +227,31 @@ void Interpreter::execute_evaluated(const Block& written, std::string_view raw_l
   const BlockCodes codes = classify_block(block, ctx);
   // check
   const detail::BlockPlan b = detail::plan_block(st, codes, ctx);
+  detail::check_rotary_words(st, b);
 
   std::uint32_t sub = 0;
   const detail::Emit emit = [&](Motion& m) {
     m.line = block.line;
     m.sub = sub++;
-    m.tool_length = st.active_length_mm();
+    m.tool_length = st.g43 && st.tool_length_unknown ? std::numeric_limits<double>::quiet_NaN()
+                                                     : st.active_length_mm();
     m.spindle = st.spindle;
     m.tool = st.selected_tool;
     sink(m);
   };
 
   // convert, in rs274ngc's order of execution
+  detail::convert_feed_mode(st, b);
   detail::convert_feed_speed_tool(st, b);
   detail::convert_dwell(st, b, emit);
   detail::convert_plane(st, b);
   detail::convert_units(st, b);
   detail::convert_tool_length(st, b);
   detail::convert_coord_system(st, b);
+  detail::convert_path_control(st, b);
   detail::convert_distance_modes(st, b);
+  detail::convert_setup(st, b);
+  detail::convert_home(st, b, emit);
   detail::convert_axis_offsets(st, b);
   detail::convert_motion(st, b, emit);
   detail::convert_stop(st, b);

@@ -19,6 +19,12 @@ struct GInfo {
 GInfo g_info(int id) {
   switch (id) {
     case gcode_id(4):
+    case gcode_id(10):
+    case gcode_id(28):
+    case gcode_id(28, 1):
+    case gcode_id(30):
+    case gcode_id(30, 1):
+    case gcode_id(52):
     case gcode_id(53):
     case gcode_id(92):
     case gcode_id(92, 1):
@@ -34,7 +40,10 @@ GInfo g_info(int id) {
     case gcode_id(81):
     case gcode_id(82):
     case gcode_id(83):
+    case gcode_id(74):
+    case gcode_id(84):
     case gcode_id(85):
+    case gcode_id(86):
     case gcode_id(89):
       return {GGroup::motion};
     case gcode_id(17):
@@ -47,7 +56,9 @@ GInfo g_info(int id) {
     case gcode_id(90, 1):
     case gcode_id(91, 1):
       return {GGroup::arc_distance};
+    case gcode_id(93):
     case gcode_id(94):
+    case gcode_id(95):
       return {GGroup::feed_mode};
     case gcode_id(20):
     case gcode_id(21):
@@ -82,8 +93,6 @@ GInfo g_info(int id) {
     case gcode_id(7):
     case gcode_id(8):
       return {std::nullopt, "lathe diameter/radius mode"};
-    case gcode_id(10):
-      return {std::nullopt, "setting offsets or tool data from the program"};
     case gcode_id(15):
     case gcode_id(16):
       return {std::nullopt, "polar coordinate mode"};
@@ -91,11 +100,6 @@ GInfo g_info(int id) {
     case gcode_id(18, 1):
     case gcode_id(19, 1):
       return {std::nullopt, "U, V, W plane selection"};
-    case gcode_id(28):
-    case gcode_id(28, 1):
-    case gcode_id(30):
-    case gcode_id(30, 1):
-      return {std::nullopt, "return to a stored home position"};
     case gcode_id(33):
     case gcode_id(33, 1):
     case gcode_id(76):
@@ -113,8 +117,6 @@ GInfo g_info(int id) {
     case gcode_id(43, 1):
     case gcode_id(43, 2):
       return {std::nullopt, "dynamic tool length offset"};
-    case gcode_id(52):
-      return {std::nullopt, "local coordinate system offset"};
     case gcode_id(59, 1):
     case gcode_id(59, 2):
     case gcode_id(59, 3):
@@ -130,17 +132,10 @@ GInfo g_info(int id) {
     case gcode_id(72, 1):
     case gcode_id(72, 2):
       return {std::nullopt, "lathe cycle"};
-    case gcode_id(74):
-    case gcode_id(84):
-      return {std::nullopt, "tapping cycle"};
-    case gcode_id(86):
     case gcode_id(87):
+      return {std::nullopt, "back boring cycle"};
     case gcode_id(88):
-      return {std::nullopt, "boring cycle with spindle stop"};
-    case gcode_id(93):
-      return {std::nullopt, "inverse-time feed mode"};
-    case gcode_id(95):
-      return {std::nullopt, "feed per revolution mode"};
+      return {std::nullopt, "boring cycle with a manual retract"};
     case gcode_id(96):
       return {std::nullopt, "constant surface speed"};
     default:
@@ -247,7 +242,7 @@ ABBE_COLD void fail_letter(const BlockContext& where, const Word& w) {
     case 'N':
     case 'O':
       where.fail(&w, fmt::format("{} word in the middle of a block is not supported", letter));
-    default:  // A B C U V W
+    default:  // U V W
       where.fail(&w,
                  fmt::format("{} axis words are not supported (3-axis machines: X, Y, Z)", letter));
   }
@@ -265,10 +260,12 @@ ABBE_COLD void fail_unexpected(const BlockContext& where, const Word& w) {
 
 constexpr std::uint32_t letter_bit(char letter) { return 1U << (letter - 'A'); }
 
-// Letters refused outright: other axes, D, E, and N or O after the start.
-constexpr std::uint32_t kRefusedLetters =
-    letter_bit('A') | letter_bit('B') | letter_bit('C') | letter_bit('U') | letter_bit('V') |
-    letter_bit('W') | letter_bit('D') | letter_bit('E') | letter_bit('N') | letter_bit('O');
+// Letters refused outright: U V W axes, D, E, and N or O after the start.
+// (Rotary words A B C are checked by the interpreter: accepted while their
+// axis does not move.)
+constexpr std::uint32_t kRefusedLetters = letter_bit('U') | letter_bit('V') | letter_bit('W') |
+                                          letter_bit('D') | letter_bit('E') | letter_bit('N') |
+                                          letter_bit('O');
 
 }  // namespace
 

@@ -107,15 +107,10 @@ std::string explain_letter(std::string_view line, std::size_t stop, const ast::L
   const char letter = upper(line[stop]);
   column = stop;
   switch (letter) {
-    case 'A':
-    case 'B':
-    case 'C':
     case 'U':
     case 'V':
     case 'W':
       return fmt::format("axis word '{}' is not supported (3-axis machine)", letter);
-    case 'E':
-      return "word 'E' is not supported";
     case 'O': {
       const std::size_t i = skip_blanks(line, stop + 1);
       if (!only_block_delete_before(items)) return "an O-word must be the first word of its line";

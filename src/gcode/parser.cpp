@@ -22,6 +22,10 @@ namespace {
 
 // Input is read in chunks of this size (lines may be longer: the buffer grows).
 constexpr std::size_t kChunkBytes = std::size_t{1} << 20;
+// A line longer than this is refused: no G-code line comes near it, and a
+// file without line ends (a binary file, /dev/zero) must not be buffered
+// without limit.
+constexpr std::size_t kMaxLineBytes = std::size_t{16} << 20;
 
 void reset(Block& block, std::size_t line_number) {
   block.line = line_number;
@@ -98,6 +102,11 @@ BlockReader::BlockReader(BlockReader&&) noexcept = default;
 void BlockReader::refill() {
   // Keep the unfinished line at the front; grow if it fills the buffer.
   const std::size_t kept = end_ - begin_;
+  if (kept >= kMaxLineBytes)
+    throw InputError(SourceLocation{file_, line_number_ + 1, 0, "", ""},
+                     fmt::format("line reaches {} bytes without a line end (is this a text "
+                                 "file?)",
+                                 kMaxLineBytes));
   if (kept > 0 && begin_ > 0) std::memmove(buffer_.get(), buffer_.get() + begin_, kept);
   begin_ = 0;
   end_ = kept;

@@ -13,12 +13,13 @@ const std::vector<WordUse>& word_use_table() {
       {'I', {gcode_id(2), gcode_id(3)}, false},
       {'J', {gcode_id(2), gcode_id(3)}, false},
       {'K', {gcode_id(2), gcode_id(3)}, false},
-      {'R', {gcode_id(2), gcode_id(3)}, true},
+      {'R', {gcode_id(2), gcode_id(3), gcode_id(10)}, true},
       {'P',
-       {gcode_id(2), gcode_id(3), gcode_id(4), gcode_id(64), gcode_id(82), gcode_id(89)},
+       {gcode_id(2), gcode_id(3), gcode_id(4), gcode_id(10), gcode_id(64), gcode_id(74),
+        gcode_id(82), gcode_id(84), gcode_id(86), gcode_id(89)},
        false},
       {'Q', {gcode_id(64), gcode_id(73), gcode_id(83)}, false},
-      {'L', {}, true},
+      {'L', {gcode_id(10)}, true},
       {'H', {gcode_id(43)}, false},
   };
   return table;

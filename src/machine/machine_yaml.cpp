@@ -14,6 +14,7 @@
 
 #include "abbe/io/input_error.hpp"
 #include "abbe/machine/machine.hpp"
+#include "home_positions_yaml.hpp"
 #include "src/io/yaml_reader.hpp"
 
 namespace abbe::machine {
@@ -85,7 +86,7 @@ Machine Machine::parse(const std::string& yaml_text, const std::string& file,
   if (!root.IsMap()) r.fail(root, "", "a machine file is a YAML mapping (see docs/formats.md)");
   r.check_keys(root, "",
                {"name", "chain", "travel", "tool_length", "tool_table", "work_offsets",
-                "squareness", "table", "out_of_range", "axes"});
+                "home_positions", "squareness", "table", "out_of_range", "axes"});
 
   MachineSpec spec;
   spec.file = file;
@@ -142,6 +143,8 @@ Machine Machine::parse(const std::string& yaml_text, const std::string& file,
         spec.work_offsets[static_cast<std::size_t>(g)] = r.vec3(wo[key], "work_offsets." + key);
     }
   }
+
+  detail::parse_home_positions(r, root);  // validated here, read by read_home_positions
 
   if (const YAML::Node sq = root["squareness"]) {
     r.check_keys(sq, "squareness", {"EC0Y", "EB0Z", "EA0Z"});

@@ -15,7 +15,9 @@ double arc_sweep(double theta_start, double theta_end, double chord, int rotatio
     sweep = units::kTwoPi;
   } else {
     sweep = ccw ? theta_end - theta_start : theta_start - theta_end;  // in (-2π, 2π)
-    if (sweep <= 0.0) sweep += units::kTwoPi;
+    // LinuxCNC's full-circle rule (CIRCLE_FUZZ): a sweep below 1e-6 rad is
+    // a full turn more.
+    if (sweep < kFullCircleSweep) sweep += units::kTwoPi;
   }
   const int turns = std::abs(rotation) - 1;
   sweep += units::kTwoPi * turns;

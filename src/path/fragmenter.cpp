@@ -1,10 +1,13 @@
 #include "abbe/path/fragmenter.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
+#include "abbe/io/input_error.hpp"
 #include "abbe/io/units.hpp"
 #include "abbe/path/arc_span.hpp"
 #include "abbe/path/line_span.hpp"
@@ -31,12 +34,14 @@ Fragmenter::Fragmenter(FragmentOptions options) : options_(options) {
                                 std::to_string(options_.rapid_rate));
 }
 
-std::size_t Fragmenter::segments(double length) const {
+std::size_t Fragmenter::segments(double length, const gcode::Motion& motion) const {
   const double q = length / options_.step;
   if (!(q <= kMaxSegments))
-    throw std::invalid_argument("motion of " + std::to_string(length) +
-                                " mm needs too many points at step " +
-                                std::to_string(options_.step) + " mm");
+    throw InputError(
+        SourceLocation{options_.file, motion.line, 0, "", ""},
+        fmt::format("a {} of {:.6g} mm needs more than {:.0e} points at step {} mm "
+                    "(a typo in a coordinate?)",
+                    gcode::to_string(motion.kind), length, kMaxSegments, options_.step));
   return std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(q)));
 }
 
@@ -83,7 +88,7 @@ void Fragmenter::add_line(const gcode::Motion& motion, PathPoint& point, const P
   const Eigen::Vector3d v = span.velocity();
   for (int k = 0; k < 3; ++k)
     if (v[k] != 0.0) dir_[static_cast<std::size_t>(k)] = sign(v[k]);
-  const std::size_t n = segments(length);
+  const std::size_t n = segments(length, motion);
   const double dt = length / static_cast<double>(n) * seconds_per_mm(motion, options_.rapid_rate);
   const double t0 = time_;
   for (std::size_t i = 1; i <= n; ++i) {
@@ -98,7 +103,7 @@ void Fragmenter::add_arc(const gcode::Motion& motion, PathPoint& point, const Po
   const ArcSpan span(motion);
   const double length = span.length();
   if (length == 0.0) return;
-  const std::size_t n = segments(span.length_bound());
+  const std::size_t n = segments(span.length_bound(), motion);
   const double dt = length / static_cast<double>(n) * seconds_per_mm(motion, options_.rapid_rate);
   const double t0 = time_;
   span.for_each_sample(n, [&](std::size_t i, const Eigen::Vector3d& p, const Eigen::Vector3d& v) {

@@ -1,5 +1,7 @@
 #include "abbe/pipeline/interpreter_setup.hpp"
 
+#include "abbe/machine/home_positions.hpp"
+
 namespace abbe::pipeline {
 
 gcode::InterpreterConfig interpreter_config(const machine::Machine& machine) {
@@ -8,6 +10,9 @@ gcode::InterpreterConfig interpreter_config(const machine::Machine& machine) {
   config.tool_lengths = machine.tool_table();
   config.work_offsets = machine.work_offsets();
   config.initial_position = Eigen::Vector3d(0.0, 0.0, -machine.tool_length());
+  const machine::HomePositions home = machine::read_home_positions(machine.spec().file);
+  config.g28_position = home.g28;
+  config.g30_position = home.g30;
   return config;
 }
 

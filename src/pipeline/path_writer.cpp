@@ -79,7 +79,10 @@ template <class Out>
 void format_middle(Out& out, PathFormat format, const path::PathPoint& pt) {
   if (format == PathFormat::csv) {
     out.ch(',');
-    out.num(pt.tool_length);
+    if (std::isnan(pt.tool_length))  // G43 with a tool of unknown length
+      out.text("unknown");
+    else
+      out.num(pt.tool_length);
     out.ch(',');
     out.uint(pt.line);
     out.ch(',');
@@ -90,7 +93,10 @@ void format_middle(Out& out, PathFormat format, const path::PathPoint& pt) {
     out.ch(',');
   } else {
     out.text(",\"tool_length\":");
-    out.num(pt.tool_length);
+    if (std::isnan(pt.tool_length))
+      out.text("null");
+    else
+      out.num(pt.tool_length);
     out.text(",\"line\":");
     out.uint(pt.line);
     out.text(",\"kind\":\"");

@@ -10,7 +10,9 @@ PathRun run_path(std::istream& in, const std::string& file,
                  const path::PointSink& sink) {
   gcode::InterpreterConfig config = machine_config;
   config.dialect = options.dialect;
-  path::Fragmenter fragmenter(options.fragment);
+  path::FragmentOptions fragment = options.fragment;
+  fragment.file = file;
+  path::Fragmenter fragmenter(fragment);
   PathRun run;
   if (!(options.min_reversal_mm > 0.0)) {
     run.program = gcode::run_program(in, file, config,

@@ -31,14 +31,16 @@ TEST(ArcSweep, FragmenterAndCompensatorAgree) {
     double sweep;
   };
   const Case cases[] = {
-      {0.5 * pi, 1, 0.5 * pi},    // quarter, counter-clockwise
-      {0.5 * pi, -1, -1.5 * pi},  // the same end clockwise
-      {0.0, 1, 2.0 * pi},         // start = end: a full circle
-      {0.0, -3, -6.0 * pi},       // three full turns clockwise
-      {pi, 2, 3.0 * pi},          // half plus one turn
-      {5e-11, 1, 5e-11},          // chord 5e-9 mm: a very short arc, not a circle
-      {-5e-11, -1, -5e-11},       // the same clockwise
-      {5e-13, 1, 2.0 * pi},       // chord 5e-11 mm: a full circle
+      {0.5 * pi, 1, 0.5 * pi},          // quarter, counter-clockwise
+      {0.5 * pi, -1, -1.5 * pi},        // the same end clockwise
+      {0.0, 1, 2.0 * pi},               // start = end: a full circle
+      {0.0, -3, -6.0 * pi},             // three full turns clockwise
+      {pi, 2, 3.0 * pi},                // half plus one turn
+      {2e-6, 1, 2e-6},                  // 2 µrad: a very short arc, not a circle
+      {-2e-6, -1, -2e-6},               // the same clockwise
+      {5e-11, 1, 2.0 * pi + 5e-11},     // below LinuxCNC's 1e-6 rad: one turn more
+      {-5e-11, -1, -2.0 * pi - 5e-11},  // the same clockwise
+      {5e-13, 1, 2.0 * pi},             // chord 5e-11 mm: a full circle
   };
   for (const Case& c : cases) {
     const gcode::Motion m = arc(c.end_angle, c.rotation);
@@ -49,10 +51,14 @@ TEST(ArcSweep, FragmenterAndCompensatorAgree) {
   }
 }
 
-TEST(ArcSweep, RuleIsTheChordInMillimetres) {
+TEST(ArcSweep, RuleIsTheChordInMillimetresAndLinuxCncsSweepFuzz) {
   EXPECT_EQ(arc_sweep(0.3, 0.3, 0.5 * kFullCircleChord, 1), units::kTwoPi);
   EXPECT_EQ(arc_sweep(0.3, 0.3, 0.5 * kFullCircleChord, -2), -2.0 * units::kTwoPi);
-  EXPECT_NEAR(arc_sweep(0.3, 0.3 + 1e-12, 2.0 * kFullCircleChord, 1), 1e-12, 1e-16);
+  // A sweep below 1e-6 rad (LinuxCNC's CIRCLE_FUZZ) is a full circle more.
+  EXPECT_NEAR(arc_sweep(0.3, 0.3 + 1e-12, 2.0 * kFullCircleChord, 1), units::kTwoPi + 1e-12, 1e-12);
+  EXPECT_NEAR(arc_sweep(0.3, 0.3 + 0.9e-6, 1.0, 1), units::kTwoPi + 0.9e-6, 1e-12);
+  EXPECT_NEAR(arc_sweep(0.3, 0.3 + 1.1e-6, 1.0, 1), 1.1e-6, 1e-12);
+  EXPECT_NEAR(arc_sweep(0.3 + 0.9e-6, 0.3, 1.0, -1), -units::kTwoPi - 0.9e-6, 1e-12);
 }
 
 }  // namespace

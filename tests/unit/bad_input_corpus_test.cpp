@@ -148,6 +148,15 @@ TEST(BadInputGenerated, TenMegabyteCommentIsFineButTheNextLineIsNot) {
       std::string::npos);
 }
 
+TEST(BadInputGenerated, FileWithoutLineEndsIsRefusedAtTheLineBound) {
+  // 17 MiB without a line end (what /dev/zero or a binary file looks like):
+  // refused at 16 MiB, not buffered without limit.
+  const TempFile file("no-line-end.nc", "G21 (" + std::string(17U << 20, 'c'));
+  EXPECT_NE(refusal_text_of_file(file).find(
+                "no-line-end.nc:1: error: line reaches 16777216 bytes without a line end"),
+            std::string::npos);
+}
+
 TEST(BadInputGenerated, NulByte) {
   const TempFile file("nul.nc", std::string("G21\nG0 X1\0 Y2\n", 13));
   EXPECT_NE(refusal_text_of_file(file).find("nul.nc:2:6: error: unexpected byte 0x00"),

@@ -3,6 +3,8 @@
 // refusals of modal conflicts and unsupported constructs.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "abbe/io/input_error.hpp"
 #include "test_blocks.hpp"
 
@@ -234,22 +236,19 @@ TEST(Interpreter, UnsupportedConstructsAreRefusedByName) {
       {"G41 D1", "cutter radius compensation (G41) is not supported"},
       {"G42", "cutter radius compensation (G42) is not supported"},
       {"G68 X0 Y0 R45", "coordinate system rotation (G68) is not supported"},
-      {"G10 L2 P1 X0", "(G10) is not supported"},
-      {"G28", "(G28) is not supported"},
-      {"G30", "(G30) is not supported"},
       {"G33 Z-1 K1", "spindle-synchronised motion (threading) (G33)"},
       {"G76 P1 Z-1", "(G76) is not supported"},
       {"G38.2 Z-1 F10", "probing (G38.2) is not supported"},
       {"G5 X1 Y1 I1 J0 P1 Q0", "spline / NURBS motion (G5) is not supported"},
       {"G5.1 X1 Y1 I1 J0", "(G5.1) is not supported"},
       {"G7", "lathe diameter/radius mode (G7)"},
-      {"G52 X1", "local coordinate system offset (G52)"},
       {"G16", "polar coordinate mode (G16) is not supported"},
-      {"G93", "inverse-time feed mode (G93)"},
-      {"G95", "feed per revolution mode (G95)"},
-      {"G84 X0 Z-1 R1", "tapping cycle (G84)"},
-      {"G86 X0 Z-1 R1 P1", "(G86) is not supported"},
-      {"G0 A10", "A axis words are not supported"},
+      {"G0 A10", "rotary axis A moves (from A0 to A10)"},
+      {"G87 X0 Z-1 R1", "back boring cycle (G87) is not supported"},
+      {"G88 X0 Z-1 R1 P1", "boring cycle with a manual retract (G88) is not supported"},
+      {"G10 L11 P1 Z0", "tool data relative to a fixture (G10 L11) is not supported"},
+      {"G10 L2 P8 X0", "coordinate system beyond G59 (G10 L2 P8)"},
+      {"G10 L1 P1 X1 Z2", "X offset of a tool (G10 L1 X) is not supported"},
       {"G0 W1", "W axis words are not supported"},
       {"G12.3", "unknown G code G12.3"},
       {"G0.5 X1", "unknown G code G0.5"},
@@ -261,6 +260,117 @@ TEST(Interpreter, UnsupportedConstructsAreRefusedByName) {
     EXPECT_NE(e.find(message), std::string::npos) << line << " -> " << e;
     EXPECT_EQ(e.rfind("test.nc:1:", 0), 0u) << e;
   }
+}
+
+TEST(Interpreter, HomeThroughTheIntermediatePoint) {
+  InterpreterConfig config;
+  config.g28_position = {10, 20, 30};
+  config.g30_position = {-1, -2, -3};
+  const auto m =
+      run_lines({"G0 X1 Y2 Z3", "G28 G91 Z1", "G90 G28.1", "G0 X5", "G28", "G30 Y7"}, config);
+  ASSERT_EQ(m.size(), 8u);
+  expect_near(m[1].end, {1, 2, 4});    // intermediate point: Z one up (G91)
+  expect_near(m[2].end, {1, 2, 30});   // only Z goes home
+  expect_near(m[4].end, {5, 2, 30});   // G28 without axis words: through where it is
+  expect_near(m[5].end, {1, 2, 30});   // to the position G28.1 stored
+  expect_near(m[6].end, {1, 7, 30});   // G30 Y7: intermediate Y7
+  expect_near(m[7].end, {1, -2, 30});  // Y to the stored G30 position
+}
+
+TEST(Interpreter, HomeIsInMachineCoordinatesWhateverTheOffsets) {
+  InterpreterConfig config;
+  config.g28_position = {0, 0, 0};
+  config.work_offsets[1] = {100, 0, 0};
+  config.tool_lengths[1] = 50;
+  const auto m = run_lines({"G55 G43 H1 G0 X1 Y1 Z1", "G28 Z5", "G20 G0 X1"}, config);
+  ASSERT_EQ(m.size(), 4u);
+  // The spindle nose goes to machine Z0; the tool tip hangs 50 mm below it.
+  expect_near(m[2].end, {101, 1, -50});
+  expect_near(m[3].end, {125.4, 1, -50});
+}
+
+TEST(Interpreter, G10SetsWorkOffsetsAndToolLengths) {
+  const auto m =
+      run_lines({"G0 X10 Y10 Z10", "G10 L20 P1 X2", "G0 X2", "G10 L2 P2 X-5", "G55 G0 X0",
+                 "G10 L1 P3 Z40", "G43 H3 G0 Z0", "G10 L10 P4 Z1", "G43 H4 G0 Z1"});
+  ASSERT_EQ(m.size(), 5u);
+  expect_near(m[1].end, {10, 10, 10});  // L20: the current point reads X2
+  expect_near(m[2].end, {-5, 10, 10});  // L2: G55's origin at X-5
+  expect_near(m[3].end, {-5, 10, 0});   // G43 with the length G10 L1 set: the tip at Z0
+  EXPECT_DOUBLE_EQ(m[3].tool_length, 40.0);
+  // L10: the length that makes the current Z read 1 with tool 4.
+  expect_near(m[4].end, {-5, 10, 1});
+  EXPECT_DOUBLE_EQ(m[4].tool_length, 39.0);
+}
+
+TEST(Interpreter, G52MovesTheFrameLikeG92) {
+  const auto m = run_lines({"G0 X1", "G52 X10", "G0 X1", "G92.1", "G0 X1"});
+  ASSERT_EQ(m.size(), 3u);
+  expect_near(m[1].end, {11, 0, 0});
+  expect_near(m[2].end, {1, 0, 0});
+}
+
+TEST(Interpreter, FeedModesGiveTheFeedRateOfEachMove) {
+  const auto m = run_lines({"G1 X10 F100", "G93 G1 X40 F2", "G3 X40 Y0 I-10 J0 F0.5",
+                            "G95 S500 G1 X0 F0.2", "G94 G1 X1 F300"});
+  ASSERT_EQ(m.size(), 5u);
+  EXPECT_DOUBLE_EQ(m[0].feed, 100.0);
+  EXPECT_DOUBLE_EQ(m[1].feed, 60.0);                                  // 30 mm in 1/2 min
+  EXPECT_NEAR(m[2].feed, 2.0 * 3.14159265358979 * 10.0 * 0.5, 1e-9);  // full circle in 2 min
+  EXPECT_DOUBLE_EQ(m[3].feed, 100.0);                                 // 0.2 mm/rev at 500 rpm
+  EXPECT_DOUBLE_EQ(m[4].feed, 300.0);
+  EXPECT_NE(error_of({"G93 G1 X1 F1", "X2"}).find("F word missing in inverse-time"),
+            std::string::npos);
+  EXPECT_NE(error_of({"G95 G1 X1 F1"}).find("spindle speed 0"), std::string::npos);
+}
+
+TEST(Interpreter, PathControlIsCarried) {
+  const std::vector<std::string> lines{"G61", "G64 P0.01 Q0.02"};
+  InterpreterConfig config;
+  Interpreter interp(config, "t.nc");
+  const MotionSink none = [](const Motion&) {};
+  interp.execute(make_block(lines[0]), lines[0], none);
+  EXPECT_EQ(interp.modal().path_control, PathControl::exact_path);
+  interp.execute(make_block(lines[1]), lines[1], none);
+  EXPECT_EQ(interp.modal().path_control, PathControl::blending);
+  EXPECT_DOUBLE_EQ(interp.modal().blend_tolerance, 0.01);
+  EXPECT_DOUBLE_EQ(interp.modal().naive_cam_tolerance, 0.02);
+}
+
+TEST(Interpreter, TappingAndBoringCycles) {
+  const auto m = run_lines({"F100 S500 M3", "G0 Z5", "G99 G84 X1 Z-2 R1", "G80", "M4",
+                            "G74 X2 Z-2 R1 P0.5", "G80", "G86 X3 Z-2 R1 P1"});
+  // G84: over the hole, down to R, feed in, dwell 0, feed out to R.
+  ASSERT_GE(m.size(), 6u);
+  expect_near(m[3].end, {1, 0, -2});
+  EXPECT_EQ(m[4].kind, MotionKind::dwell);
+  EXPECT_EQ(m[5].kind, MotionKind::linear);
+  expect_near(m[5].end, {1, 0, 1});
+  const Motion& last = m.back();
+  EXPECT_EQ(last.kind, MotionKind::rapid);  // G86 rapids out
+  expect_near(last.end, {3, 0, 1});
+  EXPECT_NE(error_of({"F100", "G0 Z5", "G84 X1 Z-2 R1"}).find("not turning clockwise"),
+            std::string::npos);
+}
+
+TEST(Interpreter, UnknownToolLengthWhereAllowed) {
+  InterpreterConfig config;
+  EXPECT_NE(error_of({"G43 H7"}, config).find("tool 7 has no length"), std::string::npos);
+  config.allow_unknown_tool_length = true;
+  config.default_tool_length = 20;
+  const auto m = run_lines({"G0 Z10", "G43 H7 G0 Z10", "G49 G0 Z10"}, config);
+  ASSERT_EQ(m.size(), 3u);
+  expect_near(m[1].end, {0, 0, 10});  // the tip path does not depend on L under G43
+  EXPECT_TRUE(std::isnan(m[1].tool_length));
+  EXPECT_DOUBLE_EQ(m[2].tool_length, 20.0);
+}
+
+TEST(Interpreter, RotaryWordsThatDoNotMove) {
+  const auto m = run_lines({"G0 X1 A0 B0", "G91 G0 X1 C0", "G90 A0"});
+  ASSERT_EQ(m.size(), 3u);
+  expect_near(m[1].end, {2, 0, 0});
+  expect_near(m[2].end, {2, 0, 0});  // a rotary word alone: a zero-length move
+  EXPECT_NE(error_of({"G91 G0 B5"}).find("rotary axis B moves"), std::string::npos);
 }
 
 TEST(Interpreter, MotionToString) {

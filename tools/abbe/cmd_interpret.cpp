@@ -20,8 +20,8 @@
 #include "abbe/io/input_error.hpp"
 #include "abbe/machine/machine.hpp"
 #include "abbe/pipeline/interpreter_setup.hpp"
-#include "dialect_option.hpp"
 #include "command.hpp"
+#include "dialect_option.hpp"
 #include "input_stream.hpp"
 #include "interpreter_options.hpp"
 
@@ -43,6 +43,9 @@ gcode::InterpreterConfig make_config(const InterpretOptions& o) {
   if (!o.machine.empty()) {
     config = pipeline::interpreter_config(machine::Machine::load(o.machine));
   }
+  // The tool-tip path does not depend on the length of a G43 tool: a tool
+  // without one in the table is accepted (one warning, tool_length unknown).
+  config.allow_unknown_tool_length = true;
   config.dialect = o.dialect;
   if (o.tool_length) {
     if (!std::isfinite(*o.tool_length))

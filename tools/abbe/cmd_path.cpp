@@ -20,8 +20,8 @@
 #include "abbe/pipeline/interpreter_setup.hpp"
 #include "abbe/pipeline/path_writer.hpp"
 #include "abbe/pipeline/program_path.hpp"
-#include "dialect_option.hpp"
 #include "command.hpp"
+#include "dialect_option.hpp"
 #include "input_stream.hpp"
 #include "interpreter_options.hpp"
 #include "progress.hpp"
@@ -47,6 +47,9 @@ gcode::InterpreterConfig make_config(const PathOptions& o) {
   if (!o.machine.empty()) {
     config = pipeline::interpreter_config(machine::Machine::load(o.machine));
   }
+  // The tool-tip path does not depend on the length of a G43 tool: a tool
+  // without one in the table is accepted (one warning, tool_length unknown).
+  config.allow_unknown_tool_length = true;
   if (o.tool_length) {
     // With a machine the program starts at home (s = 0): keep P = −L·e_z for the new L.
     if (!o.machine.empty()) config.initial_position.z() = -*o.tool_length;

@@ -12,7 +12,8 @@ void add_dialect_options(CLI::App& sub, gcode::DialectOptions& dialect) {
          "fanuc (Fanuc/Haas posts: O-numbered programs with M98 P L / M99 "
          "subprograms in the same file, lengths without a decimal point in least "
          "increments, G04 P in ms, cycle repeats K; the look-ahead and smoothing codes "
-         "G05 G05.1 G08 G103 G187 are carried, not motion; G68 rotation, G51 "
+         "G05 G05.1 G08 G103 G187 and the M29 rigid-tapping mode are carried, not "
+         "motion; G28 G91 Z0., G53, G84, G95 are read as in LinuxCNC; G68 rotation, G51 "
          "scaling, G54.1/G154 and macro calls are refused by name; docs/fanuc.md)")
       ->check(CLI::IsMember({"linuxcnc", "fanuc"}))
       ->default_str("linuxcnc");

@@ -25,8 +25,8 @@ struct CannedCycle {
   double bottom = 0.0;                                  // hole bottom (absolute)
   bool retract_to_r = true;                             // G99 (else G98: back to the initial level)
   int repeats = 1;                                      // L
-  double dwell = 0.0;                                   // P, seconds (G82, G89)
-  double peck = 0.0;                                    // Q (G73, G83), > 0
+  double dwell = 0.0;  // P, seconds (G82, G86, G89; G74/G84: 0 when not given)
+  double peck = 0.0;   // Q (G73, G83), > 0
   // G73/G83: how far above the previous depth the tool returns (0.010 in;
   // rs274ngc: 0.010 in inch programs, 0.010 * 25.4 in mm programs).
   double peck_clearance = 0.254;

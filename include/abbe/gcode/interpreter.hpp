@@ -5,14 +5,19 @@
 //
 // Semantics are LinuxCNC 2.9's rs274ngc (checked against its standalone
 // rs274, docs/interop.md): start-up modes G17 G21 G90 G91.1 G94 G54 G49 G80
-// G99; the order of execution within a block (F, S, T, M6, G4, plane, units,
-// G43/G49, G54.., distance modes, G98/G99, G92.., motion, M0/M2/M30); a
-// motion code without axis words makes a zero-length move; canned cycles
-// G73 G81 G82 G83 G85 G89 in all three planes, with the G98 level kept for a
-// series of cycles. Supported: G0-G3 (IJK, R, P turns, helices), G4, G17-G19,
-// G20/G21, G40, G43/G49, G53, G54-G59, G61/G61.1/G64 (ignored), G80, G90/G91,
-// G90.1/G91.1, G92/G92.1/G92.2/G92.3, G94, G97, G98/G99; M0 M1 M2 M3 M4 M5
-// M6 M7 M8 M9 M30 M48 M49 M60. Everything else is refused. A program in the
+// G99 G64; the order of execution within a block (G93/G94/G95, F, S, T, M6,
+// M3-M5, G4, plane, units, G43/G49, G54.., G61/G64, distance modes, G98/G99,
+// G10/G28/G30/G52/G92.., motion, M0/M2/M30); a motion code without axis
+// words makes a zero-length move; canned cycles G73 G74 G81-G86 G89 in all
+// three planes, with the G98 level kept for a series of cycles. Supported:
+// G0-G3 (IJK, R, P turns, helices), G4, G10 L1/L2/L10/L20, G17-G19,
+// G20/G21, G28/G28.1/G30/G30.1 (through the intermediate point to the
+// stored position, InterpreterConfig::g28_position), G40, G43/G49, G52,
+// G53, G54-G59, G61/G61.1/G64 (carried in ModalState), G80, G90/G91,
+// G90.1/G91.1, G92/G92.1/G92.2/G92.3, G93/G94/G95 (Motion::feed follows),
+// G97, G98/G99; M0 M1 M2 M3 M4 M5 M6 M7 M8 M9 M30 M48 M49 M60; rotary words
+// A B C whose axis does not move (one warning). A program whose first line
+// is '%' ends at the next '%'. Everything else is refused. A program in the
 // Fanuc/Haas dialect (InterpreterConfig::dialect) is read through an adapter
 // that turns each block into its RS274/NGC equivalent (docs/fanuc.md).
 #include <Eigen/Core>
@@ -44,6 +49,16 @@ struct InterpreterConfig {
   // drives the spindle nose s directly and P = s - L·e_z), mm.
   double default_tool_length = 0.0;
   Eigen::Vector3d initial_position = Eigen::Vector3d::Zero();  // tool tip at program start, mm
+  // Stored positions of G28 and G30: machine coordinates of the spindle nose
+  // (s = P + L·e_z), mm. LinuxCNC keeps them in parameters 5161-5163 and
+  // 5181-5183; the default is the machine home (0, 0, 0).
+  Eigen::Vector3d g28_position = Eigen::Vector3d::Zero();
+  Eigen::Vector3d g30_position = Eigen::Vector3d::Zero();
+  // G43 with a tool that has no length in tool_lengths: an error (predict,
+  // compensate: the model needs L) or, when true, accepted with one warning
+  // (path, interpret: the tool-tip path does not depend on L; Motion::
+  // tool_length is then NaN, "unknown").
+  bool allow_unknown_tool_length = false;
   DialectOptions dialect;  // LinuxCNC (default) or Fanuc/Haas (gcode/dialect.hpp)
 };
 

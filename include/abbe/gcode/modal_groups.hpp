@@ -20,12 +20,12 @@ namespace abbe::gcode {
 constexpr int gcode_id(int whole, int tenth = 0) { return whole * 10 + tenth; }
 
 enum class GGroup : std::uint8_t {
-  non_modal,     // group 0: G4 G53 G92 G92.1 G92.2 G92.3
+  non_modal,     // group 0: G4 G10 G28 G28.1 G30 G30.1 G52 G53 G92 G92.1 G92.2 G92.3
   motion,        // group 1: G0 G1 G2 G3 G73 G80 G81 G82 G83 G85 G89
   plane,         // group 2: G17 G18 G19
   distance,      // group 3: G90 G91
   arc_distance,  // group 4: G90.1 G91.1
-  feed_mode,     // group 5: G94
+  feed_mode,     // group 5: G93 G94 G95
   units,         // group 6: G20 G21
   cutter_comp,   // group 7: G40
   tool_length,   // group 8: G43 G49
@@ -84,10 +84,14 @@ struct BlockCodes {
     return (letter_mask >> i) & 1U ? letters[i] : nullptr;
   }
   bool has(char letter) const { return (letter_mask >> (letter - 'A')) & 1U; }
+  // X, Y, Z or a rotary word A, B, C (rs274ngc: any axis word makes a move).
   bool has_axis_word() const {
-    constexpr std::uint32_t kXyz = (1U << ('X' - 'A')) | (1U << ('Y' - 'A')) | (1U << ('Z' - 'A'));
-    return (letter_mask & kXyz) != 0;
+    constexpr std::uint32_t kAxes =
+        (1U << ('X' - 'A')) | (1U << ('Y' - 'A')) | (1U << ('Z' - 'A')) | kRotaryLetters;
+    return (letter_mask & kAxes) != 0;
   }
+  static constexpr std::uint32_t kRotaryLetters = 0x7U;  // A, B, C
+  bool has_rotary_word() const { return (letter_mask & kRotaryLetters) != 0; }
 };
 
 // Sorts the block's words; throws InputError on conflicts or unsupported codes.

@@ -9,11 +9,22 @@
 // Post-processors (the compensator) read it instead of re-deriving modes
 // from the words of a block.
 #include <Eigen/Core>
+#include <array>
 
 #include "abbe/gcode/modal_groups.hpp"
 #include "abbe/gcode/motion.hpp"
 
 namespace abbe::gcode {
+
+// G93 / G94 / G95: what the F word means.
+enum class FeedMode : std::uint8_t {
+  inverse_time,      // G93: F is 1/minutes for the move (each feed move has its own F)
+  units_per_minute,  // G94 (start-up)
+  units_per_rev,     // G95: F is program units per spindle revolution
+};
+
+// G61 / G61.1 / G64: carried (the tool-tip path does not depend on them).
+enum class PathControl : std::uint8_t { exact_path, exact_stop, blending };
 
 struct ModalState {
   bool inch = false;                 // G20 (false: G21)
@@ -27,14 +38,33 @@ struct ModalState {
   // spindle nose s = (pos + g5x + g92 + tlo·e_z) in machine coordinates.
   Eigen::Vector3d pos = Eigen::Vector3d::Zero();
   int coord_index = 0;  // G54 = 0 … G59 = 5
+  // Work offsets of G54 … G59, mm (from the configuration; G10 L2/L20 set them).
+  std::array<Eigen::Vector3d, 6> work_offsets{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
+                                              Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
+                                              Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  // Stored positions of G28 / G30 (machine coordinates of the spindle nose,
+  // mm; from the configuration, G28.1 / G30.1 store the current one).
+  Eigen::Vector3d g28_home = Eigen::Vector3d::Zero();
+  Eigen::Vector3d g30_home = Eigen::Vector3d::Zero();
   Eigen::Vector3d g92 = Eigen::Vector3d::Zero();
   Eigen::Vector3d g92_saved = Eigen::Vector3d::Zero();  // what G92.3 restores
   bool g43 = false;
   double tlo = 0.0;             // active tool length offset, program units (0 without G43)
   double tool_length_mm = 0.0;  // L of the G43 tool, mm
+  // G43 with a tool that has no length in the table, where the configuration
+  // allows it (`path`, `interpret`: the tip path does not depend on L while
+  // G43 is active); the length is then taken as 0 and reported unknown.
+  bool tool_length_unknown = false;
+  bool unknown_tool_warned = false;
 
-  double feed_mm = 0.0;  // mm/min
+  FeedMode feed_mode = FeedMode::units_per_minute;
+  // The F word in mm: mm/min (G94), mm/rev (G95) or 1/min (G93, not scaled).
+  double feed_mm = 0.0;
+  PathControl path_control = PathControl::blending;  // rs274ngc starts in G64
+  double blend_tolerance = 0.0;                      // G64 P (program units; 0: none)
+  double naive_cam_tolerance = 0.0;                  // G64 Q
   double spindle = 0.0;
+  int spindle_direction = 0;  // M3: 1, M4: -1, M5: 0
   int selected_tool = 0;
   int tool_in_spindle = 0;
 
@@ -44,7 +74,15 @@ struct ModalState {
   double cycle_initial_level = 0.0;
   bool cycle_initial_level_set = false;
 
-  bool ended = false;  // M2 / M30 seen
+  bool ended = false;  // M2 / M30 seen, or the second '%' of a tape
+  // '%' tape handling (LinuxCNC dialect): a program whose first non-blank
+  // line is '%' ends at the next '%'.
+  bool text_seen = false;
+  bool percent_opened = false;
+  // Rotary axes A, B, C (program units: degrees). abbe is a 3-axis model:
+  // a rotary word is accepted while its axis stays where it is.
+  std::array<double, 3> rotary{0.0, 0.0, 0.0};
+  bool rotary_warned = false;  // the one warning for rotary words that never move
 };
 
 }  // namespace abbe::gcode

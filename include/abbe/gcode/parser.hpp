@@ -23,7 +23,9 @@ void parse_line(std::string_view line, std::size_t line_number, const std::strin
 
 // Reads an NC program line by line (LF or CRLF) and parses each line.
 // Streaming: the input is read in chunks of 1 MiB (more only for a longer
-// line), so memory does not grow with the program length. The stream is read
+// line), so memory does not grow with the program length. A line of 16 MiB
+// or more is an InputError (a file without line ends is not buffered
+// without limit). The stream is read
 // ahead of the line returned last.
 class BlockReader {
  public:

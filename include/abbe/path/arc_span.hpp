@@ -25,13 +25,16 @@ namespace abbe::path {
 // Start and end of an arc closer than this in its plane (mm) make a full
 // circle.
 inline constexpr double kFullCircleChord = 1e-9;
+// A first-turn sweep below this (rad) is a full circle, as in LinuxCNC
+// (posemath's CIRCLE_FUZZ): the arc goes once round, not 0.1 µm.
+inline constexpr double kFullCircleSweep = 1e-6;
 
 // The signed sweep of an arc, rad (> 0 counter-clockwise seen from +n),
 // from the angles of its start and end about the centre, the chord between
 // them in the plane (mm) and gcode::Motion::rotation (sign: direction,
 // magnitude: turns). The one rule of the fragmenter, the compensator and the
 // verifier: a chord under kFullCircleChord is a full turn; otherwise the
-// sweep of the first turn is in (0, 2π].
+// sweep of the first turn is in [kFullCircleSweep, 2π + kFullCircleSweep).
 double arc_sweep(double theta_start, double theta_end, double chord, int rotation);
 
 class ArcSpan {

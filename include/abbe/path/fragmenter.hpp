@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <string>
 
 #include "abbe/gcode/motion.hpp"
 #include "abbe/path/path_point.hpp"
@@ -15,8 +16,9 @@
 namespace abbe::path {
 
 struct FragmentOptions {
-  double step = 5.0;            // mm, > 0
-  double rapid_rate = 10000.0;  // mm/min, > 0; also used for a feed motion with feed 0
+  double step = 5.0;               // mm, > 0
+  double rapid_rate = 10000.0;     // mm/min, > 0; also used for a feed motion with feed 0
+  std::string file = "<program>";  // named in the error of a motion that needs too many points
 };
 
 using PointSink = std::function<void(const PathPoint&)>;
@@ -38,7 +40,8 @@ class Fragmenter {
  private:
   void add_line(const gcode::Motion& motion, PathPoint& point, const PointSink& sink);
   void add_arc(const gcode::Motion& motion, PathPoint& point, const PointSink& sink);
-  std::size_t segments(double length) const;
+  // Throws InputError (the motion's line) past 1e9 points for one motion.
+  std::size_t segments(double length, const gcode::Motion& motion) const;
   void emit(PathPoint& point, const PointSink& sink);
 
   FragmentOptions options_;
