@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "abbe/compensate/motion_path.hpp"
+#include "abbe/gcode/motion_limits.hpp"
 #include "abbe/gcode/parser.hpp"
 #include "abbe/io/input_error.hpp"
 #include "abbe/path/fragmenter.hpp"
@@ -29,6 +30,7 @@ class MotionStream {
       : reader_(in, file),
         interp_(config, file),
         fanuc_(config.dialect.dialect == gcode::Dialect::fanuc) {}
+  const std::string& file() const { return reader_.file(); }
   // `skip`: a motion of a canned cycle that is not a hole bottom.
   bool next(gcode::Motion& m, bool& skip) {
     while (head_ == skip_.size()) {
@@ -87,6 +89,17 @@ class MotionStream {
   std::size_t head_ = 0;
 };
 
+// Runs `f`, which fragments motion `m` of stream `s`; a motion the
+// fragmenter refuses is bad input at its line.
+template <class F>
+void refusing(const MotionStream& s, const gcode::Motion& m, const F& f) {
+  try {
+    f();
+  } catch (const gcode::MotionRefused& e) {
+    throw InputError({s.file(), m.line, 0, "", ""}, e.what());
+  }
+}
+
 bool is_feed(const gcode::Motion& m) {
   return m.kind == gcode::MotionKind::linear || m.kind == gcode::MotionKind::arc;
 }
@@ -114,6 +127,7 @@ struct PassStats {
   double max = 0.0, sum2 = 0.0;
   std::size_t max_line = 0;
   std::size_t over = 0;
+  std::size_t unmatched = 0;
 };
 
 // Streams the feed points of `a`; each is matched to the nearest (by
@@ -141,9 +155,11 @@ PassStats run_pass(MotionStream& a, MotionStream& b, double step, std::size_t wi
       }
       Dir dir{0, 0, 0};
       bool any = false;
-      fb.add(m, [&](const path::PathPoint& pp) {
-        dir = pp.dir;
-        any = true;
+      refusing(b, m, [&] {
+        fb.add(m, [&](const path::PathPoint& pp) {
+          dir = pp.dir;
+          any = true;
+        });
       });
       if (is_feed(m) && any && !skip_b) {
         curves.push_back({m, MotionPath(m), dir, bounds(m)});
@@ -158,7 +174,7 @@ PassStats run_pass(MotionStream& a, MotionStream& b, double step, std::size_t wi
     const bool cycle = m.sub > 0 || skip;
     std::optional<MotionPath> arc;
     if (arc_dirs && feed && m.kind == gcode::MotionKind::arc) arc.emplace(m);
-    fa.add(m, [&](const path::PathPoint& point) {
+    refusing(a, m, [&] { fa.add(m, [&](const path::PathPoint& point) {
       if (!feed || (point.p - m.start).norm() == 0.0) return;
       if (cycle && point.p != m.end) return;  // a hole: its bottom only
       path::PathPoint pp = point;
@@ -166,7 +182,16 @@ PassStats run_pass(MotionStream& a, MotionStream& b, double step, std::size_t wi
         pp.dir = arc->directions(pp.dir, std::clamp(arc->closest(pp.p), arc->near_lo(kNearReversal),
                                                     arc->near_hi(kNearReversal)));
       while (!b_done && curves.size() < cursor + window + 1) pull();
-      if (curves.empty()) return;
+      if (curves.empty()) {  // nothing to match: a failure, not a pass
+        ++st.n;
+        ++st.unmatched;
+        ++st.over;
+        if (st.max < std::numeric_limits<double>::infinity()) {
+          st.max = std::numeric_limits<double>::infinity();
+          st.max_line = pp.line;
+        }
+        return;
+      }
       // Candidates: the curves within `slack` of the best match (a point at
       // a corner or where the path passes itself is near several). The
       // cursor moves to the first of them in path order from the current
@@ -202,7 +227,7 @@ PassStats run_pass(MotionStream& a, MotionStream& b, double step, std::size_t wi
         st.max = um;
         st.max_line = pp.line;
       }
-    });
+    }); });
   }
   return st;
 }
@@ -262,9 +287,12 @@ VerifyStats verify_program(std::istream& compensated, const std::string& compens
                                   false, match, measure);
     out.points = st.n;
     out.max_um = st.max;
-    out.rms_um = st.n ? std::sqrt(st.sum2 / static_cast<double>(st.n)) : 0.0;
+    out.rms_um = st.n > st.unmatched
+                       ? std::sqrt(st.sum2 / static_cast<double>(st.n - st.unmatched))
+                       : 0.0;
     out.max_line = st.max_line;
     out.over_tol = st.over;
+    out.unmatched = st.unmatched;
   }
   compensated.clear();
   compensated.seekg(0);
@@ -289,12 +317,35 @@ VerifyStats verify_program(std::istream& compensated, const std::string& compens
                                   true, predicted, predicted);
     out.backward_points = st.n;
     out.backward_max_um = st.max;
-    out.backward_rms_um = st.n ? std::sqrt(st.sum2 / static_cast<double>(st.n)) : 0.0;
+    out.backward_rms_um = st.n > st.unmatched
+                       ? std::sqrt(st.sum2 / static_cast<double>(st.n - st.unmatched))
+                       : 0.0;
     out.backward_max_line = st.max_line;
     out.backward_over_tol = st.over;
+    out.backward_unmatched = st.unmatched;
   }
   out.out_of_range_lookups = data.out_of_range_lookups;
   return out;
+}
+
+std::vector<std::string> verify_failures(const VerifyStats& s, double tol_um) {
+  std::vector<std::string> why;
+  if (s.points == 0)
+    why.push_back("the compensated program has no feed points to check");
+  if (s.backward_points == 0)
+    why.push_back("the original program has no feed points to check against");
+  if (s.unmatched)
+    why.push_back(std::to_string(s.unmatched) +
+                  " points of the compensated program have no feed motion of the original to "
+                  "match");
+  if (s.backward_unmatched)
+    why.push_back(std::to_string(s.backward_unmatched) +
+                  " points of the original have no feed motion of the compensated program to "
+                  "match");
+  const double max = std::max(s.max_um, s.backward_max_um);
+  if (!(max <= tol_um) && !s.unmatched && !s.backward_unmatched)
+    why.push_back("the max distance is beyond tol");
+  return why;
 }
 
 }  // namespace abbe::compensate

@@ -2,7 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <string_view>
+
+#include "abbe/gcode/motion_limits.hpp"
 
 #include "fanuc_dialect.hpp"
 #include "interpreter_steps.hpp"
@@ -128,13 +132,29 @@ void Interpreter::execute(const Block& written, std::string_view raw_line, const
   const detail::BlockPlan b = detail::plan_block(st, codes, ctx);
 
   std::uint32_t sub = 0;
+  // The word a refused motion is reported at: the first axis, centre or radius word.
+  const auto anchor = [&]() -> const Word* {
+    for (const auto& w : block.words)
+      if (std::string_view("XYZIJKR").find(w.letter) != std::string_view::npos) return &w;
+    return block.words.empty() ? nullptr : &block.words.front();
+  };
   const detail::Emit emit = [&](Motion& m) {
     m.line = block.line;
     m.sub = sub++;
     m.tool_length = st.active_length_mm();
     m.spindle = st.spindle;
     m.tool = st.selected_tool;
-    sink(m);
+    const double far = std::max({m.start.cwiseAbs().maxCoeff(), m.end.cwiseAbs().maxCoeff(),
+                                 m.center.cwiseAbs().maxCoeff()});
+    if (!(far <= kMaxCoordinateMm))
+      ctx.fail(anchor(), fmt::format("the motion reaches a coordinate of {:g} mm, beyond the "
+                                     "bound of ±{:g} mm",
+                                     far, kMaxCoordinateMm));
+    try {
+      sink(m);
+    } catch (const MotionRefused& e) {
+      ctx.fail(anchor(), e.what());
+    }
   };
 
   // convert, in rs274ngc's order of execution

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "abbe/gcode/motion_limits.hpp"
 #include "abbe/io/units.hpp"
 #include "abbe/path/arc_span.hpp"
 #include "abbe/path/line_span.hpp"
@@ -34,9 +35,9 @@ Fragmenter::Fragmenter(FragmentOptions options) : options_(options) {
 std::size_t Fragmenter::segments(double length) const {
   const double q = length / options_.step;
   if (!(q <= kMaxSegments))
-    throw std::invalid_argument("motion of " + std::to_string(length) +
-                                " mm needs too many points at step " +
-                                std::to_string(options_.step) + " mm");
+    throw gcode::MotionRefused("the motion of " + std::to_string(length) +
+                               " mm needs more than 1e9 points at step " +
+                               std::to_string(options_.step) + " mm (a larger --step takes it)");
   return std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(q)));
 }
 

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "abbe/compensate/program_compensator.hpp"
+#include "abbe/compensate/provenance.hpp"
 #include "abbe/io/atomic_file.hpp"
 #include "abbe/io/input_error.hpp"
 #include "abbe/machine/machine.hpp"
@@ -19,6 +20,7 @@
 #include "abbe/pipeline/interpreter_setup.hpp"
 #include "dialect_option.hpp"
 #include "command.hpp"
+#include "setup_options.hpp"
 #include "model_option.hpp"
 #include "progress.hpp"
 
@@ -33,6 +35,7 @@ struct CompensateCliOptions {
   bool in_place = false;
   bool allow_unconverged = false;
   gcode::DialectOptions dialect;
+  SetupOptions setup;
 };
 
 bool same_file(const std::string& a, const std::string& b) {
@@ -58,6 +61,10 @@ int run_compensate(CompensateCliOptions o, const GlobalOptions& g) {
   const model::ErrorModel model = make_model(o.m, machine);
   gcode::InterpreterConfig config = pipeline::interpreter_config(machine);
   config.dialect = o.dialect;
+  apply_setup_options(o.setup, config);
+  o.c.travel = machine.spec().travel;
+  o.c.provenance = compensate::make_provenance(
+      ABBE_VERSION, machine, config, o.m.model, o.m.extend, o.m.extend_time, o.c);
 
   std::ifstream in(o.input, std::ios::binary);
   if (!in)
@@ -81,6 +88,8 @@ int run_compensate(CompensateCliOptions o, const GlobalOptions& g) {
   if (s.arcs_split_turns)
     text += fmt::format("  {} multi-turn arcs split into pieces (P word removed)\n",
                         s.arcs_split_turns);
+  if (!s.travel_text.empty())
+    text += fmt::format("  warning: {} (--allow-outside-travel)\n", s.travel_text);
   if (s.uncompensated_blocks)
     text += fmt::format("  {} canned-cycle blocks left uncompensated\n", s.uncompensated_blocks);
   for (const auto& w : s.warnings) text += "  warning: " + w + "\n";
@@ -109,6 +118,7 @@ const CommandRegistrar registrar(
       sub.add_option("input", o->input, "NC program")->required();
       sub.add_option("-o,--output", o->output, "Output program (written atomically), - for stdout");
       add_dialect_options(sub, o->dialect);
+      add_setup_options(sub, o->setup);
       add_model_options(sub, o->m,
                         "Compensate the extended model: add the effects of an overlay written by "
                         "`abbe diagnose --overlay`");
@@ -124,6 +134,9 @@ const CommandRegistrar registrar(
                      "never fewer than the number had)")
           ->check(CLI::Range(0, 9));
       sub.add_flag("--renumber", o->c.renumber, "Give inserted pieces N numbers");
+      sub.add_flag("--allow-outside-travel", o->c.allow_outside_travel,
+                   "Compensate points outside the machine's travel (counted) instead of refusing "
+                   "the program");
       sub.add_flag("--in-place", o->in_place, "Replace the input (atomically)");
       sub.add_flag("--allow-unconverged", o->allow_unconverged,
                    "Write the output even if some points did not converge");
