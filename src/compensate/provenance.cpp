@@ -46,7 +46,7 @@ std::vector<FileFingerprint> machine_fingerprints(const machine::Machine& machin
 std::vector<std::string> setup_lines(const gcode::InterpreterConfig& config) {
   std::vector<std::string> out;
   static const char* kCodes[6] = {"G54", "G55", "G56", "G57", "G58", "G59"};
-  std::string offsets = "work offsets (machine coordinates, mm):";
+  std::string offsets = "work offsets in machine coordinates, mm:";
   for (std::size_t i = 0; i < 6; ++i) {
     const auto& v = config.work_offsets[i];
     offsets += fmt::format(" {} X{} Y{} Z{}", kCodes[i], mm(v.x()), mm(v.y()), mm(v.z()));
@@ -59,11 +59,11 @@ std::vector<std::string> setup_lines(const gcode::InterpreterConfig& config) {
   }
   out.push_back(offsets);
   std::string tools =
-      fmt::format("tool lengths (mm): without G43 {}", mm(config.default_tool_length));
+      fmt::format("tool lengths, mm: without G43 {}", mm(config.default_tool_length));
   for (const auto& [h, l] : config.tool_lengths) tools += fmt::format(", H{} {}", h, mm(l));
   out.push_back(tools);
   const auto& s = config.initial_position;
-  out.push_back(fmt::format("start: tool tip at X{} Y{} Z{} mm (machine coordinates)", mm(s.x()),
+  out.push_back(fmt::format("start: tool tip at X{} Y{} Z{} mm in machine coordinates", mm(s.x()),
                             mm(s.y()), mm(s.z())));
   return out;
 }
