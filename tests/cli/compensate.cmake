@@ -68,7 +68,7 @@ run(1 ${ABBE} verify ${SRC}/nc-samples/thesis-toolpath-1.ngc
     --against ${SRC}/nc-samples/thesis-toolpath-1.ngc --machine ${MACHINE} --check)
 
 # A program the front end refuses: the same message, exit 1, no output.
-file(WRITE ${WORK}/bad.nc "G21 G90\nG1 X10 F100\nG2 X20 Y5\n")
+file(WRITE ${WORK}/bad.nc "G21 G90\nG1 X-10 Y-10 Z-10 F100\nG2 X-20 Y-5\n")
 run(1 ${ABBE} interpret ${WORK}/bad.nc)
 set(front "${OUT}")
 run(1 ${ABBE} compensate ${WORK}/bad.nc --machine ${MACHINE} -o ${WORK}/bad-out.nc)
