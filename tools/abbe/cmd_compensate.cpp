@@ -88,6 +88,10 @@ int run_compensate(CompensateCliOptions o, const GlobalOptions& g) {
   if (s.arcs_split_turns)
     text += fmt::format("  {} multi-turn arcs split into pieces (P word removed)\n",
                         s.arcs_split_turns);
+  if (s.lines)
+    text += fmt::format("  {:.1f} inserted moves per 1000 lines\n",
+                        1000.0 * static_cast<double>(s.pieces_inserted) /
+                            static_cast<double>(s.lines));
   if (!s.travel_text.empty())
     text += fmt::format("  warning: {} (--allow-outside-travel)\n", s.travel_text);
   if (s.uncompensated_blocks)
