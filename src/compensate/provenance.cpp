@@ -21,7 +21,8 @@ std::string comment_safe(std::string s) {
 }
 
 std::string trim(std::string_view s) {
-  while (!s.empty() && (s.back() == '\r' || s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
+  while (!s.empty() && (s.back() == '\r' || s.back() == ' ' || s.back() == '\t'))
+    s.remove_suffix(1);
   while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
   return std::string(s);
 }
@@ -95,11 +96,11 @@ std::string format_provenance(const Provenance& p, std::string_view eol) {
   line(fmt::format("(abbe model {})", comment_safe(p.model)));
   if (!p.overlay_time_s.empty())
     line(fmt::format("(abbe overlay-time {} s)", comment_safe(p.overlay_time_s)));
-  line(fmt::format("(abbe tol {} um step {} mm min-segment {} mm)", p.tol_um, p.step_mm,
-                   p.min_segment_mm));
+  line(fmt::format("(abbe tol {} um step {} mm)", p.tol_um, p.step_mm));
   for (const auto& s : p.setup) line(fmt::format("(abbe setup {})", comment_safe(s)));
-  line("(abbe setup valid only for these offsets, tool lengths and start point: check them at "
-       "the machine)");
+  line(
+      "(abbe setup valid only for these offsets, tool lengths and start point: check them at "
+      "the machine)");
   line(fmt::format("(abbe date {})", comment_safe(p.date)));
   return out;
 }
@@ -119,7 +120,6 @@ Provenance make_provenance(const std::string& version, const machine::Machine& m
   }
   p.tol_um = options.tol_um;
   p.step_mm = options.step;
-  p.min_segment_mm = options.min_segment_mm;
   p.setup = setup_lines(config);
   p.date = utc_date();
   return p;
@@ -143,8 +143,8 @@ std::optional<Provenance> read_provenance(std::istream& in) {
         const auto by = l.find(" by abbe ");
         if (by != std::string::npos) {
           const auto colon = l.find(':', by);
-          p->version = l.substr(by + 9, colon == std::string::npos ? std::string::npos
-                                                                    : colon - by - 9);
+          p->version =
+              l.substr(by + 9, colon == std::string::npos ? std::string::npos : colon - by - 9);
         }
         continue;
       }
@@ -173,8 +173,8 @@ std::optional<Provenance> read_provenance(std::istream& in) {
       std::getline(words >> std::ws, s);
       p->setup.push_back(s);
     } else if (key == "tol") {
-      std::string unit, k2, k3;
-      words >> p->tol_um >> unit >> k2 >> p->step_mm >> unit >> k3 >> p->min_segment_mm;
+      std::string unit, k2;
+      words >> p->tol_um >> unit >> k2 >> p->step_mm;
     }
   }
   return p;

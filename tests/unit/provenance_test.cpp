@@ -18,8 +18,7 @@ namespace {
 TEST(Sha256, StandardVectors) {
   // FIPS 180-4 / NIST CSRC example values: "", "abc", the two-block message
   // (the same digests as coreutils sha256sum).
-  EXPECT_EQ(io::sha256_hex(""),
-            "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
+  EXPECT_EQ(io::sha256_hex(""), "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
   EXPECT_EQ(io::sha256_hex("abc"),
             "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
   EXPECT_EQ(io::sha256_hex("abcdbcdecdefdefgefghfghighijhijkijkljklmklmnlmnomnopnopq"),
@@ -44,7 +43,6 @@ compensate::Provenance sample() {
   p.model = "ae-arm";
   p.tol_um = 1.0;
   p.step_mm = 5.0;
-  p.min_segment_mm = 0.01;
   gcode::InterpreterConfig config;
   config.default_tool_length = 130.0;
   config.tool_lengths[1] = 200.0;
@@ -71,7 +69,6 @@ TEST(Provenance, WrittenAndReadBack) {
   EXPECT_EQ(r->date, "2026-01-02T03:04:05Z");
   EXPECT_DOUBLE_EQ(r->tol_um, 1.0);
   EXPECT_DOUBLE_EQ(r->step_mm, 5.0);
-  EXPECT_DOUBLE_EQ(r->min_segment_mm, 0.01);
   EXPECT_NO_THROW(compensate::check_machine_files(*r, "c.ngc", p.files));
   EXPECT_NO_THROW(compensate::check_setup(*r, "c.ngc", p.setup));
   auto other = p.files;
@@ -104,8 +101,8 @@ TEST(Provenance, PathsCannotEndTheComment) {
 }
 
 TEST(TravelCheck, CountsPointsPerAxisWithTheToolLength) {
-  machine::TravelCheck t({machine::Travel{-990, 0}, machine::Travel{-500, 0},
-                          machine::Travel{-460, 0}});
+  machine::TravelCheck t(
+      {machine::Travel{-990, 0}, machine::Travel{-500, 0}, machine::Travel{-460, 0}});
   // Tip at Z −130 with L = 130: spindle at 0, inside.
   EXPECT_TRUE(t.add(Eigen::Vector3d(-10, -10, -130), 130.0, 1));
   EXPECT_FALSE(t.add(Eigen::Vector3d(-2000, -10, -130), 130.0, 2));
@@ -117,8 +114,9 @@ TEST(TravelCheck, CountsPointsPerAxisWithTheToolLength) {
   EXPECT_EQ(t.outside_per_axis()[1], 1u);
   EXPECT_EQ(t.outside_per_axis()[2], 2u);
   EXPECT_EQ(t.first_lines(), (std::vector<std::size_t>{2, 7}));
-  EXPECT_EQ(t.text(),
-            "3 of 4 points outside the travel (points per axis: X 2, Y 1, Z 2), first on lines 2, 7");
+  EXPECT_EQ(
+      t.text(),
+      "3 of 4 points outside the travel (points per axis: X 2, Y 1, Z 2), first on lines 2, 7");
   EXPECT_EQ(t.describe(Eigen::Vector3d(-10, -10, -130), 130.0), "");
 }
 

@@ -18,11 +18,11 @@
 #include "abbe/machine/machine.hpp"
 #include "abbe/model/error_model.hpp"
 #include "abbe/pipeline/interpreter_setup.hpp"
-#include "dialect_option.hpp"
 #include "command.hpp"
-#include "setup_options.hpp"
+#include "dialect_option.hpp"
 #include "model_option.hpp"
 #include "progress.hpp"
+#include "setup_options.hpp"
 
 namespace abbe::cli {
 namespace {
@@ -63,8 +63,8 @@ int run_compensate(CompensateCliOptions o, const GlobalOptions& g) {
   config.dialect = o.dialect;
   apply_setup_options(o.setup, config);
   o.c.travel = machine.spec().travel;
-  o.c.provenance = compensate::make_provenance(
-      ABBE_VERSION, machine, config, o.m.model, o.m.extend, o.m.extend_time, o.c);
+  o.c.provenance = compensate::make_provenance(ABBE_VERSION, machine, config, o.m.model, o.m.extend,
+                                               o.m.extend_time, o.c);
 
   std::ifstream in(o.input, std::ios::binary);
   if (!in)
@@ -89,9 +89,9 @@ int run_compensate(CompensateCliOptions o, const GlobalOptions& g) {
     text += fmt::format("  {} multi-turn arcs split into pieces (P word removed)\n",
                         s.arcs_split_turns);
   if (s.lines)
-    text += fmt::format("  {:.1f} inserted moves per 1000 lines\n",
-                        1000.0 * static_cast<double>(s.pieces_inserted) /
-                            static_cast<double>(s.lines));
+    text +=
+        fmt::format("  {:.1f} inserted moves per 1000 lines\n",
+                    1000.0 * static_cast<double>(s.pieces_inserted) / static_cast<double>(s.lines));
   if (!s.travel_text.empty())
     text += fmt::format("  warning: {} (--allow-outside-travel)\n", s.travel_text);
   if (s.uncompensated_blocks)

@@ -6,11 +6,11 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
-#include <vector>
 #include <iostream>
 #include <memory>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "abbe/compensate/path_verifier.hpp"
 #include "abbe/compensate/provenance.hpp"
@@ -18,11 +18,11 @@
 #include "abbe/machine/machine.hpp"
 #include "abbe/model/error_model.hpp"
 #include "abbe/pipeline/interpreter_setup.hpp"
-#include "dialect_option.hpp"
 #include "command.hpp"
-#include "setup_options.hpp"
+#include "dialect_option.hpp"
 #include "model_option.hpp"
 #include "progress.hpp"
+#include "setup_options.hpp"
 
 namespace abbe::cli {
 namespace {
@@ -49,8 +49,7 @@ std::unique_ptr<std::istream> open_input(const std::string& path) {
   if (std::filesystem::is_regular_file(path, ec)) return file;
   std::ostringstream text;
   text << file->rdbuf();
-  if (file->bad())
-    throw InputError({path, 0, 0, "", ""}, "cannot read the input to the end");
+  if (file->bad()) throw InputError({path, 0, 0, "", ""}, "cannot read the input to the end");
   return std::make_unique<std::istringstream>(text.str());
 }
 
@@ -72,8 +71,8 @@ int run_verify(const VerifyCliOptions& o, const GlobalOptions& g) {
       current.push_back(compensate::file_fingerprint("overlay-file", o.m.extend));
     compensate::check_machine_files(*p, o.input, current);
     compensate::check_setup(*p, o.input, compensate::setup_lines(config));
-    origin = fmt::format("  compensated by abbe {} on {} (model {})\n", p->version, p->date,
-                         p->model);
+    origin =
+        fmt::format("  compensated by abbe {} on {} (model {})\n", p->version, p->date, p->model);
   } else {
     origin = "  no provenance block: not written by abbe compensate, machine files not checked\n";
   }

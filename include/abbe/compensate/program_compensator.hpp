@@ -28,8 +28,6 @@ struct CompensateOptions {
   double tol_um = 1.0;    // allowed predicted deviation from the nominal path
   double step = 5.0;      // fragment step, mm
   int decimals = -1;      // max decimals of a corrected number; −1: 4 (mm) / 5 (inch)
-  // No inserted move shorter than this (mm) where a longer piece stays within tol.
-  double min_segment_mm = 0.01;
   // The machine's travel: a nominal point whose axis positions lie outside
   // is refused (InputError at its line) unless allow_outside_travel; then
   // it is counted. Empty: not checked.

@@ -30,9 +30,9 @@ struct FileFingerprint {
 struct Provenance {
   std::string version;  // abbe's
   std::vector<FileFingerprint> files;
-  std::string model;            // e.g. "ae-arm"
-  std::string overlay_time_s;   // campaign time of the overlay's terms; empty: no overlay
-  double tol_um = 0.0, step_mm = 0.0, min_segment_mm = 0.0;
+  std::string model;           // e.g. "ae-arm"
+  std::string overlay_time_s;  // campaign time of the overlay's terms; empty: no overlay
+  double tol_um = 0.0, step_mm = 0.0;
   std::vector<std::string> setup;  // one line each: offsets, tools, start point
   std::string date;                // UTC, ISO 8601
   std::size_t line = 0;            // read_provenance: line of the marker

@@ -21,7 +21,7 @@ class TravelCheck {
   // Returns true if the point is inside on every axis.
   bool add(const Eigen::Vector3d& tip, double tool_length, std::size_t line);
 
-  std::size_t points() const { return points_; }  // points checked
+  std::size_t points() const { return points_; }    // points checked
   std::size_t outside() const { return outside_; }  // points outside on any axis
   const std::array<std::size_t, 3>& outside_per_axis() const { return per_axis_; }
   const std::vector<std::size_t>& first_lines() const { return lines_; }  // first 5 distinct
