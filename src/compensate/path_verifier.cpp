@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "abbe/compensate/motion_path.hpp"
+#include "abbe/gcode/motion_limits.hpp"
 #include "abbe/gcode/parser.hpp"
 #include "abbe/io/input_error.hpp"
 #include "abbe/path/fragmenter.hpp"
@@ -29,14 +30,15 @@ class MotionStream {
       : reader_(in, file),
         interp_(config, file),
         fanuc_(config.dialect.dialect == gcode::Dialect::fanuc) {}
+  const std::string& file() const { return reader_.file(); }
   // `skip`: a motion of a canned cycle that is not a hole bottom.
   bool next(gcode::Motion& m, bool& skip) {
     while (head_ == skip_.size()) {
       if (interp_.program_ended() || !reader_.next(block_)) return false;
       if (fanuc_)
         if (const gcode::Word* w = gcode::subprogram_flow_word(block_))
-          throw InputError({reader_.file(), block_.line, static_cast<std::size_t>(w->begin) + 1,
-                            "", reader_.raw_line()},
+          throw InputError({reader_.file(), block_.line, static_cast<std::size_t>(w->begin) + 1, "",
+                            reader_.raw_line()},
                            "subprogram calls (M98/M99) are not followed by verify, as compensate "
                            "does not compensate them");
       block_motions_.clear();
@@ -87,6 +89,17 @@ class MotionStream {
   std::size_t head_ = 0;
 };
 
+// Runs `f`, which fragments motion `m` of stream `s`; a motion the
+// fragmenter refuses is bad input at its line.
+template <class F>
+void refusing(const MotionStream& s, const gcode::Motion& m, const F& f) {
+  try {
+    f();
+  } catch (const gcode::MotionRefused& e) {
+    throw InputError({s.file(), m.line, 0, "", ""}, e.what());
+  }
+}
+
 bool is_feed(const gcode::Motion& m) {
   return m.kind == gcode::MotionKind::linear || m.kind == gcode::MotionKind::arc;
 }
@@ -114,6 +127,7 @@ struct PassStats {
   double max = 0.0, sum2 = 0.0;
   std::size_t max_line = 0;
   std::size_t over = 0;
+  std::size_t unmatched = 0;
 };
 
 // Streams the feed points of `a`; each is matched to the nearest (by
@@ -141,9 +155,11 @@ PassStats run_pass(MotionStream& a, MotionStream& b, double step, std::size_t wi
       }
       Dir dir{0, 0, 0};
       bool any = false;
-      fb.add(m, [&](const path::PathPoint& pp) {
-        dir = pp.dir;
-        any = true;
+      refusing(b, m, [&] {
+        fb.add(m, [&](const path::PathPoint& pp) {
+          dir = pp.dir;
+          any = true;
+        });
       });
       if (is_feed(m) && any && !skip_b) {
         curves.push_back({m, MotionPath(m), dir, bounds(m)});
@@ -158,50 +174,62 @@ PassStats run_pass(MotionStream& a, MotionStream& b, double step, std::size_t wi
     const bool cycle = m.sub > 0 || skip;
     std::optional<MotionPath> arc;
     if (arc_dirs && feed && m.kind == gcode::MotionKind::arc) arc.emplace(m);
-    fa.add(m, [&](const path::PathPoint& point) {
-      if (!feed || (point.p - m.start).norm() == 0.0) return;
-      if (cycle && point.p != m.end) return;  // a hole: its bottom only
-      path::PathPoint pp = point;
-      if (arc)
-        pp.dir = arc->directions(pp.dir, std::clamp(arc->closest(pp.p), arc->near_lo(kNearReversal),
-                                                    arc->near_hi(kNearReversal)));
-      while (!b_done && curves.size() < cursor + window + 1) pull();
-      if (curves.empty()) return;
-      // Candidates: the curves within `slack` of the best match (a point at
-      // a corner or where the path passes itself is near several). The
-      // cursor moves to the first of them in path order from the current
-      // curve; the point is measured to the nearest of them.
-      const std::size_t lo = cursor > 0 ? cursor - 1 : 0;
-      const std::size_t hi = std::min(curves.size(), cursor + window + 1);
-      d.assign(hi - lo, std::numeric_limits<double>::infinity());
-      double best = std::numeric_limits<double>::infinity();
-      // The box distance bounds the match from below (less the largest
-      // correction, 0.5 mm, for the predicted metric): far curves are skipped.
-      for (std::size_t i = lo; i < hi; ++i) {
-        const double lb = curves[i].box.exteriorDistance(pp.p) - 0.5;
-        if (lb > best + slack) continue;
-        d[i - lo] = match(curves[i], pp);
-        best = std::min(best, d[i - lo]);
-      }
-      std::optional<std::size_t> next;
-      double um = std::numeric_limits<double>::infinity();
-      for (std::size_t i = lo; i < hi; ++i) {
-        if (d[i - lo] > best + slack) continue;
-        if (i >= cursor && !next) next = i;
-        um = std::min(um, 1e3 * measure(curves[i], pp));
-      }
-      if (next && *next > cursor) cursor = *next;
-      while (cursor > 1) {
-        curves.pop_front();
-        --cursor;
-      }
-      ++st.n;
-      st.sum2 += um * um;
-      if (um > tol_um) ++st.over;
-      if (um > st.max) {
-        st.max = um;
-        st.max_line = pp.line;
-      }
+    refusing(a, m, [&] {
+      fa.add(m, [&](const path::PathPoint& point) {
+        if (!feed || (point.p - m.start).norm() == 0.0) return;
+        if (cycle && point.p != m.end) return;  // a hole: its bottom only
+        path::PathPoint pp = point;
+        if (arc)
+          pp.dir =
+              arc->directions(pp.dir, std::clamp(arc->closest(pp.p), arc->near_lo(kNearReversal),
+                                                 arc->near_hi(kNearReversal)));
+        while (!b_done && curves.size() < cursor + window + 1) pull();
+        if (curves.empty()) {  // nothing to match: a failure, not a pass
+          ++st.n;
+          ++st.unmatched;
+          ++st.over;
+          if (st.max < std::numeric_limits<double>::infinity()) {
+            st.max = std::numeric_limits<double>::infinity();
+            st.max_line = pp.line;
+          }
+          return;
+        }
+        // Candidates: the curves within `slack` of the best match (a point at
+        // a corner or where the path passes itself is near several). The
+        // cursor moves to the first of them in path order from the current
+        // curve; the point is measured to the nearest of them.
+        const std::size_t lo = cursor > 0 ? cursor - 1 : 0;
+        const std::size_t hi = std::min(curves.size(), cursor + window + 1);
+        d.assign(hi - lo, std::numeric_limits<double>::infinity());
+        double best = std::numeric_limits<double>::infinity();
+        // The box distance bounds the match from below (less the largest
+        // correction, 0.5 mm, for the predicted metric): far curves are skipped.
+        for (std::size_t i = lo; i < hi; ++i) {
+          const double lb = curves[i].box.exteriorDistance(pp.p) - 0.5;
+          if (lb > best + slack) continue;
+          d[i - lo] = match(curves[i], pp);
+          best = std::min(best, d[i - lo]);
+        }
+        std::optional<std::size_t> next;
+        double um = std::numeric_limits<double>::infinity();
+        for (std::size_t i = lo; i < hi; ++i) {
+          if (d[i - lo] > best + slack) continue;
+          if (i >= cursor && !next) next = i;
+          um = std::min(um, 1e3 * measure(curves[i], pp));
+        }
+        if (next && *next > cursor) cursor = *next;
+        while (cursor > 1) {
+          curves.pop_front();
+          --cursor;
+        }
+        ++st.n;
+        st.sum2 += um * um;
+        if (um > tol_um) ++st.over;
+        if (um > st.max) {
+          st.max = um;
+          st.max_line = pp.line;
+        }
+      });
     });
   }
   return st;
@@ -262,9 +290,11 @@ VerifyStats verify_program(std::istream& compensated, const std::string& compens
                                   false, match, measure);
     out.points = st.n;
     out.max_um = st.max;
-    out.rms_um = st.n ? std::sqrt(st.sum2 / static_cast<double>(st.n)) : 0.0;
+    out.rms_um =
+        st.n > st.unmatched ? std::sqrt(st.sum2 / static_cast<double>(st.n - st.unmatched)) : 0.0;
     out.max_line = st.max_line;
     out.over_tol = st.over;
+    out.unmatched = st.unmatched;
   }
   compensated.clear();
   compensated.seekg(0);
@@ -289,12 +319,33 @@ VerifyStats verify_program(std::istream& compensated, const std::string& compens
                                   true, predicted, predicted);
     out.backward_points = st.n;
     out.backward_max_um = st.max;
-    out.backward_rms_um = st.n ? std::sqrt(st.sum2 / static_cast<double>(st.n)) : 0.0;
+    out.backward_rms_um =
+        st.n > st.unmatched ? std::sqrt(st.sum2 / static_cast<double>(st.n - st.unmatched)) : 0.0;
     out.backward_max_line = st.max_line;
     out.backward_over_tol = st.over;
+    out.backward_unmatched = st.unmatched;
   }
   out.out_of_range_lookups = data.out_of_range_lookups;
   return out;
+}
+
+std::vector<std::string> verify_failures(const VerifyStats& s, double tol_um) {
+  std::vector<std::string> why;
+  if (s.points == 0) why.push_back("the compensated program has no feed points to check");
+  if (s.backward_points == 0)
+    why.push_back("the original program has no feed points to check against");
+  if (s.unmatched)
+    why.push_back(std::to_string(s.unmatched) +
+                  " points of the compensated program have no feed motion of the original to "
+                  "match");
+  if (s.backward_unmatched)
+    why.push_back(std::to_string(s.backward_unmatched) +
+                  " points of the original have no feed motion of the compensated program to "
+                  "match");
+  const double max = std::max(s.max_um, s.backward_max_um);
+  if (!(max <= tol_um) && !s.unmatched && !s.backward_unmatched)
+    why.push_back("the max distance is beyond tol");
+  return why;
 }
 
 }  // namespace abbe::compensate

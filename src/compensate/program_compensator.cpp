@@ -9,8 +9,11 @@
 
 #include "abbe/compensate/motion_path.hpp"
 #include "abbe/compensate/number_format.hpp"
+#include "abbe/compensate/provenance.hpp"
+#include "abbe/gcode/motion_limits.hpp"
 #include "abbe/gcode/parser.hpp"
 #include "abbe/io/input_error.hpp"
+#include "abbe/machine/travel_check.hpp"
 #include "abbe/path/fragmenter.hpp"
 #include "abbe/pipeline/program_path.hpp"
 
@@ -155,6 +158,7 @@ class Compensator {
     // Fanuc reads "X5" as 5 least increments (0.005 mm): every number
     // abbe writes there carries a decimal point ("X5.").
     fanuc_ = config.dialect.dialect == gcode::Dialect::fanuc;
+    if (o.travel) travel_.emplace(*o.travel);
     plain_.point_always = fanuc_;
   }
 
@@ -162,11 +166,29 @@ class Compensator {
     gcode::BlockReader reader(in, file_);
     gcode::Block block;
     bool first = true;
+    // The provenance block goes first, after a "%" line (and, in a Fanuc
+    // program, after its O number line).
+    bool header_pending = o_.provenance.has_value();
     while (reader.next(block)) {
       if (first && reader.byte_order_mark()) put("\xEF\xBB\xBF");
       first = false;
       ++s_.lines;
       ending_ = reader.line_ending();
+      const std::string_view raw_line = reader.line_text();
+      if (const auto at = raw_line.find(kProvenanceMarker); at != std::string::npos)
+        throw InputError({file_, block.line, at + 1, "", std::string(raw_line)},
+                         "this program was already compensated by abbe (it carries the "
+                         "provenance block): compensating it again would double the "
+                         "correction; compensate the original program");
+      if (header_pending) {
+        const std::string_view t = trimmed(raw_line);
+        const bool before_header =
+            s_.lines <= 2 && (t == "%" || (fanuc_ && !t.empty() && (t[0] == 'O' || t[0] == 'o')));
+        if (!before_header) {
+          put(format_provenance(*o_.provenance, *ending_ ? ending_ : "\n"));
+          header_pending = false;
+        }
+      }
       if (interp_.program_ended()) {
         put(reader.raw_line());
         put(ending_);
@@ -175,8 +197,20 @@ class Compensator {
       process(block, reader.raw_line());
       if (buf_.size() > (std::size_t{1} << 20)) flush();
     }
+    if (header_pending) put(format_provenance(*o_.provenance, *ending_ ? ending_ : "\n"));
     flush();
+    if (travel_) {
+      s_.outside_travel_points = travel_->outside();
+      s_.travel_text = travel_->text();
+    }
     return s_;
+  }
+
+  static std::string_view trimmed(std::string_view s) {
+    while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
+      s.remove_suffix(1);
+    while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+    return s;
   }
 
  private:
@@ -201,6 +235,15 @@ class Compensator {
   }
 
   Vector3d solve(const path::PathPoint& pp) {
+    if (travel_ && !travel_->add(pp.p, pp.tool_length, pp.line)) {
+      if (!o_.allow_outside_travel)
+        throw InputError({file_, pp.line, 0, "", ""},
+                         fmt::format("the point ({:.4f}, {:.4f}, {:.4f}) mm is outside the "
+                                     "machine's travel: {} (--allow-outside-travel compensates "
+                                     "it anyway)",
+                                     pp.p.x(), pp.p.y(), pp.p.z(),
+                                     travel_->describe(pp.p, pp.tool_length)));
+    }
     Solution sol;
     try {
       sol = solver_.solve(pipeline::eval_point(pp), data_);
@@ -242,6 +285,11 @@ class Compensator {
       put(ending_);
       return;
     }
+    // An axis word in absolute coordinates (G90, or G53's machine
+    // coordinates) sets the axis' position: from here on abbe may write it.
+    if (!interp_.incremental() || has_g(block, 53))
+      for (std::size_t a = 0; a < 3; ++a)
+        if (find_word(block, kAxis[a])) known_[a] = true;
     unit_ = interp_.inch() ? 25.4 : 1.0;
     decimals_ = o_.decimals >= 0 ? o_.decimals : (interp_.inch() ? 5 : 4);
     incremental_ = interp_.incremental();
@@ -251,11 +299,16 @@ class Compensator {
     points_.assign(motions_.size(), {});
     for (std::size_t i = 0; i < motions_.size(); ++i) {
       const Vector3d start = motions_[i].start;
-      fragmenter_.add(motions_[i], [&](const path::PathPoint& pp) {
-        last_point_dir_ = pp.dir;
-        if (points_[i].empty() && pp.p == start && (pp.p - motions_[i].end).norm() > 0.0) return;
-        points_[i].push_back(pp);
-      });
+      try {
+        fragmenter_.add(motions_[i], [&](const path::PathPoint& pp) {
+          last_point_dir_ = pp.dir;
+          if (points_[i].empty() && pp.p == start && (pp.p - motions_[i].end).norm() > 0.0)
+            return;
+          points_[i].push_back(pp);
+        });
+      } catch (const gcode::MotionRefused& e) {
+        throw InputError({file_, block.line, anchor_column(block), "", raw}, e.what());
+      }
     }
     cmd_ = prog(motions_.front().start) + delta_ / unit_;
     BlockEditor editor(block, raw, decimals_, plain_);
@@ -287,11 +340,20 @@ class Compensator {
       ++s_.pieces_inserted;
     }
     put(editor.changed() ? editor.apply() : raw);
-    long n = block.n ? static_cast<long>(block.n->value) : 0;
+    // N numbers of the pieces: the block's + 1, 2, ...; an N beyond what a
+    // double holds exactly (2^53) cannot be counted on.
+    constexpr double kMaxN = 9007199254740992.0;
+    if (o_.renumber && block.n && !pieces.empty() &&
+        !(block.n->value + static_cast<double>(pieces.size()) < kMaxN))
+      throw InputError({file_, block.line, static_cast<std::size_t>(block.n->begin) + 1, "", raw},
+                       fmt::format("N{:.0f} is too large to number the {} inserted pieces after it "
+                                   "(--renumber counts up to 2^53)",
+                                   block.n->value, pieces.size()));
+    const std::int64_t n = block.n ? static_cast<std::int64_t>(block.n->value) : 0;
     for (std::size_t k = 0; k < pieces.size(); ++k) {
       put(between);
       if (o_.renumber && block.n)
-        put(fmt::format("N{}{}", n + static_cast<long>(k) + 1, editor.spaced() ? " " : ""));
+        put(fmt::format("N{}{}", n + static_cast<std::int64_t>(k) + 1, editor.spaced() ? " " : ""));
       put(pieces[k]);
     }
     put(ending_);
@@ -299,6 +361,14 @@ class Compensator {
     delta_ = (cmd_ - pos_after_) * unit_;
     if (!feed_block) last_dir_.reset();
     if (find_word(block, 'F')) feed_set_ = true;
+  }
+
+  // Column of the first axis, centre or radius word (1-based; 0: none).
+  static std::size_t anchor_column(const gcode::Block& b) {
+    for (const auto& w : b.words)
+      if (std::string_view("XYZIJKR").find(w.letter) != std::string_view::npos)
+        return static_cast<std::size_t>(w.begin) + 1;
+    return b.words.empty() ? 0 : static_cast<std::size_t>(b.words.front().begin) + 1;
   }
 
   // Program-frame coordinates (program units) of a tool-tip point of this block.
@@ -309,6 +379,9 @@ class Compensator {
   // absolute value an increment is taken from (G91).
   double set_abs(BlockEditor& ed, char letter, double target_abs, double reference,
                  double baseline_abs, bool incremental, bool may_insert) {
+    // No word for an axis whose position the program has not yet set.
+    const int axis = letter - 'X';
+    if (axis >= 0 && axis < 3 && !known_[static_cast<std::size_t>(axis)]) may_insert = false;
     if (!incremental) return ed.set(letter, target_abs, baseline_abs, may_insert);
     return reference + ed.set(letter, target_abs - reference, baseline_abs - reference, may_insert);
   }
@@ -699,6 +772,7 @@ class Compensator {
   bool append_axes(std::string& line, const Vector3d& target, bool spaced, int always) {
     bool any = false;
     for (int k = 0; k < 3; ++k) {
+      if (!known_[static_cast<std::size_t>(k)] && !(always & (1 << k))) continue;
       const double v =
           incremental_ ? round_to(target[k] - cmd_[k], decimals_) : round_to(target[k], decimals_);
       const bool write = incremental_ ? v != 0.0 : v != round_to(cmd_[k], decimals_);
@@ -754,6 +828,7 @@ class Compensator {
   }
 
   std::string file_;
+  std::optional<machine::TravelCheck> travel_;
   gcode::Interpreter interp_;
   path::Fragmenter fragmenter_;
   PointSolver solver_;
@@ -789,6 +864,10 @@ class Compensator {
   // where the cycle sequence began, which carries that point's correction
   // along the drill axis (mm); the depth word takes it out.
   bool in_cycle_ = false;
+  // Per axis: the program has set its position (an absolute axis word).
+  // Before that the start is the assumed machine home: abbe writes no word
+  // for the axis (docs/compensation.md, "Running it on a machine").
+  std::array<bool, 3> known_{false, false, false};
   double initial_level_delta_ = 0.0;
   Vector3d last_end_ = Vector3d::Zero();
 };

@@ -91,6 +91,7 @@ void convert_tool_length(ExecState& st, const BlockPlan& b) {
     if (const Word* hw = c.word('H')) {
       if (hw->value < 0 || !is_integer(hw->value))
         b.ctx.fail(hw, "H word must be a non-negative integer");
+      if (hw->value > 99999.0) b.ctx.fail(hw, "H word (tool number) is above 99999");
       h = static_cast<int>(std::lround(hw->value));
     }
     double length = 0.0;

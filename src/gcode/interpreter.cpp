@@ -7,6 +7,9 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <string_view>
+
+#include "abbe/gcode/motion_limits.hpp"
 
 #include "abbe/io/input_error.hpp"
 #include "fanuc_dialect.hpp"
@@ -230,6 +233,12 @@ void Interpreter::execute_evaluated(const Block& written, std::string_view raw_l
   detail::check_rotary_words(st, b);
 
   std::uint32_t sub = 0;
+  // The word a refused motion is reported at: the first axis, centre or radius word.
+  const auto anchor = [&]() -> const Word* {
+    for (const auto& w : block.words)
+      if (std::string_view("XYZIJKR").find(w.letter) != std::string_view::npos) return &w;
+    return block.words.empty() ? nullptr : &block.words.front();
+  };
   const detail::Emit emit = [&](Motion& m) {
     m.line = block.line;
     m.sub = sub++;
@@ -237,7 +246,17 @@ void Interpreter::execute_evaluated(const Block& written, std::string_view raw_l
                                                      : st.active_length_mm();
     m.spindle = st.spindle;
     m.tool = st.selected_tool;
-    sink(m);
+    const double far = std::max({m.start.cwiseAbs().maxCoeff(), m.end.cwiseAbs().maxCoeff(),
+                                 m.center.cwiseAbs().maxCoeff()});
+    if (!(far <= kMaxCoordinateMm))
+      ctx.fail(anchor(), fmt::format("the motion reaches a coordinate of {:g} mm, beyond the "
+                                     "bound of ±{:g} mm",
+                                     far, kMaxCoordinateMm));
+    try {
+      sink(m);
+    } catch (const MotionRefused& e) {
+      ctx.fail(anchor(), e.what());
+    }
   };
 
   // convert, in rs274ngc's order of execution

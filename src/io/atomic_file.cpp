@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "abbe/io/input_error.hpp"
+#include "abbe/io/temp_cleanup.hpp"
 
 namespace abbe::io {
 
@@ -54,6 +55,7 @@ AtomicOutputFile::AtomicOutputFile(std::string path) : path_(std::move(path)) {
     errno = saved;
     fail(path_, "cannot open the temporary output file");
   }
+  cleanup_slot_ = register_temp_file(temp_path_.c_str());
 }
 
 AtomicOutputFile::~AtomicOutputFile() {
@@ -65,6 +67,8 @@ void AtomicOutputFile::discard() noexcept {
   if (is_stdout_ && stream_) std::fflush(stream_);
   stream_ = nullptr;
   if (!temp_path_.empty()) ::unlink(temp_path_.c_str());
+  unregister_temp_file(cleanup_slot_);
+  cleanup_slot_ = -1;
 }
 
 void AtomicOutputFile::write(const char* data, std::size_t size) {
@@ -98,6 +102,8 @@ void AtomicOutputFile::commit() {
     errno = saved;
     fail(path_, "cannot rename the temporary file to the output");
   }
+  unregister_temp_file(cleanup_slot_);
+  cleanup_slot_ = -1;
   committed_ = true;
 }
 

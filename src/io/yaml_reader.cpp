@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 
 #include <cmath>
+#include <map>
 #include <sstream>
 
 #include "abbe/io/input_error.hpp"
@@ -20,10 +21,37 @@ YamlReader::YamlReader(std::string file, const std::string& text) : file_(std::m
 }
 
 YAML::Node YamlReader::load(const std::string& text) const {
+  YAML::Node root;
   try {
-    return YAML::Load(text);
+    root = YAML::Load(text);
   } catch (const YAML::ParserException& e) {
     fail(e.mark, "", fmt::format("YAML syntax error: {}", e.msg));
+  }
+  refuse_duplicate_keys(root, "");
+  return root;
+}
+
+// yaml-cpp keeps both entries of a repeated key; a lookup finds the first,
+// an iteration the last: either way one value is silently lost.
+void YamlReader::refuse_duplicate_keys(const YAML::Node& node, const std::string& field) const {
+  if (node.IsSequence()) {
+    std::size_t i = 0;
+    for (const auto& item : node) refuse_duplicate_keys(item, fmt::format("{}[{}]", field, i++));
+    return;
+  }
+  if (!node.IsMap()) return;
+  std::map<std::string, YAML::Mark> seen;
+  for (const auto& kv : node) {
+    if (kv.first.IsScalar()) {
+      const std::string key = kv.first.Scalar();
+      const auto [it, fresh] = seen.emplace(key, kv.first.Mark());
+      if (!fresh)
+        fail(kv.first, join(field, key),
+             fmt::format("duplicate key `{}` (first on line {})", key, it->second.line + 1));
+      refuse_duplicate_keys(kv.second, join(field, key));
+    } else {
+      refuse_duplicate_keys(kv.second, field);
+    }
   }
 }
 

@@ -45,6 +45,8 @@ class YamlReader {
   Eigen::Vector3d vec3(const YAML::Node& node, const std::string& field) const;
 
   static std::string join(const std::string& a, const std::string& b);
+  // A key repeated in a mapping: "duplicate key `k` (first on line n)" at the repeat.
+  void refuse_duplicate_keys(const YAML::Node& node, const std::string& field) const;
   const std::string& file() const { return file_; }
 
  private:

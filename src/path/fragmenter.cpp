@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "abbe/io/input_error.hpp"
+#include "abbe/gcode/motion_limits.hpp"
 #include "abbe/io/units.hpp"
 #include "abbe/path/arc_span.hpp"
 #include "abbe/path/line_span.hpp"
@@ -37,11 +37,10 @@ Fragmenter::Fragmenter(FragmentOptions options) : options_(options) {
 std::size_t Fragmenter::segments(double length, const gcode::Motion& motion) const {
   const double q = length / options_.step;
   if (!(q <= kMaxSegments))
-    throw InputError(
-        SourceLocation{options_.file, motion.line, 0, "", ""},
-        fmt::format("a {} of {:.6g} mm needs more than {:.0e} points at step {} mm "
-                    "(a typo in a coordinate?)",
-                    gcode::to_string(motion.kind), length, kMaxSegments, options_.step));
+    throw gcode::MotionRefused(
+        fmt::format("the {} motion of {:.6g} mm needs more than 1e9 points at step {} mm (a typo "
+                    "in a coordinate? a larger --step takes it)",
+                    gcode::to_string(motion.kind), length, options_.step));
   return std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(q)));
 }
 

@@ -1,5 +1,6 @@
 #include "abbe/pipeline/predict.hpp"
 
+#include "abbe/machine/travel_check.hpp"
 #include "abbe/pipeline/interpreter_setup.hpp"
 #include "abbe/pipeline/point_reader.hpp"
 
@@ -22,7 +23,9 @@ PredictionSummary predict(std::istream& in, const std::string& file,
                           const machine::Machine& machine, const PredictOptions& options,
                           const PredictionSink& sink) {
   ModelSet models(machine, options.models, options.extension);
+  machine::TravelCheck travel(machine.spec().travel);
   auto evaluate = [&](const model::EvalPoint& p, std::size_t line) {
+    travel.add(p.p, p.tool_length, line);
     models.evaluate(p, file, line);
     if (sink) sink(p, line, models);
   };
@@ -32,10 +35,14 @@ PredictionSummary predict(std::istream& in, const std::string& file,
     std::size_t line = 0;
     while (reader.next(p, line)) evaluate(p, line);
   } else {
-    run_path(in, file, interpreter_config(machine), options.path,
+    run_path(in, file, options.config ? *options.config : interpreter_config(machine), options.path,
              [&](const path::PathPoint& pp) { evaluate(eval_point(pp), pp.line); });
   }
-  return summarize(models, machine, file);
+  PredictionSummary summary = summarize(models, machine, file);
+  summary.outside_travel_points = travel.outside();
+  summary.outside_travel_per_axis = travel.outside_per_axis();
+  summary.travel_text = travel.text();
+  return summary;
 }
 
 }  // namespace abbe::pipeline

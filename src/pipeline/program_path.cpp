@@ -11,7 +11,6 @@ PathRun run_path(std::istream& in, const std::string& file,
   gcode::InterpreterConfig config = machine_config;
   config.dialect = options.dialect;
   path::FragmentOptions fragment = options.fragment;
-  fragment.file = file;
   path::Fragmenter fragmenter(fragment);
   PathRun run;
   if (!(options.min_reversal_mm > 0.0)) {

@@ -6,7 +6,7 @@
 #include "abbe/pipeline/interpreter_setup.hpp"
 #include "abbe/pipeline/model_set.hpp"
 #include "abbe/pipeline/program_path.hpp"
-#include "abbe/report/sha256.hpp"
+#include "abbe/io/sha256.hpp"
 
 namespace abbe::report {
 namespace {
@@ -70,7 +70,7 @@ PredictedPath predict_program(const machine::Machine& machine, std::istream& in,
   // The whole text is kept: the report shows source lines on hover.
   std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
   std::istringstream program(text);
-  r.sha256 = sha256_hex(text);
+  r.sha256 = io::sha256_hex(text);
 
   pipeline::ModelSet models(machine, o.models);
   r.deviation_um.resize(models.size());

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "abbe/compensate/program_compensator.hpp"
+#include "abbe/compensate/provenance.hpp"
 #include "abbe/io/atomic_file.hpp"
 #include "abbe/io/input_error.hpp"
 #include "abbe/machine/machine.hpp"
@@ -24,6 +25,7 @@
 #include "input_stream.hpp"
 #include "model_option.hpp"
 #include "progress.hpp"
+#include "setup_options.hpp"
 
 namespace abbe::cli {
 namespace {
@@ -37,6 +39,7 @@ struct CompensateCliOptions {
   bool allow_unconverged = false;
   gcode::DialectOptions dialect;
   std::string align = "none";  // best-fit: correct only what the part's set-up leaves
+  SetupOptions setup;
 };
 
 bool same_file(const std::string& a, const std::string& b) {
@@ -90,6 +93,10 @@ int run_compensate(CompensateCliOptions o, const GlobalOptions& g) {
   const std::string setup_text = o.align == "none" ? "" : align_model(o, machine, model);
   gcode::InterpreterConfig config = pipeline::interpreter_config(machine);
   config.dialect = o.dialect;
+  apply_setup_options(o.setup, config);
+  o.c.travel = machine.spec().travel;
+  o.c.provenance = compensate::make_provenance(ABBE_VERSION, machine, config, o.m.model, o.m.extend,
+                                               o.m.extend_time, o.c);
 
   if (o.in_place && o.input == "-")
     throw InputError({"<command line>", 0, 0, "--in-place", ""},
@@ -115,6 +122,12 @@ int run_compensate(CompensateCliOptions o, const GlobalOptions& g) {
   if (s.arcs_split_turns)
     text += fmt::format("  {} multi-turn arcs split into pieces (P word removed)\n",
                         s.arcs_split_turns);
+  if (s.lines)
+    text +=
+        fmt::format("  {:.1f} inserted moves per 1000 lines\n",
+                    1000.0 * static_cast<double>(s.pieces_inserted) / static_cast<double>(s.lines));
+  if (!s.travel_text.empty())
+    text += fmt::format("  warning: {} (--allow-outside-travel)\n", s.travel_text);
   if (s.uncompensated_blocks)
     text += fmt::format("  {} canned-cycle blocks left uncompensated\n", s.uncompensated_blocks);
   for (const auto& w : s.warnings) text += "  warning: " + w + "\n";
@@ -146,6 +159,7 @@ const CommandRegistrar registrar(
       sub.add_option("input", o->input, "NC program (- for stdin)")->required();
       sub.add_option("-o,--output", o->output, "Output program (written atomically), - for stdout");
       add_dialect_options(sub, o->dialect);
+      add_setup_options(sub, o->setup);
       add_model_options(sub, o->m,
                         "Compensate the extended model: add the effects of an overlay written by "
                         "`abbe diagnose --overlay`");
@@ -161,6 +175,9 @@ const CommandRegistrar registrar(
                      "never fewer than the number had)")
           ->check(CLI::Range(0, 9));
       sub.add_flag("--renumber", o->c.renumber, "Give inserted pieces N numbers");
+      sub.add_flag("--allow-outside-travel", o->c.allow_outside_travel,
+                   "Compensate points outside the machine's travel (counted) instead of refusing "
+                   "the program");
       sub.add_flag("--in-place", o->in_place, "Replace the input (atomically)");
       sub.add_option("--align", o->align,
                      "best-fit: correct only what remains after the part's set-up (a best fit "

@@ -17,10 +17,12 @@
 #include "abbe/pipeline/aligned_prediction.hpp"
 #include "abbe/pipeline/path_writer.hpp"
 #include "abbe/pipeline/predict.hpp"
+#include "abbe/pipeline/interpreter_setup.hpp"
 #include "abbe/pipeline/prediction_summary.hpp"
 #include "abbe/pipeline/prediction_writer.hpp"
 #include "command.hpp"
 #include "dialect_option.hpp"
+#include "setup_options.hpp"
 #include "input_stream.hpp"
 #include "progress.hpp"
 
@@ -42,6 +44,7 @@ struct PredictOptions {
   gcode::DialectOptions dialect;
   std::string align = "none";  // the part's set-up (docs/models.md, "The part")
   std::string datum[3];        // --datum-primary/secondary/tertiary: source lines
+  SetupOptions setup;
 };
 
 const char* const kDatumOption[3] = {"--datum-primary", "--datum-secondary", "--datum-tertiary"};
@@ -105,6 +108,8 @@ int run_predict(const PredictOptions& o, const GlobalOptions& g) {
   po.path.fragment.step = o.step;
   po.path.fragment.rapid_rate = o.rapid_rate;
   po.path.dialect = o.dialect;
+  po.config = pipeline::interpreter_config(machine);
+  apply_setup_options(o.setup, *po.config);
   const pipeline::PathFormat format = pipeline::parse_path_format(o.format);
   // --extend: every model carries the overlay's extra deviation.
   if (!o.extend.empty())
@@ -155,6 +160,10 @@ int run_predict(const PredictOptions& o, const GlobalOptions& g) {
   // The table goes to stdout unless the points do.
   const bool points_on_stdout = writer && (o.output == "-" || o.output.empty());
   std::fputs(pipeline::summary_table(summary).c_str(), points_on_stdout ? stderr : stdout);
+  if (!summary.travel_text.empty())
+    spdlog::warn("{}: {}: the tables end at the travel (predicted there by the out-of-range "
+                 "policy) and the machine cannot go there",
+                 o.input, summary.travel_text);
   return kOk;
 }
 
@@ -187,6 +196,7 @@ const CommandRegistrar registrar(
           ->capture_default_str();
       add_dialect_options(sub, o->dialect);
       sub.add_flag("--points", o->points, "The input is a CSV of points (also for non-.csv names)");
+      add_setup_options(sub, o->setup);
       sub.add_flag("--summary-only", o->summary_only, "Write no points, only the summary");
       sub.add_option("--summary-json", o->summary_json, "Also write the summary as JSON to FILE");
       sub.add_option("--extend", o->extend,

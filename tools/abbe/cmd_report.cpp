@@ -27,7 +27,7 @@
 #include "abbe/report/map_section.hpp"
 #include "abbe/report/predict_section.hpp"
 #include "abbe/report/predicted_path.hpp"
-#include "abbe/report/sha256.hpp"
+#include "abbe/io/sha256.hpp"
 #include "command.hpp"
 #include "dialect_option.hpp"
 #include "input_stream.hpp"
@@ -94,7 +94,7 @@ void set_provenance(report::HtmlPage& page,
 }
 
 std::pair<std::string, std::string> hashed_file(const std::string& path) {
-  return {path, report::sha256_file(path)};
+  return {path, io::sha256_file(path)};
 }
 
 void write_page(const std::string& path, const report::HtmlPage& page) {
@@ -208,7 +208,7 @@ int run_report_iso230(const ReportOptions& o) {
   const auto results = diagnose::evaluate_iso230(readings, o.input);
   report::HtmlPage page(fmt::format("abbe: ISO 230-2 evaluation of {}", o.input));
   report::render_iso230_report(page, results);
-  set_provenance(page, {{o.input == "-" ? "standard input" : o.input, report::sha256_hex(text)}});
+  set_provenance(page, {{o.input == "-" ? "standard input" : o.input, io::sha256_hex(text)}});
   write_page(o.output, page);
   return kOk;
 }

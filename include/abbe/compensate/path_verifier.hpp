@@ -17,6 +17,7 @@
 #include <cstddef>
 #include <istream>
 #include <string>
+#include <vector>
 
 #include "abbe/gcode/interpreter.hpp"
 #include "abbe/model/error_model.hpp"
@@ -42,7 +43,16 @@ struct VerifyStats {
   std::size_t backward_max_line = 0;  // line of the original at the backward max
   std::size_t backward_over_tol = 0;
   std::size_t out_of_range_lookups = 0;
+  // Points with no feed curve of the other program to be measured to: the
+  // other program has no (more) feed motions. They count as failures.
+  std::size_t unmatched = 0;
+  std::size_t backward_unmatched = 0;
 };
+
+// Why the programs do not pass at `tol_um` (empty: they pass): a distance
+// beyond tol, points with nothing to match, or no feed points on a side —
+// verify passes nothing it could not check.
+std::vector<std::string> verify_failures(const VerifyStats& s, double tol_um);
 
 VerifyStats verify_program(std::istream& compensated, const std::string& compensated_file,
                            std::istream& original, const std::string& original_file,

@@ -8,14 +8,18 @@
 // pieces (lines: G1 pieces; single-turn arcs: arc pieces, which keep the
 // modal motion code); rapids get their written end coordinates corrected;
 // canned cycles their hole position and depth.
+#include <array>
 #include <cstddef>
 #include <functional>
 #include <istream>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "abbe/compensate/point_solver.hpp"
+#include "abbe/compensate/provenance.hpp"
 #include "abbe/gcode/interpreter.hpp"
+#include "abbe/machine/machine.hpp"
 #include "abbe/model/error_model.hpp"
 
 namespace abbe::compensate {
@@ -24,7 +28,14 @@ struct CompensateOptions {
   double tol_um = 1.0;    // allowed predicted deviation from the nominal path
   double step = 5.0;      // fragment step, mm
   int decimals = -1;      // max decimals of a corrected number; −1: 4 (mm) / 5 (inch)
+  // The machine's travel: a nominal point whose axis positions lie outside
+  // is refused (InputError at its line) unless allow_outside_travel; then
+  // it is counted. Empty: not checked.
+  std::optional<std::array<machine::Travel, 3>> travel;
+  bool allow_outside_travel = false;
   bool renumber = false;  // give inserted pieces N numbers (previous N + piece index)
+  // Written as comment lines at the top of the output (compensate/provenance.hpp).
+  std::optional<Provenance> provenance;
   SolverOptions solver;
 };
 
@@ -41,6 +52,8 @@ struct CompensateSummary {
   std::size_t uncompensated_blocks = 0;  // G91 canned cycles whose holes could not be found
   std::size_t shared_increment_blocks = 0;  // G91 G99 cycles with L: one increment for all holes
   std::vector<std::string> warnings;        // first 20, "file:line: text"
+  std::size_t outside_travel_points = 0;    // with allow_outside_travel
+  std::string travel_text;                  // machine::TravelCheck::text()
 };
 
 using TextSink = std::function<void(const char* data, std::size_t size)>;

@@ -38,6 +38,7 @@ class AtomicOutputFile {
   std::FILE* stream_ = nullptr;
   bool is_stdout_ = false;
   bool committed_ = false;
+  int cleanup_slot_ = -1;  // io/temp_cleanup.hpp: removed on SIGINT/SIGTERM
 };
 
 }  // namespace abbe::io

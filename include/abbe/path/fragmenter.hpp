@@ -18,7 +18,6 @@ namespace abbe::path {
 struct FragmentOptions {
   double step = 5.0;               // mm, > 0
   double rapid_rate = 10000.0;     // mm/min, > 0; also used for a feed motion with feed 0
-  std::string file = "<program>";  // named in the error of a motion that needs too many points
 };
 
 using PointSink = std::function<void(const PathPoint&)>;
@@ -40,7 +39,8 @@ class Fragmenter {
  private:
   void add_line(const gcode::Motion& motion, PathPoint& point, const PointSink& sink);
   void add_arc(const gcode::Motion& motion, PathPoint& point, const PointSink& sink);
-  // Throws InputError (the motion's line) past 1e9 points for one motion.
+  // Throws gcode::MotionRefused past 1e9 points for one motion (the interpreter
+  // or the compensator turns it into an InputError at the motion's line).
   std::size_t segments(double length, const gcode::Motion& motion) const;
   void emit(PathPoint& point, const PointSink& sink);
 

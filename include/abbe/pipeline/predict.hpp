@@ -6,6 +6,7 @@
 #include <functional>
 #include <istream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,8 @@ struct PredictOptions {
   PredictInput input = PredictInput::program;
   PathOptions path;                                        // programs only
   std::shared_ptr<const model::ErrorExtension> extension;  // null: none
+  // The interpreter's setup; empty: the machine file's (interpreter_config).
+  std::optional<gcode::InterpreterConfig> config;
 };
 
 // Called at every point after the models are evaluated (models.deviations()).

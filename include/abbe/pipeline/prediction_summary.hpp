@@ -3,6 +3,7 @@
 // RMS and the largest |e| over all points, and the table lookups outside the
 // measured range. Written as JSON (`--summary-json`, the "summary" member of
 // the JSON output) and as the text table `abbe predict` prints.
+#include <array>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -25,6 +26,12 @@ struct PredictionSummary {
   std::size_t points = 0;
   machine::OutOfRangePolicy out_of_range = machine::OutOfRangePolicy::clamp;
   std::vector<ModelSummary> models;
+  // Points whose axis positions lie outside the machine's travel
+  // (machine/travel_check.hpp), in all and per axis; travel_text says so
+  // with the first lines (empty when none is outside).
+  std::size_t outside_travel_points = 0;
+  std::array<std::size_t, 3> outside_travel_per_axis{0, 0, 0};
+  std::string travel_text;
 };
 
 PredictionSummary summarize(const ModelSet& models, const machine::Machine& machine,

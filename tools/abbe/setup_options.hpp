@@ -1,0 +1,27 @@
+#pragma once
+// The setup options of every command that reads a program with a machine
+// file (predict, compensate, verify): --tool-length L, --tool H=L,
+// --work-offset G55=x,y,z override the machine file's tool length, tool
+// table and work offsets. Bad values are InputErrors naming the option.
+#include <CLI/CLI.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "abbe/gcode/interpreter.hpp"
+
+namespace abbe::cli {
+
+struct SetupOptions {
+  std::optional<double> tool_length;
+  std::vector<std::string> tools;         // "H=L"
+  std::vector<std::string> work_offsets;  // "G55=x,y,z"
+};
+
+void add_setup_options(CLI::App& sub, SetupOptions& o);
+
+// Applies the options to a configuration made from a machine file (the
+// program starts at home, s = 0: a new tool length moves the start tip).
+void apply_setup_options(const SetupOptions& o, gcode::InterpreterConfig& config);
+
+}  // namespace abbe::cli
