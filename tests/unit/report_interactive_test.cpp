@@ -36,7 +36,7 @@ TEST(ReportFooter, DateVersionCommandLineAndHashes) {
   HtmlPage page("t");
   Provenance p;
   p.command_line = "abbe report predict 'a b.ngc' --machine <m>.yaml";
-  p.inputs = {{"a b.ngc", sha256_hex("abc")}};
+  p.inputs = {{"a b.ngc", io::sha256_hex("abc")}};
   page.set_provenance(p);
   const std::string html = page.render();
   ::unsetenv("SOURCE_DATE_EPOCH");
