@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "abbe/compensate/program_compensator.hpp"
+#include "abbe/compensate/provenance.hpp"
 #include "abbe/diagnose/diagnosis.hpp"
 #include "abbe/gcode/dialect.hpp"
 #include "abbe/io/input_error.hpp"
@@ -267,6 +268,11 @@ py::tuple py_compensate(const std::shared_ptr<machine::Machine>& machine, const 
   compensate::CompensateOptions o;
   o.tol_um = tol_um;
   o.step = step;
+  // As `abbe compensate`: the machine's travel is enforced and the output
+  // starts with its provenance block.
+  o.travel = machine->spec().travel;
+  o.provenance =
+      compensate::make_provenance(ABBE_VERSION, *machine, config, model_name, "", 0.0, o);
   std::string text;
   compensate::CompensateSummary s;
   {

@@ -72,9 +72,11 @@ if(NOT n EQUAL 83)
   message(FATAL_ERROR "p1.csv has ${n} lines, expected 83")
 endif()
 run(${ABBE} diagnose --machine ${P}/machine.yaml --measured ${WORK}/p1.csv)
-string(FIND "${run_out}" "rotated by +506" at)
-if(at EQUAL -1)
-  message(FATAL_ERROR "plate 8131: rotation not found:\n${run_out}")
+# The plate's rotation is datum (the plate is re-placed), reported apart
+# from the effects: about +506 µrad for plate 8131.
+string(REGEX MATCH "setup rotation about Z \\[8131\\] 50[5-8] ±" rot "${run_out}")
+if(NOT rot)
+  message(FATAL_ERROR "plate 8131: rotation not found in the datum:\n${run_out}")
 endif()
 
 # Errors: exit code 1 with file and line.

@@ -78,7 +78,7 @@ int main(int argc, char** argv) {
   const std::vector<Canon> rs = read_rs274(argv[1], rs_error);
   const int rs_exit = std::atoi(argv[2]);
   const std::vector<Canon> ab = read_abbe(argv[3]);
-  const std::string ab_error = first_line_of(argv[4]);
+  const std::string ab_error = error_line_of(argv[4]);
   const int ab_exit = std::atoi(argv[5]);
   const bool rs_refused = rs_exit != 0;
 

@@ -72,11 +72,18 @@ inline std::string trim(const std::string& s) {
   return s.substr(b, s.find_last_not_of(" \t\r\n") - b + 1);
 }
 
-inline std::string first_line_of(const std::string& path) {
+// abbe's message on stderr: the first line with ": error: " (warnings, such
+// as the one for rotary words that never move, may come before it), else
+// the first line.
+inline std::string error_line_of(const std::string& path) {
   std::ifstream in(path);
-  std::string line;
-  std::getline(in, line);
-  return trim(line);
+  std::string line, first;
+  bool any = false;
+  while (std::getline(in, line)) {
+    if (line.find(": error: ") != std::string::npos) return trim(line);
+    if (!any) first = line, any = true;
+  }
+  return trim(first);
 }
 
 inline std::vector<Canon> read_rs274(const std::string& path, std::string& error_text) {

@@ -207,9 +207,23 @@ int main(int argc, char** argv) {
   std::size_t j = 0, pieces = 0;
   double max_d = 0.0, max_res = 0.0;
   char buf[512];
+  // compensate writes no word for an axis the program has not commanded yet
+  // (its position is only assumed): until the original's ends leave rs274's
+  // start value 0 on an axis, that axis may also keep its nominal value.
+  std::array<bool, 3> commanded{};
   for (std::size_t i = 0; i < o.size(); ++i) {
     const Expected& e = want[i];
     const Eigen::Vector3d original(o[i].end[0], o[i].end[1], o[i].end[2]);
+    for (int a = 0; a < 3; ++a)
+      if (original[a] != 0.0) commanded[static_cast<std::size_t>(a)] = true;
+    std::vector<Eigen::Vector3d> alts = e.alt;
+    if (!(commanded[0] && commanded[1] && commanded[2]))
+      for (const Eigen::Vector3d& d : e.alt) {
+        Eigen::Vector3d kept = d;
+        for (int a = 0; a < 3; ++a)
+          if (!commanded[static_cast<std::size_t>(a)]) kept[a] = 0.0;
+        alts.push_back(kept);
+      }
     const Eigen::Vector3d target = original + e.d;
     auto residual_to = [&](const Canon& x, const Eigen::Vector3d& t, double& worst) {
       worst = 0.0;
@@ -228,7 +242,7 @@ int main(int argc, char** argv) {
     auto residual = [&](const Canon& x, double& worst) {
       bool ok = false;
       worst = 1e300;
-      for (const Eigen::Vector3d& d : e.alt) {
+      for (const Eigen::Vector3d& d : alts) {
         double w = 0.0;
         const bool hit = residual_to(x, original + d, w);
         if (hit && !ok)

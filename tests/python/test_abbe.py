@@ -140,7 +140,9 @@ def test_diagnose_returns_report_dict(machine):
     assert {"htm", "ae-arm", "dual"} <= {m["model"] for m in d["models"]}
 
 
-def test_compensate_returns_program(machine):
+def test_compensate_returns_program(machine, monkeypatch):
+    # One date for the provenance block of both runs.
+    monkeypatch.setenv("SOURCE_DATE_EPOCH", "0")
     text, summary = abbe.compensate(machine, PROGRAM, tol_um=1.0)
     assert text != PROGRAM.read_text()
     assert summary["blocks_changed"] > 0

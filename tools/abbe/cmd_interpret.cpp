@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "abbe/gcode/program.hpp"
+#include "abbe/io/atomic_file.hpp"
 #include "abbe/io/input_error.hpp"
 #include "abbe/machine/machine.hpp"
 #include "abbe/pipeline/interpreter_setup.hpp"
@@ -24,6 +25,7 @@
 #include "dialect_option.hpp"
 #include "input_stream.hpp"
 #include "interpreter_options.hpp"
+#include "output_options.hpp"
 
 namespace abbe::cli {
 namespace {
@@ -31,6 +33,7 @@ namespace {
 struct InterpretOptions {
   std::string program;
   bool canon = false;
+  std::string output = "-";  // -o: stdout by default
   std::string machine;
   std::optional<double> tool_length;
   std::vector<std::string> tools;         // "H=L"
@@ -113,9 +116,10 @@ int run_interpret(const InterpretOptions& o) {
   std::istream& in = input.stream();
 
   std::array<std::size_t, 4> by_kind{};
+  io::AtomicOutputFile output(o.output);  // "-": stdout, streamed
   fmt::memory_buffer out;
   auto flush = [&] {
-    std::fwrite(out.data(), 1, out.size(), stdout);
+    output.write(out.data(), out.size());
     out.clear();
   };
   gcode::ProgramStats stats;
@@ -128,19 +132,20 @@ int run_interpret(const InterpretOptions& o) {
       }
     });
   } catch (const InputError&) {
-    // The motions made before the bad block are still shown (the interop
-    // test checks them against rs274's), then the error is reported.
-    if (o.canon) flush();
-    std::fflush(stdout);
+    // On stdout the motions made before the bad block are still shown (the
+    // interop test checks them against rs274's), then the error is reported;
+    // a file is not written.
+    if (o.canon && output.is_stdout()) {
+      flush();
+      std::fflush(stdout);
+    }
     throw;
   }
-  if (o.canon) {
-    flush();
-  } else {
-    fmt::print("lines={} motions={} rapid={} linear={} arc={} dwell={}\n", stats.lines,
-               stats.motions, by_kind[0], by_kind[1], by_kind[2], by_kind[3]);
-  }
-  std::fflush(stdout);
+  if (!o.canon)
+    fmt::format_to(std::back_inserter(out), "lines={} motions={} rapid={} linear={} arc={} dwell={}\n",
+                   stats.lines, stats.motions, by_kind[0], by_kind[1], by_kind[2], by_kind[3]);
+  flush();
+  output.commit();
   return kOk;
 }
 
@@ -163,6 +168,7 @@ const CommandRegistrar registrar(
       sub.add_option("--tool", o->tools, "Tool length for G43 Hn as n=L (mm), repeatable");
       sub.add_option("--work-offset", o->work_offsets,
                      "Work offset as G54..G59=x,y,z (mm, overrides the machine file), repeatable");
+      add_output_option(sub, o->output, "the canonical motions or the summary");
       add_dialect_options(sub, o->dialect);
       return [o] { return run_interpret(*o); };
     });

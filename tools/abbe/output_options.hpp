@@ -1,5 +1,5 @@
 #pragma once
-// The output convention of every abbe command (README, docs/cli.md):
+// The output convention of every abbe command (README, "A short tour"):
 //  - `-o FILE` writes the command's data (atomically), `-o -` to stdout;
 //  - `--format csv|json` (or text|json) where both make sense;
 //  - the human summary goes to stderr whenever the data go to stdout, so
