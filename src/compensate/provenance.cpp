@@ -2,13 +2,12 @@
 
 #include <fmt/format.h>
 
-#include <cstdlib>
-#include <ctime>
 #include <sstream>
 
 #include "abbe/compensate/program_compensator.hpp"
 #include "abbe/io/input_error.hpp"
 #include "abbe/io/sha256.hpp"
+#include "abbe/io/utc_timestamp.hpp"
 
 namespace abbe::compensate {
 namespace {
@@ -69,20 +68,6 @@ std::vector<std::string> setup_lines(const gcode::InterpreterConfig& config) {
   return out;
 }
 
-std::string utc_date() {
-  std::time_t t = std::time(nullptr);
-  if (const char* e = std::getenv("SOURCE_DATE_EPOCH")) {
-    char* end = nullptr;
-    const long long v = std::strtoll(e, &end, 10);
-    if (end != e && *end == '\0' && v >= 0) t = static_cast<std::time_t>(v);
-  }
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
-}
-
 std::string format_provenance(const Provenance& p, std::string_view eol) {
   std::string out;
   auto line = [&](const std::string& text) {
@@ -121,7 +106,7 @@ Provenance make_provenance(const std::string& version, const machine::Machine& m
   p.tol_um = options.tol_um;
   p.step_mm = options.step;
   p.setup = setup_lines(config);
-  p.date = utc_date();
+  p.date = io::utc_timestamp();
   return p;
 }
 

@@ -2,9 +2,7 @@
 
 #include <fmt/format.h>
 
-#include <cstdlib>
-#include <ctime>
-
+#include "abbe/io/utc_timestamp.hpp"
 #include "abbe/report/svg.hpp"
 
 namespace abbe::report {
@@ -52,19 +50,7 @@ constexpr const char* kScript = R"(
 
 }  // namespace
 
-std::string report_date() {
-  std::time_t t = std::time(nullptr);
-  if (const char* e = std::getenv("SOURCE_DATE_EPOCH")) {
-    char* end = nullptr;
-    const long long v = std::strtoll(e, &end, 10);
-    if (end != e && *end == '\0' && v >= 0) t = static_cast<std::time_t>(v);
-  }
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
-}
+std::string report_date() { return io::utc_timestamp(); }
 
 HtmlPage::HtmlPage(std::string title) : title_(std::move(title)) {}
 

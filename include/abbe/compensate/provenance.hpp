@@ -45,10 +45,6 @@ FileFingerprint file_fingerprint(const std::string& role, const std::string& pat
 // What the interpreter assumes about the machine's setup, in words.
 std::vector<std::string> setup_lines(const gcode::InterpreterConfig& config);
 
-// Now in UTC (ISO 8601, seconds); SOURCE_DATE_EPOCH (seconds since 1970,
-// the reproducible-builds convention) replaces the clock when set.
-std::string utc_date();
-
 struct CompensateOptions;
 // Everything of a compensate run: the machine's files (and the overlay's,
 // when `overlay` is not empty), model, tol, step and setup, dated now.
