@@ -257,7 +257,8 @@ py::object py_diagnose(const std::shared_ptr<machine::Machine>& machine, const p
 
 py::tuple py_compensate(const std::shared_ptr<machine::Machine>& machine, const py::object& program,
                         const py::object& code, const std::string& model_name, double tol_um,
-                        double step, const std::string& dialect) {
+                        double step, const std::string& dialect, double min_segment,
+                        bool spread_takeups) {
   ProgramSource src = open_program(program, code);
   const auto kind = model::parse_model_kind(model_name);
   if (!kind)
@@ -268,6 +269,8 @@ py::tuple py_compensate(const std::shared_ptr<machine::Machine>& machine, const 
   compensate::CompensateOptions o;
   o.tol_um = tol_um;
   o.step = step;
+  o.min_segment = min_segment;
+  o.spread_takeups = spread_takeups;
   // As `abbe compensate`: the machine's travel is enforced and the output
   // starts with its provenance block.
   o.travel = machine->spec().travel;
@@ -285,6 +288,12 @@ py::tuple py_compensate(const std::shared_ptr<machine::Machine>& machine, const 
   summary["lines"] = s.lines;
   summary["blocks_changed"] = s.blocks_changed;
   summary["pieces_inserted"] = s.pieces_inserted;
+  summary["takeup_moves"] = s.takeup_moves;
+  summary["takeups_spread"] = s.takeups_spread;
+  summary["max_takeup_um"] = s.max_takeup_um;
+  summary["short_pieces_kept"] = s.short_pieces_kept;
+  summary["short_takeup_moves"] = s.short_takeup_moves;
+  summary["shortest_inserted_mm"] = s.shortest_inserted_mm;
   summary["points"] = s.points;
   summary["max_correction_um"] = s.max_correction_um;
   summary["out_of_range_points"] = s.out_of_range_points;
@@ -339,5 +348,6 @@ PYBIND11_MODULE(abbe, m) {
   m.def("compensate", &py_compensate, py::arg("machine"), py::arg("program") = py::none(),
         py::kw_only(), py::arg("code") = py::none(), py::arg("model") = "ae-arm",
         py::arg("tol_um") = 1.0, py::arg("step") = 5.0, py::arg("dialect") = "linuxcnc",
+        py::arg("min_segment") = 0.01, py::arg("spread_takeups") = false,
         "The compensated program as text and a summary dict (as `abbe compensate`).");
 }

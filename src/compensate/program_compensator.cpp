@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <limits>
 #include <optional>
 
 #include "abbe/compensate/motion_path.hpp"
@@ -199,6 +200,9 @@ class Compensator {
     }
     if (header_pending) put(format_provenance(*o_.provenance, *ending_ ? ending_ : "\n"));
     flush();
+    s_.min_segment_mm = o_.min_segment;
+    if (s_.shortest_inserted_mm == std::numeric_limits<double>::infinity())
+      s_.shortest_inserted_mm = 0.0;
     if (travel_) {
       s_.outside_travel_points = travel_->outside();
       s_.travel_text = travel_->text();
@@ -276,6 +280,7 @@ class Compensator {
     const gcode::Block& block = interp_.block_read();
     // G80 (or no cycle since) ends a series of cycles: the interpreter's modal state says so.
     if (interp_.modal().motion_mode == gcode::gcode_id(80)) in_cycle_ = false;
+    if (!motions_.empty()) ++s_.motion_blocks;
     if (motions_.empty()) {
       if (has_g(block, 92) && 1e3 * delta_.norm() > 1e-3)
         throw InputError({file_, block.line, 1, "G92", raw},
@@ -338,6 +343,7 @@ class Compensator {
       put(before);
       put(between);
       ++s_.pieces_inserted;
+      ++s_.takeup_moves;
     }
     put(editor.changed() ? editor.apply() : raw);
     // N numbers of the pieces: the block's + 1, 2, ...; an N beyond what a
@@ -593,6 +599,57 @@ class Compensator {
     return true;
   }
 
+  // Pieces shorter than the minimum segment (commanded length) are merged
+  // with the next piece, or the previous one when a forced end (a reversal
+  // or take-up) follows, if the merged piece stays within tol/2; those that
+  // cannot be merged are kept (tol first) and counted.
+  void merge_short_pieces(const gcode::Motion& m, const std::vector<SolvedPoint>& sp,
+                          std::vector<std::size_t>& breaks, double len) {
+    if (o_.min_segment <= 0.0 || breaks.size() < 2) return;
+    const bool arc = m.kind == gcode::MotionKind::arc;
+    auto piece_length = [&](std::size_t a, std::size_t b) {
+      if (arc) return (sp[b].t - sp[a].t) * len;
+      return ((sp[b].n + sp[b].delta) - (sp[a].n + sp[a].delta_out)).norm();
+    };
+    for (std::size_t j = 0; j < breaks.size() && breaks.size() > 1;) {
+      const std::size_t a = j == 0 ? 0 : breaks[j - 1], b = breaks[j];
+      if (piece_length(a, b) >= o_.min_segment) {
+        ++j;
+        continue;
+      }
+      const bool forced_end = sp[b].reversal || j + 1 == breaks.size();
+      if (!forced_end && piece_ok(m, sp, a, breaks[j + 1])) {
+        breaks.erase(breaks.begin() + static_cast<std::ptrdiff_t>(j));
+        continue;  // the merged piece is checked again
+      }
+      const std::size_t prev_a = j >= 2 ? breaks[j - 2] : 0;
+      if (j > 0 && !sp[a].reversal && piece_ok(m, sp, prev_a, b)) {
+        breaks.erase(breaks.begin() + static_cast<std::ptrdiff_t>(j - 1));
+        --j;
+        continue;
+      }
+      ++s_.short_pieces_kept;
+      ++j;
+    }
+  }
+
+  void note_inserted_length(double mm) {
+    s_.shortest_inserted_mm = std::min(s_.shortest_inserted_mm, mm);
+    if (mm < o_.min_segment) ++s_.short_takeup_moves;
+  }
+
+  // A reversal jump (mm) taken up along the move rather than by a micro
+  // move: below the minimum segment, and within tol unless spreading is
+  // asked for whatever the jump.
+  bool spreads(double jump) const {
+    return jump < o_.min_segment && (o_.spread_takeups || 1e3 * jump <= o_.tol_um);
+  }
+
+  void note_takeup(const Vector3d& jump) {
+    ++s_.takeups_spread;
+    s_.max_takeup_um = std::max(s_.max_takeup_um, 1e3 * jump.norm());
+  }
+
   Vector3d solve_at(const gcode::Motion& m, const Vector3d& p,
                     const std::array<std::int8_t, 3>& dir) {
     path::PathPoint pp;
@@ -639,31 +696,81 @@ class Compensator {
     Vector3d d_start = delta_;
     if (!(last_dir_ && *last_dir_ == start_dir && last_end_ == m.start))
       d_start = solve_at(m, m.start, start_dir);
-    const bool micro_start = 1e3 * (d_start - delta_).norm() > 0.25 * o_.tol_um;
+    bool micro_start = 1e3 * (d_start - delta_).norm() > 0.25 * o_.tol_um;
+    // A jump shorter than the minimum segment is taken up over the first
+    // min_segment + |jump| of the move instead of by a micro move of its
+    // own (docs/compensation.md, "Segment length").
+    // A reversal jump shorter than the minimum segment is not given a micro
+    // move: the piece that starts at the reversal takes it up, and ends at
+    // the take-up point min_segment + 2|jump| further on (commanded length
+    // ≥ min_segment), or at the next forced end or the end of the move when
+    // those come first. `takeup_t`: the pending take-up point; `spread_from`:
+    // where the jump being taken up was (the next point pushed ends it).
+    std::optional<double> takeup_t, spread_from;
+    const double l_min = o_.min_segment;
+    auto takeup_at = [&](double t_from, double jump, double next) -> std::optional<double> {
+      const double t_u = t_from + (l_min + 2.0 * jump + 1e-7) / len;
+      if (t_u < next - near && t_u < 1.0 - near) return t_u;
+      return std::nullopt;
+    };
+    if (micro_start && spreads((d_start - delta_).norm())) {
+      const double jump = (d_start - delta_).norm();
+      takeup_t = takeup_at(0.0, jump, reversals.empty() ? hi : reversals.front());
+      spread_from = 0.0;
+      note_takeup(d_start - delta_);
+      micro_start = false;
+    }
     if (!micro_start) d_start = delta_;
     auto& sp = sp_;  // reused: no allocation per block
     sp.clear();
     sp.push_back({m.start, d_start, 0.0, false, d_start, false});
     std::size_t r = 0;
     const double jump_tol = 0.25e-3 * o_.tol_um;
+    // Pushes a solved point; the first after a spread jump is a forced end.
+    auto push = [&](const SolvedPoint& x) {
+      sp.push_back(x);
+      if (spread_from && x.t > *spread_from) {
+        sp.back().reversal = true;
+        s_.max_takeup_length_mm = std::max(s_.max_takeup_length_mm, (x.t - *spread_from) * len);
+        spread_from.reset();
+      }
+    };
+    // The take-up point, solved with the directions there.
+    auto push_takeup = [&](double tb) {
+      const Vector3d nb = path.at(tb);
+      const Vector3d db = solve_at(m, nb, path.directions(dir0, std::clamp(tb, lo, hi)));
+      while (sp.size() > 1 && sp.back().t > tb - near && !sp.back().reversal) sp.pop_back();
+      push({nb, db, tb, true, db, false});
+      takeup_t.reset();
+    };
     for (std::size_t k = 0; k < pts.size(); ++k) {
       double t = static_cast<double>(k + 1) / static_cast<double>(pts.size());
       if (!arc && len > 0.0) t = (pts[k].p - m.start).norm() / len;
       const bool last = k + 1 == pts.size();
+      if (takeup_t && *takeup_t <= t) push_takeup(*takeup_t);
       // Reversals before this point: a piece ends exactly there.
       while (r < reversals.size() && reversals[r] <= t + near && (!last || reversals[r] < t)) {
         const double tr = reversals[r++];
         const Vector3d nr = path.at(tr);
         const Vector3d d_before = solve_at(m, nr, path.directions(dir0, tr));
         const Vector3d d_after = solve_at(m, nr, path.directions(dir0, std::min(hi, tr + 1e-6)));
-        if ((d_after - d_before).norm() <= jump_tol) continue;
+        const double jump = (d_after - d_before).norm();
+        if (jump <= jump_tol) continue;
         // No fragment point closer than kNearReversal before it.
         while (sp.size() > 1 && sp.back().t > tr - near && !sp.back().reversal) sp.pop_back();
-        sp.push_back({nr, d_before, tr, true, d_after, true});
+        if (spreads(jump)) {
+          push({nr, d_before, tr, true, d_before, false});
+          note_takeup(d_after - d_before);
+          takeup_t = takeup_at(tr, jump, r < reversals.size() ? reversals[r] : hi);
+          spread_from = tr;
+          if (takeup_t && *takeup_t <= t) push_takeup(*takeup_t);
+        } else {
+          push({nr, d_before, tr, true, d_after, true});
+        }
       }
       if (!last && !sp.empty() && sp.back().reversal && t - sp.back().t < near) continue;
       const Vector3d d = solve(pts[k]);
-      sp.push_back({pts[k].p, d, t, false, d, false});
+      push({pts[k].p, d, t, false, d, false});
     }
     // Greedy pieces: each as long as it stays within tol/2; a piece ends at
     // every reversal point that needs one.
@@ -701,6 +808,7 @@ class Compensator {
       breaks.push_back(b);
       a = b;
     }
+    merge_short_pieces(m, sp, breaks, len);
     const bool r_form = arc && find_word(block, 'R') != nullptr;
     // A multi-turn arc in pieces: every piece is at most a quarter turn
     // (pieces end at the reversal points), so the P word (turns) goes.
@@ -718,8 +826,11 @@ class Compensator {
         for (int k = 0; k < 3; ++k)
           cmd_[k] = set_abs(ed, kAxis[k], target[k], cmd_[k], cmd_[k], incremental_, true);
         block_written = true;
+        ++s_.takeup_moves;
+        note_inserted_length((d_start - delta_).norm());
       } else {  // a G1 line before the block, which then needs its motion word
         before = micro_line(target, ed.spaced());
+        note_inserted_length((d_start - delta_).norm());
         if (!before.empty() && !feed_set_) {
           if (const gcode::Word* f = find_word(block, 'F'))
             before += (ed.spaced() ? " " : "") + raw.substr(f->begin, f->end - f->begin);
@@ -735,6 +846,9 @@ class Compensator {
       const bool last = b + 1 == sp.size();
       const Vector3d target = prog(sp[b].n) + sp[b].delta / unit_;
       const Vector3d start_cmd = cmd_;
+      if (j > 0 || block_written)
+        note_inserted_length(arc ? (sp[b].t - sp[a].t) * len
+                                 : ((sp[b].n + sp[b].delta) - (sp[a].n + sp[a].delta_out)).norm());
       if (j == 0 && !block_written) {
         for (int k = 0; k < 3; ++k) {
           const gcode::Word* w = find_word(block, kAxis[k]);
@@ -754,6 +868,8 @@ class Compensator {
       if (sp[b].micro && !last) {
         const std::string mline = micro_line(prog(sp[b].n) + sp[b].delta_out / unit_, ed.spaced());
         if (!mline.empty()) {
+          ++s_.takeup_moves;
+          note_inserted_length((sp[b].delta_out - sp[b].delta).norm());
           pieces.push_back(mline);
           after_micro = arc;
         }
@@ -873,6 +989,36 @@ class Compensator {
 };
 
 }  // namespace
+
+std::string segment_text(const CompensateSummary& s) {
+  if (s.lines == 0) return {};
+  const auto per_1000 = [](std::size_t n, std::size_t of) {
+    return of ? 1000.0 * static_cast<double>(n) / static_cast<double>(of) : 0.0;
+  };
+  const std::size_t split = s.pieces_inserted - std::min(s.pieces_inserted, s.takeup_moves);
+  std::string t = fmt::format(
+      "  inserted moves: {} ({:.1f} per 1000 lines, {:.1f} per 1000 motion blocks): {} pieces of "
+      "split moves, {} take-up moves at reversals\n",
+      s.pieces_inserted, per_1000(s.pieces_inserted, s.lines),
+      per_1000(s.pieces_inserted, s.motion_blocks), split, s.takeup_moves);
+  if (s.pieces_inserted || s.takeup_moves)
+    t += fmt::format("  shortest inserted move {:.4f} mm (--min-segment {} mm)\n",
+                     s.shortest_inserted_mm, s.min_segment_mm);
+  if (s.takeups_spread)
+    t += fmt::format(
+        "  {} reversal jumps below --min-segment taken up along the move (largest {:.2f} µm, "
+        "over at most {:.4f} mm: the path may leave the nominal by up to the jump there)\n",
+        s.takeups_spread, s.max_takeup_um, s.max_takeup_length_mm);
+  if (s.short_takeup_moves)
+    t += fmt::format(
+        "  {} moves shorter than --min-segment: take-up moves of reversal jumps beyond --tol "
+        "(--spread-takeups takes them up along the move, off the path by up to the jump)\n",
+        s.short_takeup_moves);
+  if (s.short_pieces_kept)
+    t += fmt::format("  {} pieces shorter than --min-segment kept (merging them broke --tol)\n",
+                     s.short_pieces_kept);
+  return t;
+}
 
 CompensateSummary compensate_program(std::istream& in, const std::string& file,
                                      const gcode::InterpreterConfig& config,

@@ -81,7 +81,8 @@ std::string format_provenance(const Provenance& p, std::string_view eol) {
   line(fmt::format("(abbe model {})", comment_safe(p.model)));
   if (!p.overlay_time_s.empty())
     line(fmt::format("(abbe overlay-time {} s)", comment_safe(p.overlay_time_s)));
-  line(fmt::format("(abbe tol {} um step {} mm)", p.tol_um, p.step_mm));
+  line(fmt::format("(abbe tol {} um step {} mm min-segment {} mm takeups {})", p.tol_um,
+                   p.step_mm, p.min_segment_mm, p.spread_takeups ? "spread" : "micro"));
   for (const auto& s : p.setup) line(fmt::format("(abbe setup {})", comment_safe(s)));
   line(
       "(abbe setup valid only for these offsets, tool lengths and start point: check them at "
@@ -105,6 +106,8 @@ Provenance make_provenance(const std::string& version, const machine::Machine& m
   }
   p.tol_um = options.tol_um;
   p.step_mm = options.step;
+  p.min_segment_mm = options.min_segment;
+  p.spread_takeups = options.spread_takeups;
   p.setup = setup_lines(config);
   p.date = io::utc_timestamp();
   return p;
@@ -158,8 +161,9 @@ std::optional<Provenance> read_provenance(std::istream& in) {
       std::getline(words >> std::ws, s);
       p->setup.push_back(s);
     } else if (key == "tol") {
-      std::string unit, k2;
-      words >> p->tol_um >> unit >> k2 >> p->step_mm;
+      std::string unit, k2, k3;
+      words >> p->tol_um >> unit >> k2 >> p->step_mm >> unit >> k3;
+      if (k3 == "min-segment") words >> p->min_segment_mm;
     }
   }
   return p;

@@ -39,7 +39,7 @@ file(SHA256 ${SRC}/machines/sample/${table_name} table_sha)
 foreach(p "^\\(abbe-compensated by abbe [0-9.]+: do not compensate this program again\\)\n"
           "\n\\(abbe machine-file sha256=${machine_sha} [^\n]*machine.yaml\\)\n"
           "\n\\(abbe table-file sha256=${table_sha} [^\n]*${table_name}\\)\n"
-          "\n\\(abbe model ae-arm\\)\n" "\n\\(abbe tol 1 um step 5 mm\\)\n"
+          "\n\\(abbe model ae-arm\\)\n" "\n\\(abbe tol 1 um step 5 mm min-segment 0.01 mm takeups micro\\)\n"
           "\n\\(abbe setup work offsets [^\n]*G54 X"
           "\n\\(abbe setup tool lengths, mm: without G43 130.0000, H1 200.0000"
           "\n\\(abbe setup start: tool tip at X0.0000 Y0.0000 Z-130.0000"

@@ -122,10 +122,7 @@ int run_compensate(CompensateCliOptions o, const GlobalOptions& g) {
   if (s.arcs_split_turns)
     text += fmt::format("  {} multi-turn arcs split into pieces (P word removed)\n",
                         s.arcs_split_turns);
-  if (s.lines)
-    text +=
-        fmt::format("  {:.1f} inserted moves per 1000 lines\n",
-                    1000.0 * static_cast<double>(s.pieces_inserted) / static_cast<double>(s.lines));
+  text += compensate::segment_text(s);
   if (!s.travel_text.empty())
     text += fmt::format("  warning: {} (--allow-outside-travel)\n", s.travel_text);
   if (s.uncompensated_blocks)
@@ -170,6 +167,16 @@ const CommandRegistrar registrar(
       sub.add_option("--step", o->c.step, "Fragment step, mm")
           ->check(CLI::PositiveNumber)
           ->capture_default_str();
+      sub.add_option("--min-segment", o->c.min_segment,
+                     "No inserted piece shorter than this, mm; a reversal jump below it and "
+                     "within --tol is taken up along the move instead of by a micro move of "
+                     "its own (0: micro moves for every jump)")
+          ->check(CLI::Range(0.0, 1.0))
+          ->capture_default_str();
+      sub.add_flag("--spread-takeups", o->c.spread_takeups,
+                   "Take up every reversal jump below --min-segment along the move, also those "
+                   "beyond --tol: no move shorter than --min-segment, but the path leaves the "
+                   "nominal by up to the jump just after such reversals (verify shows it)");
       sub.add_option("--decimals", o->c.decimals,
                      "Decimal places of corrected numbers (default 4 in mm, 5 in inch programs; "
                      "never fewer than the number had)")

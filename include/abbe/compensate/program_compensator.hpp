@@ -11,6 +11,7 @@
 #include <array>
 #include <cstddef>
 #include <functional>
+#include <limits>
 #include <istream>
 #include <optional>
 #include <string>
@@ -33,6 +34,13 @@ struct CompensateOptions {
   // it is counted. Empty: not checked.
   std::optional<std::array<machine::Travel, 3>> travel;
   bool allow_outside_travel = false;
+  // No inserted piece shorter than this, mm (commanded length). A reversal
+  // jump shorter than it and within tol is taken up along the first
+  // min_segment + 2|jump| of the move instead of by a micro move of its own;
+  // a larger one keeps its micro move (tol first) unless spread_takeups.
+  // 0: exact micro moves for every jump.
+  double min_segment = 0.01;
+  bool spread_takeups = false;
   bool renumber = false;  // give inserted pieces N numbers (previous N + piece index)
   // Written as comment lines at the top of the output (compensate/provenance.hpp).
   std::optional<Provenance> provenance;
@@ -42,7 +50,18 @@ struct CompensateOptions {
 struct CompensateSummary {
   std::size_t lines = 0;
   std::size_t blocks_changed = 0;
-  std::size_t pieces_inserted = 0;
+  std::size_t pieces_inserted = 0;  // every inserted line (pieces and take-up moves)
+  std::size_t takeup_moves = 0;     // inserted micro moves taking up a reversal jump ≥ min_segment
+  std::size_t takeups_spread = 0;   // reversal jumps < min_segment taken up along the move
+  double max_takeup_um = 0.0;       // largest of those jumps, µm
+  double max_takeup_length_mm = 0.0;  // longest stretch over which one was taken up
+  std::size_t short_pieces_kept = 0;  // pieces < min_segment kept because merging broke tol
+  std::size_t short_takeup_moves = 0;  // moves abbe wrote shorter than min_segment
+  // Shortest move abbe wrote (inserted lines and blocks turned into take-up
+  // moves), mm; 0 when none. min_segment_mm: the option in force.
+  double shortest_inserted_mm = std::numeric_limits<double>::infinity();
+  double min_segment_mm = 0.0;
+  std::size_t motion_blocks = 0;  // blocks that make at least one motion
   std::size_t points = 0;               // solved points
   double max_correction_um = 0.0;       // max |c − n|
   std::size_t out_of_range_points = 0;  // points with a lookup outside the tables
@@ -57,6 +76,9 @@ struct CompensateSummary {
 };
 
 using TextSink = std::function<void(const char* data, std::size_t size)>;
+
+// The summary's lines on inserted moves and segment lengths ("  ..." lines).
+std::string segment_text(const CompensateSummary& s);
 
 // Throws abbe::InputError for what the front end refuses (same message) and
 // for a point outside the tables under the `error` policy.

@@ -32,7 +32,8 @@ struct Provenance {
   std::vector<FileFingerprint> files;
   std::string model;           // e.g. "ae-arm"
   std::string overlay_time_s;  // campaign time of the overlay's terms; empty: no overlay
-  double tol_um = 0.0, step_mm = 0.0;
+  double tol_um = 0.0, step_mm = 0.0, min_segment_mm = 0.0;
+  bool spread_takeups = false;
   std::vector<std::string> setup;  // one line each: offsets, tools, start point
   std::string date;                // UTC, ISO 8601
   std::size_t line = 0;            // read_provenance: line of the marker
