@@ -114,7 +114,7 @@ AlignedPrediction predict_aligned(std::istream& in, const std::string& file,
   ModelSet models(machine, options.models, options.extension);
   // The walk of `predict`, keeping whether a point lies on a feed motion.
   auto evaluate = [&](const model::EvalPoint& p, std::size_t line, bool cutting) {
-    models.evaluate(p, file, line);
+    models.evaluate(p, file, line, !cutting);
     stored.push_back({p, line, cutting});
     for (std::size_t m = 0; m < models.size(); ++m) {
       devs[m].push_back(models.deviations()[m]);
@@ -135,6 +135,7 @@ AlignedPrediction predict_aligned(std::istream& in, const std::string& file,
   }
   AlignedPrediction out;
   out.summary = summarize(models, machine, file);
+  out.summary.moves = options.input == PredictInput::program;
 
   // The part: the cutting points; the datum sets among them.
   std::vector<std::size_t> part;

@@ -34,9 +34,12 @@ ModelSet::ModelSet(const machine::Machine& machine, std::vector<model::ModelKind
   deviations_.resize(kinds_.size());
   norms_.resize(kinds_.size());
   stats_.resize(kinds_.size());
+  cutting_.resize(kinds_.size());
+  rapid_.resize(kinds_.size());
 }
 
-void ModelSet::evaluate(const model::EvalPoint& point, const std::string& file, std::size_t line) {
+void ModelSet::evaluate(const model::EvalPoint& point, const std::string& file, std::size_t line,
+                        bool rapid) {
   for (std::size_t i = 0; i < models_.size(); ++i) {
     try {
       deviations_[i] = models_[i].evaluate(point, data_[i]);
@@ -49,6 +52,7 @@ void ModelSet::evaluate(const model::EvalPoint& point, const std::string& file, 
   for (std::size_t i = 0; i < models_.size(); ++i) {
     norms_[i] = deviations_[i].e_um.norm();
     stats_[i].add(deviations_[i].e_um, norms_[i], line);
+    (rapid ? rapid_ : cutting_)[i].add(deviations_[i].e_um, norms_[i], line);
   }
   ++points_;
 }

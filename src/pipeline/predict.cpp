@@ -24,21 +24,24 @@ PredictionSummary predict(std::istream& in, const std::string& file,
                           const PredictionSink& sink) {
   ModelSet models(machine, options.models, options.extension);
   machine::TravelCheck travel(machine.spec().travel);
-  auto evaluate = [&](const model::EvalPoint& p, std::size_t line) {
+  auto evaluate = [&](const model::EvalPoint& p, std::size_t line, bool rapid) {
     travel.add(p.p, p.tool_length, line);
-    models.evaluate(p, file, line);
+    models.evaluate(p, file, line, rapid);
     if (sink) sink(p, line, models);
   };
   if (options.input == PredictInput::points) {
     PointReader reader(in, file, machine.tool_length());
     model::EvalPoint p;
     std::size_t line = 0;
-    while (reader.next(p, line)) evaluate(p, line);
+    while (reader.next(p, line)) evaluate(p, line, false);
   } else {
     run_path(in, file, options.config ? *options.config : interpreter_config(machine), options.path,
-             [&](const path::PathPoint& pp) { evaluate(eval_point(pp), pp.line); });
+             [&](const path::PathPoint& pp) {
+               evaluate(eval_point(pp), pp.line, pp.kind == gcode::MotionKind::rapid);
+             });
   }
   PredictionSummary summary = summarize(models, machine, file);
+  summary.moves = options.input == PredictInput::program;
   summary.outside_travel_points = travel.outside();
   summary.outside_travel_per_axis = travel.outside_per_axis();
   summary.travel_text = travel.text();

@@ -137,15 +137,24 @@ void render_predict_report(HtmlPage& page, const PredictedPath& r, double k, dou
   page.add_section("summary", "Summary");
   Table t;
   t.id = "summary-table";
-  t.caption = "Predicted deviation of the tool tip over all points, per model";
-  t.header = {"model",        "max |dx| (µm)", "max |dy| (µm)", "max |dz| (µm)",
-              "rms |d| (µm)", "max |d| (µm)",  "at line",       "out-of-range lookups"};
-  for (const auto& s : r.stats)
-    t.rows.push_back({model_name(s.model), fmt::format("{:.3f}", s.max_abs_um.x()),
-                      fmt::format("{:.3f}", s.max_abs_um.y()),
-                      fmt::format("{:.3f}", s.max_abs_um.z()), fmt::format("{:.3f}", s.rms_um),
-                      fmt::format("{:.3f}", s.max_um), std::to_string(s.max_line),
-                      std::to_string(s.out_of_range_lookups)});
+  t.caption =
+      "Predicted deviation of the tool tip per model: cutting moves, rapids and all points (the "
+      "rows of `abbe predict`)";
+  t.header = {"model",        "moves",        "points",  "max |dx| (µm)",       "max |dy| (µm)",
+              "max |dz| (µm)", "rms |d| (µm)", "max |d| (µm)", "at line", "out-of-range lookups"};
+  auto row = [&](const ModelPathStats& s, const char* moves, bool lookups) {
+    const bool none = s.points == 0;
+    auto num = [&](double v) { return none ? std::string("-") : fmt::format("{:.3f}", v); };
+    t.rows.push_back({model_name(s.model), moves, std::to_string(s.points),
+                      num(s.max_abs_um.x()), num(s.max_abs_um.y()), num(s.max_abs_um.z()),
+                      num(s.rms_um), num(s.max_um), none ? "-" : std::to_string(s.max_line),
+                      lookups ? std::to_string(s.out_of_range_lookups) : ""});
+  };
+  for (std::size_t m = 0; m < r.stats.size(); ++m) {
+    if (m < r.cutting_stats.size()) row(r.cutting_stats[m], "cutting", false);
+    if (m < r.rapid_stats.size()) row(r.rapid_stats[m], "rapid", false);
+    row(r.stats[m], "all", true);
+  }
   page.add_table(t);
   if (r.stride > 1)
     page.add_note(fmt::format(

@@ -16,6 +16,7 @@ struct Kept {
   std::size_t index = 0;
   Eigen::Vector3d p;
   std::size_t line = 0;
+  bool rapid = false;
   double length = 0.0;
   std::vector<Eigen::Vector3d> d;  // per model
   double norm(std::size_t m) const { return d[m].norm(); }
@@ -55,6 +56,7 @@ void append(PredictedPath& r, const Kept& k) {
   r.index.push_back(k.index);
   r.nominal.push_back(k.p);
   r.line.push_back(k.line);
+  r.rapid.push_back(k.rapid);
   r.path_length.push_back(k.length);
   for (std::size_t m = 0; m < k.d.size(); ++m) r.deviation_um[m].push_back(k.d[m]);
 }
@@ -86,13 +88,15 @@ PredictedPath predict_program(const machine::Machine& machine, std::istream& in,
   std::vector<Bucket> buckets;
   pipeline::run_path(program, file, pipeline::interpreter_config(machine), po,
                      [&](const path::PathPoint& pp) {
-                       models.evaluate(pipeline::eval_point(pp), file, pp.line);
+                       const bool rapid = pp.kind == gcode::MotionKind::rapid;
+                       models.evaluate(pipeline::eval_point(pp), file, pp.line, rapid);
                        if (r.total_points > 0) length += (pp.p - previous).norm();
                        previous = pp.p;
                        Kept k;
                        k.index = r.total_points;
                        k.p = pp.p;
                        k.line = pp.line;
+                       k.rapid = rapid;
                        k.length = length;
                        k.d.resize(models.size());
                        for (std::size_t i = 0; i < models.size(); ++i)
@@ -133,14 +137,20 @@ PredictedPath predict_program(const machine::Machine& machine, std::istream& in,
   }
 
   for (std::size_t i = 0; i < models.size(); ++i) {
-    const pipeline::ModelStats& s = models.stats()[i];
-    ModelPathStats& out = r.stats.emplace_back();
-    out.model = o.models[i];
-    out.max_abs_um = s.max_abs_um;
-    out.rms_um = s.rms_um();
-    out.max_um = s.max_um;
-    out.max_line = s.max_line;
-    out.out_of_range_lookups = models.out_of_range_lookups(i);
+    auto stats = [&](const pipeline::ModelStats& s) {
+      ModelPathStats out;
+      out.model = o.models[i];
+      out.points = s.points;
+      out.max_abs_um = s.max_abs_um;
+      out.rms_um = s.rms_um();
+      out.max_um = s.max_um;
+      out.max_line = s.max_line;
+      out.out_of_range_lookups = models.out_of_range_lookups(i);
+      return out;
+    };
+    r.stats.push_back(stats(models.stats()[i]));
+    r.cutting_stats.push_back(stats(models.cutting_stats()[i]));
+    r.rapid_stats.push_back(stats(models.rapid_stats()[i]));
   }
 
   // Source text of the lines the kept points come from.

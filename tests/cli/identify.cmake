@@ -62,7 +62,7 @@ string(REPLACE "table: errors.csv" "table: fitted.csv" yaml "${yaml}")
 file(WRITE ${WORK}/fitted.yaml "${yaml}")
 run(${ABBE} predict ${WORK}/grid.csv --points --machine ${WORK}/fitted.yaml --model ae-arm
     --summary-only)
-expect_match("${run_out}" "ae-arm +[0-9.]+" "predict with the fitted table")
+expect_match("${run_out}" "ae-arm +all +[0-9]+ +[0-9.]+" "predict with the fitted table")
 
 # Bad input: exit 1 with file and line or field.
 expect_failure("no-such.csv" ${ABBE} identify --measured ${WORK}/no-such.csv

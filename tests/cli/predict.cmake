@@ -18,7 +18,7 @@ if(NOT CMAKE_SCRIPT_MODE_FILE)
                    --machine ${ABBE_MACHINES}/sample.yaml --model all --summary-only
                    --summary-json ${CMAKE_CURRENT_BINARY_DIR}/cli_predict_summary.json)
   set_tests_properties(cli_predict_nc_summary PROPERTIES LABELS cli
-    PASS_REGULAR_EXPRESSION "[0-9]+ points.*\n.*\n  htm +[0-9.]+.*\n  ae-arm +[0-9.]+.*\n  dual +[0-9.]+")
+    PASS_REGULAR_EXPRESSION "[0-9]+ points.*\n.*\n  htm +cutting +[0-9]+ +[0-9.]+.*\n  htm +rapid +[0-9]+ +[0-9.]+.*\n  htm +all +[0-9]+ +[0-9.]+.*\n  ae-arm +cutting.*\n  ae-arm +rapid.*\n  ae-arm +all.*\n  dual +cutting +[0-9]+ +[0-9.]+")
 
   # JSON output: the points array and the summary.
   add_test(NAME cli_predict_json
@@ -88,7 +88,7 @@ file(READ ${WORK}/out.csv contents)
 if(NOT rc EQUAL 0 OR NOT contents MATCHES "^x,y,z,px,py,pz,dx,dy,dz,d,line\n")
   message(FATAL_ERROR "good run: rc '${rc}', output:\n${contents}\n${err}")
 endif()
-if(NOT out MATCHES "ae-arm +2\\.2800 +1\\.0000 +5\\.0000")
+if(NOT out MATCHES "ae-arm +all +2 +2\\.2800 +1\\.0000 +5\\.0000")
   message(FATAL_ERROR "good run: the summary (on stdout with -o FILE) is missing:\n${out}")
 endif()
 

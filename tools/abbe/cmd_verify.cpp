@@ -103,9 +103,9 @@ int run_verify(const VerifyCliOptions& o, const GlobalOptions& g) {
   for (const auto& f : failures) why += "  FAIL: " + f + "\n";
   std::fputs(
       fmt::format("{} against {} (model {}):\n{}"
-                  "  predicted compensated -> nominal: {} points, max {:.4f} µm (line {}), "
+                  "  cutting moves, predicted compensated -> nominal: {} points, max {:.4f} µm (line {}), "
                   "rms {:.4f} µm, {} beyond tol\n"
-                  "  nominal -> predicted compensated: {} points, max {:.4f} µm (line {}), "
+                  "  cutting moves, nominal -> predicted compensated: {} points, max {:.4f} µm (line {}), "
                   "rms {:.4f} µm, {} beyond tol\n"
                   "{}  max {:.4f} µm, tol {} µm: {}\n",
                   o.input, o.against,

@@ -35,7 +35,10 @@ class ModelSet {
   // Evaluates every model at `point` and updates the statistics. A model's
   // abbe::InputError (a lookup outside a table under the policy `error`) is
   // re-thrown at `file`:`line`, naming the point.
-  void evaluate(const model::EvalPoint& point, const std::string& file, std::size_t line);
+  // `rapid`: the point lies on a rapid (else on a cutting move, or it is a
+  // point of a CSV); counted in rapid_stats() or cutting_stats() as well.
+  void evaluate(const model::EvalPoint& point, const std::string& file, std::size_t line,
+                bool rapid = false);
 
   std::size_t size() const { return kinds_.size(); }
   const std::vector<model::ModelKind>& kinds() const { return kinds_; }
@@ -43,7 +46,9 @@ class ModelSet {
   const std::vector<model::Deviation>& deviations() const { return deviations_; }
   const std::vector<double>& norms_um() const { return norms_; }  // |e|
   // Over all points, per model:
-  const std::vector<ModelStats>& stats() const { return stats_; }
+  const std::vector<ModelStats>& stats() const { return stats_; }  // all points
+  const std::vector<ModelStats>& cutting_stats() const { return cutting_; }
+  const std::vector<ModelStats>& rapid_stats() const { return rapid_; }
   std::size_t out_of_range_lookups(std::size_t model) const;
   std::size_t points() const { return points_; }
 
@@ -53,7 +58,7 @@ class ModelSet {
   std::vector<model::ModelData> data_;
   std::vector<model::Deviation> deviations_;
   std::vector<double> norms_;
-  std::vector<ModelStats> stats_;
+  std::vector<ModelStats> stats_, cutting_, rapid_;
   std::size_t points_ = 0;
 };
 

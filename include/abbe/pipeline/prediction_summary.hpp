@@ -16,7 +16,10 @@ namespace abbe::pipeline {
 
 struct ModelSummary {
   model::ModelKind kind = model::ModelKind::ae_arm;
-  ModelStats stats;
+  ModelStats stats;  // all points
+  // The points of cutting moves (feeds, arcs, the feeds of canned cycles)
+  // and of rapids: the split every command and report shows.
+  ModelStats cutting, rapid;
   std::size_t out_of_range_lookups = 0;
 };
 
@@ -24,6 +27,8 @@ struct PredictionSummary {
   std::string machine;  // machine name
   std::string input;    // file name ("-" for stdin)
   std::size_t points = 0;
+  // A program (points on cutting moves and rapids) rather than a CSV of points.
+  bool moves = false;
   machine::OutOfRangePolicy out_of_range = machine::OutOfRangePolicy::clamp;
   std::vector<ModelSummary> models;
   // Points whose axis positions lie outside the machine's travel
@@ -39,10 +44,12 @@ PredictionSummary summarize(const ModelSet& models, const machine::Machine& mach
 
 // JSON object (2-space indent, no trailing newline): machine, input, points,
 // out_of_range_policy, models[{model, points, max_abs_d{x,y,z}_um, rms_d_um,
-// max_d_um, out_of_range_lookups}].
+// max_d_um, max_line, out_of_range_lookups, and for a program cutting{...} and
+// rapid{...} with points, max_abs_d{x,y,z}_um, rms_d_um, max_d_um, max_line}].
 std::string summary_json(const PredictionSummary& summary);
 
-// The text table: a title line, then one row per model (µm).
+// The text table: a title line, then per model a row for the cutting moves,
+// one for the rapids and one for all points (a CSV of points: all only), µm.
 std::string summary_table(const PredictionSummary& summary);
 
 }  // namespace abbe::pipeline

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "abbe/compensate/path_verifier.hpp"
 #include "abbe/report/html_page.hpp"
 #include "abbe/report/predicted_path.hpp"
 
@@ -28,6 +29,12 @@ struct CompensationComparison {
   double residual_max_um = 0.0;
   double residual_rms_um = 0.0;
   std::size_t residual_max_line = 0;  // line of the compensated program
+  // The same over the kept points on rapids only.
+  std::size_t rapid_points = 0;
+  double rapid_max_um = 0.0, rapid_rms_um = 0.0;
+  std::size_t rapid_max_line = 0;
+  // The cutting moves compared as `abbe verify` compares them (its numbers).
+  compensate::VerifyStats verify;
 };
 
 // Both texts go through the same machine and the one model of `options`.

@@ -40,6 +40,7 @@ struct PredictPathOptions {
 
 struct ModelPathStats {
   model::ModelKind model = model::ModelKind::ae_arm;
+  std::size_t points = 0;
   Eigen::Vector3d max_abs_um = Eigen::Vector3d::Zero();
   double rms_um = 0.0;       // of |d|
   double max_um = 0.0;       // of |d|
@@ -60,7 +61,10 @@ struct PredictedPath {
   std::vector<std::size_t> line;                           // source line
   std::vector<double> path_length;                         // mm from the start
   std::vector<std::vector<Eigen::Vector3d>> deviation_um;  // [model][point]
+  std::vector<bool> rapid;                                 // the kept point is on a rapid
   std::vector<ModelPathStats> stats;                       // per model, all points
+  // Per model, the points of cutting moves and of rapids (as `abbe predict`).
+  std::vector<ModelPathStats> cutting_stats, rapid_stats;
   std::map<std::size_t, std::string> source;  // text of the source lines of kept points
 };
 
