@@ -17,134 +17,27 @@
 #include "abbe/machine/travel_check.hpp"
 #include "abbe/path/fragmenter.hpp"
 #include "abbe/pipeline/program_path.hpp"
+#include "block_editor.hpp"
+#include "piece_splitter.hpp"
 
 namespace abbe::compensate {
 namespace {
 
 using Eigen::Vector3d;
+using detail::append_word;
+using detail::BlockEditor;
+using detail::find_word;
+using detail::merge_short_pieces;
+using detail::SolvedPoint;
+using detail::split_into_pieces;
 constexpr char kAxis[3] = {'X', 'Y', 'Z'};
 constexpr char kCentre[3] = {'I', 'J', 'K'};
-
-struct Edit {
-  std::uint32_t begin = 0, end = 0;  // begin == end: insertion
-  std::string text;
-};
 
 bool has_g(const gcode::Block& b, double code) {
   for (const auto& w : b.words)
     if (w.letter == 'G' && std::abs(w.value - code) < 1e-9) return true;
   return false;
 }
-
-// Appends "<sep><letter><value>" in the given style (a new word: the default style).
-void append_word(std::string& line, const char* sep, char letter, double value,
-                 const NumberStyle& style, int decimals) {
-  line += sep;
-  line += letter;
-  append_number(line, value, style, decimals);
-}
-
-const gcode::Word* find_word(const gcode::Block& b, char letter) {
-  for (const auto& w : b.words)
-    if (w.letter == letter) return &w;
-  return nullptr;
-}
-
-// Rewrites one block: edits of written numbers and insertions of words.
-class BlockEditor {
- public:
-  BlockEditor(const gcode::Block& block, const std::string& raw, int decimals,
-              const NumberStyle& plain)
-      : block_(block), raw_(raw), decimals_(decimals), plain_(plain) {
-    // Inserted words go right after the last axis/centre/radius word, or the last word.
-    for (const auto& w : block.words) {
-      if (std::string_view("XYZIJKR").find(w.letter) != std::string_view::npos) anchor_ = w.end;
-      anchor_any_ = std::max(anchor_any_, w.end);
-    }
-    if (anchor_ == 0) anchor_ = anchor_any_;
-    spaced_ = raw.find(' ') != std::string::npos || block.words.size() < 2;
-  }
-
-  // Sets the number of `letter` to `target` (program units). A written word
-  // keeps its bytes when the rounded value does not change; an absent word
-  // is inserted when `target` differs from `baseline` (what the block means
-  // without it) at the output precision. Returns the value now in effect.
-  double set(char letter, double target, double baseline, bool may_insert) {
-    if (const gcode::Word* w = find_word(block_, letter)) {
-      const std::string_view text(raw_.data() + w->number_begin, w->end - w->number_begin);
-      NumberStyle style = number_style(text);
-      style.point_always = plain_.point_always;
-      const int d = std::max(style.decimals, decimals_);
-      if (round_to(target, d) == round_to(w->value, d)) return w->value;
-      edits_.push_back({w->number_begin, w->end, format_number(target, style, decimals_)});
-      return round_to(target, d);
-    }
-    if (!may_insert || round_to(target, decimals_) == round_to(baseline, decimals_))
-      return baseline;
-    edits_.push_back({anchor_, anchor_,
-                      fmt::format("{}{}{}", spaced_ ? " " : "", letter,
-                                  format_number(target, plain_, decimals_))});
-    return round_to(target, decimals_);
-  }
-
-  // Deletes a word (and the blank before it).
-  void remove(char letter) {
-    const gcode::Word* w = find_word(block_, letter);
-    if (!w) return;
-    std::uint32_t b = w->begin;
-    if (b > 0 && raw_[b - 1] == ' ') --b;
-    edits_.push_back({b, w->end, ""});
-  }
-
-  // Inserts `text` (a word) before the first axis/centre/radius word.
-  void insert_before_axes(const std::string& text) {
-    std::uint32_t at = anchor_any_;
-    for (const auto& w : block_.words)
-      if (std::string_view("XYZIJKR").find(w.letter) != std::string_view::npos) {
-        at = w.begin;
-        break;
-      }
-    edits_.push_back({at, at, spaced_ ? text + " " : text});
-  }
-
-  bool changed() const { return !edits_.empty(); }
-  bool spaced() const { return spaced_; }
-
-  std::string apply() const {
-    std::vector<Edit> e = edits_;
-    std::stable_sort(e.begin(), e.end(),
-                     [](const Edit& a, const Edit& b) { return a.begin < b.begin; });
-    std::string out;
-    std::uint32_t pos = 0;
-    for (const auto& x : e) {
-      out.append(raw_, pos, x.begin - pos);
-      out += x.text;
-      pos = x.end;
-    }
-    out.append(raw_, pos, std::string::npos);
-    return out;
-  }
-
- private:
-  const gcode::Block& block_;
-  const std::string& raw_;
-  int decimals_;
-  NumberStyle plain_;
-  std::uint32_t anchor_ = 0, anchor_any_ = 0;
-  bool spaced_ = true;
-  std::vector<Edit> edits_;
-};
-
-struct SolvedPoint {
-  Vector3d n;             // nominal, mm
-  Vector3d delta;         // c − n, mm (arriving here)
-  double t = 0.0;         // parameter along the motion
-  bool reversal = false;  // an in-plane axis of an arc reverses here: a piece ends here
-  // Leaving the point: differs from `delta` at a reversal whose correction
-  // jump is taken by a micro move (a G1 from n + delta to n + delta_out).
-  Vector3d delta_out = Vector3d::Zero();
-  bool micro = false;
-};
 
 class Compensator {
  public:
@@ -566,73 +459,6 @@ class Compensator {
     if (zw) ed.set(kAxis[n], zw->value + mean_n / unit_, zw->value, false);
   }
 
-  // True if a single piece from point a to point b (a line, or an arc about
-  // the centre moved by the mean of the end corrections) passes within
-  // tol/2 of the commanded point of every fragment point between them.
-  bool piece_ok(const gcode::Motion& m, const std::vector<SolvedPoint>& sp, std::size_t a,
-                std::size_t b) const {
-    if (b <= a + 1) return true;
-    const double tol = 0.5e-3 * o_.tol_um;
-    const Vector3d ca = sp[a].n + sp[a].delta_out, cb = sp[b].n + sp[b].delta;
-    if (m.kind != gcode::MotionKind::arc) {
-      // A segment: distances to the line through its ends (all points lie
-      // near the segment, so the infinite line is the same here).
-      const Vector3d u = cb - ca;
-      const double l2 = u.squaredNorm();
-      for (std::size_t k = a + 1; k < b; ++k) {
-        const Vector3d w = sp[k].n + sp[k].delta - ca;
-        const double s = l2 > 0.0 ? std::clamp(w.dot(u) / l2, 0.0, 1.0) : 0.0;
-        if ((w - s * u).squaredNorm() > tol * tol) return false;
-      }
-      return true;
-    }
-    gcode::Motion piece = m;
-    piece.start = ca;
-    piece.end = cb;
-    piece.center = m.center + 0.5 * (sp[a].delta_out + sp[b].delta);
-    const int normal = plane_axes(m.plane)[2];
-    piece.center[normal] = piece.start[normal];
-    if (a != 0 || b + 1 != sp.size()) piece.rotation = m.rotation > 0 ? 1 : -1;
-    const MotionPath path(piece);
-    for (std::size_t k = a + 1; k < b; ++k)
-      if (path.distance_near(sp[k].n + sp[k].delta) > tol) return false;
-    return true;
-  }
-
-  // Pieces shorter than the minimum segment (commanded length) are merged
-  // with the next piece, or the previous one when a forced end (a reversal
-  // or take-up) follows, if the merged piece stays within tol/2; those that
-  // cannot be merged are kept (tol first) and counted.
-  void merge_short_pieces(const gcode::Motion& m, const std::vector<SolvedPoint>& sp,
-                          std::vector<std::size_t>& breaks, double len) {
-    if (o_.min_segment <= 0.0 || breaks.size() < 2) return;
-    const bool arc = m.kind == gcode::MotionKind::arc;
-    auto piece_length = [&](std::size_t a, std::size_t b) {
-      if (arc) return (sp[b].t - sp[a].t) * len;
-      return ((sp[b].n + sp[b].delta) - (sp[a].n + sp[a].delta_out)).norm();
-    };
-    for (std::size_t j = 0; j < breaks.size() && breaks.size() > 1;) {
-      const std::size_t a = j == 0 ? 0 : breaks[j - 1], b = breaks[j];
-      if (piece_length(a, b) >= o_.min_segment) {
-        ++j;
-        continue;
-      }
-      const bool forced_end = sp[b].reversal || j + 1 == breaks.size();
-      if (!forced_end && piece_ok(m, sp, a, breaks[j + 1])) {
-        breaks.erase(breaks.begin() + static_cast<std::ptrdiff_t>(j));
-        continue;  // the merged piece is checked again
-      }
-      const std::size_t prev_a = j >= 2 ? breaks[j - 2] : 0;
-      if (j > 0 && !sp[a].reversal && piece_ok(m, sp, prev_a, b)) {
-        breaks.erase(breaks.begin() + static_cast<std::ptrdiff_t>(j - 1));
-        --j;
-        continue;
-      }
-      ++s_.short_pieces_kept;
-      ++j;
-    }
-  }
-
   void note_inserted_length(double mm) {
     s_.shortest_inserted_mm = std::min(s_.shortest_inserted_mm, mm);
     if (mm < o_.min_segment) ++s_.short_takeup_moves;
@@ -772,43 +598,12 @@ class Compensator {
       const Vector3d d = solve(pts[k]);
       push({pts[k].p, d, t, false, d, false});
     }
-    // Greedy pieces: each as long as it stays within tol/2; a piece ends at
-    // every reversal point that needs one.
+    // The longest pieces within tol/2, ending at every forced point; then
+    // no piece shorter than the minimum segment where merging keeps tol/2.
     auto& breaks = breaks_;
-    breaks.clear();
-    bool reversal = false;
-    for (const auto& x : sp) reversal = reversal || x.reversal;
-    if (!reversal && piece_ok(m, sp, 0, sp.size() - 1)) breaks.push_back(sp.size() - 1);
-    for (std::size_t a = 0; breaks.empty() || breaks.back() + 1 < sp.size();) {
-      // Longest b from a: grow while the piece stays within tol (the check
-      // of a piece costs its length, so grow by doubling, then bisect).
-      std::size_t b = a + 1;
-      std::size_t limit = sp.size() - 1;
-      for (std::size_t k = a + 1; k < limit; ++k)
-        if (sp[k].reversal) {
-          limit = k;
-          break;
-        }
-      if (b < limit) {
-        std::size_t good = b, step = 1;
-        while (good + step <= limit && piece_ok(m, sp, a, good + step)) {
-          good += step;
-          step *= 2;
-        }
-        std::size_t bad = std::min(limit + 1, good + step);
-        while (bad - good > 1) {
-          const std::size_t mid = good + (bad - good) / 2;
-          if (piece_ok(m, sp, a, mid))
-            good = mid;
-          else
-            bad = mid;
-        }
-        b = good;
-      }
-      breaks.push_back(b);
-      a = b;
-    }
-    merge_short_pieces(m, sp, breaks, len);
+    split_into_pieces(m, sp, 0.5e-3 * o_.tol_um, breaks);
+    s_.short_pieces_kept +=
+        merge_short_pieces(m, sp, len, o_.min_segment, 0.5e-3 * o_.tol_um, breaks);
     const bool r_form = arc && find_word(block, 'R') != nullptr;
     // A multi-turn arc in pieces: every piece is at most a quarter turn
     // (pieces end at the reversal points), so the P word (turns) goes.
