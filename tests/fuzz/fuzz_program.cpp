@@ -1,16 +1,24 @@
 // libFuzzer target: any bytes as an NC program. The only acceptable failure is
 // abbe::InputError; anything else (a crash, a sanitizer report, another
 // exception) is a bug. On the way, every line the parser accepts is checked
-// against the offset contract the post-processor relies on.
+// against the offset contract the post-processor relies on; the program then
+// goes through the fragmenter (abbe path) and compensate_program — with
+// all-zero tables the compensated program must be the input byte for byte,
+// with the sample machine it must keep at least every line of the input.
 #include <cstddef>
 #include <cstdint>
 #include <sstream>
 #include <string>
 #include <string_view>
 
+#include "abbe/compensate/program_compensator.hpp"
 #include "abbe/gcode/parser.hpp"
 #include "abbe/gcode/program.hpp"
 #include "abbe/io/input_error.hpp"
+#include "abbe/machine/machine.hpp"
+#include "abbe/model/error_model.hpp"
+#include "abbe/pipeline/interpreter_setup.hpp"
+#include "abbe/pipeline/program_path.hpp"
 
 namespace {
 
@@ -36,6 +44,45 @@ void check_offsets(std::string_view line, const abbe::gcode::Block& block) {
     previous_end = w.end;
   }
   for (const auto& c : block.comments) check(c.begin < c.end && c.end <= text.size());
+}
+
+struct Machines {
+  abbe::machine::Machine zero =
+      abbe::machine::Machine::load(ABBE_SOURCE_DIR "/tests/data/compensate/zero.yaml");
+  abbe::machine::Machine sample =
+      abbe::machine::Machine::load(ABBE_SOURCE_DIR "/machines/sample/machine.yaml");
+  abbe::model::ErrorModel zero_model{zero, abbe::model::ModelKind::ae_arm};
+  abbe::model::ErrorModel sample_model{sample, abbe::model::ModelKind::ae_arm};
+};
+
+const Machines& machines() {
+  static const Machines m;
+  return m;
+}
+
+abbe::gcode::InterpreterConfig config_of(const abbe::machine::Machine& m) {
+  abbe::gcode::InterpreterConfig c = abbe::pipeline::interpreter_config(m);
+  c.dialect.loop_limit = 10'000;
+  return c;
+}
+
+// compensate_program's output, or nothing when it refuses the program.
+bool compensated(const std::string& text, const abbe::machine::Machine& m,
+                 const abbe::model::ErrorModel& model, std::string& out) {
+  std::istringstream in(text);
+  try {
+    abbe::compensate::compensate_program(in, "fuzz.nc", config_of(m), model, {},
+                                         [&](const char* d, std::size_t n) { out.append(d, n); });
+    return true;
+  } catch (const abbe::InputError&) {
+    return false;
+  }
+}
+
+std::size_t count_lines(const std::string& s) {
+  std::size_t n = 0;
+  for (char c : s) n += c == '\n';
+  return n;
 }
 
 }  // namespace
@@ -69,6 +116,23 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     abbe::gcode::run_program(in, "fuzz.nc", config, [](const abbe::gcode::Motion&) {});
   } catch (const abbe::InputError&) {
+    return 0;  // compensate would refuse it at the same line
   }
+
+  // Through the fragmenter, as `abbe path` with the sample machine.
+  const Machines& m = machines();
+  try {
+    std::istringstream again(text);
+    abbe::pipeline::run_path(again, "fuzz.nc", config_of(m.sample), abbe::pipeline::PathOptions{},
+                             [](const abbe::path::PathPoint&) {});
+  } catch (const abbe::InputError&) {
+  }
+
+  // compensate_program: all-zero tables change nothing; the sample machine
+  // keeps every line (inserted pieces only add lines).
+  std::string out;
+  if (compensated(text, m.zero, m.zero_model, out)) check(out == text);
+  out.clear();
+  if (compensated(text, m.sample, m.sample_model, out)) check(count_lines(out) >= count_lines(text));
   return 0;
 }
