@@ -33,9 +33,13 @@ using detail::split_into_pieces;
 constexpr char kAxis[3] = {'X', 'Y', 'Z'};
 constexpr char kCentre[3] = {'I', 'J', 'K'};
 
-bool has_g(const gcode::Block& b, double code) {
+// Whether the block's text writes its arc motion code (G2/G3) itself: an arc
+// block that relies on the modal code needs it written when a G1 line is
+// inserted before it. (Modes come from the interpreter; this is about text.)
+bool writes_arc_code(const gcode::Block& b) {
   for (const auto& w : b.words)
-    if (w.letter == 'G' && std::abs(w.value - code) < 1e-9) return true;
+    if (w.letter == 'G' && (std::abs(w.value - 2.0) < 1e-9 || std::abs(w.value - 3.0) < 1e-9))
+      return true;
   return false;
 }
 
@@ -175,7 +179,7 @@ class Compensator {
     if (interp_.modal().motion_mode == gcode::gcode_id(80)) in_cycle_ = false;
     if (!motions_.empty()) ++s_.motion_blocks;
     if (motions_.empty()) {
-      if (has_g(block, 92) && 1e3 * delta_.norm() > 1e-3)
+      if (interp_.non_modal_read() == gcode::gcode_id(92) && 1e3 * delta_.norm() > 1e-3)
         throw InputError({file_, block.line, 1, "G92", raw},
                          "G92 at a compensated position: the offset would take up the "
                          "correction (not supported by compensate)");
@@ -185,7 +189,8 @@ class Compensator {
     }
     // An axis word in absolute coordinates (G90, or G53's machine
     // coordinates) sets the axis' position: from here on abbe may write it.
-    if (!interp_.incremental() || has_g(block, 53))
+    const bool g53 = interp_.non_modal_read() == gcode::gcode_id(53);
+    if (!interp_.incremental() || g53)
       for (std::size_t a = 0; a < 3; ++a)
         if (find_word(block, kAxis[a])) known_[a] = true;
     unit_ = interp_.inch() ? 25.4 : 1.0;
@@ -212,7 +217,6 @@ class Compensator {
     BlockEditor editor(block, raw, decimals_, plain_);
     std::vector<std::string> pieces;
     std::string before;  // a micro move written before the block
-    const bool g53 = has_g(block, 53);
     bool feed_block = false;
     if (motions_.size() == 1) in_cycle_ = false;
     if (motions_.size() > 1) {
@@ -630,7 +634,7 @@ class Compensator {
           if (const gcode::Word* f = find_word(block, 'F'))
             before += (ed.spaced() ? " " : "") + raw.substr(f->begin, f->end - f->begin);
         }
-        if (!before.empty() && !has_g(block, 2) && !has_g(block, 3))
+        if (!before.empty() && !writes_arc_code(block))
           ed.insert_before_axes(motion_word);
       }
     }

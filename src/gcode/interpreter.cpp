@@ -161,6 +161,8 @@ Interpreter::Interpreter(Interpreter&&) noexcept = default;
 Interpreter& Interpreter::operator=(Interpreter&&) noexcept = default;
 
 const ModalState& Interpreter::modal() const { return *state_; }
+int Interpreter::non_modal_read() const { return state_->read_non_modal; }
+
 const Block& Interpreter::block_read() const {
   static const Block kNone;
   return state_->read_block ? *state_->read_block : kNone;
@@ -229,7 +231,9 @@ void Interpreter::execute_evaluated(const Block& written, std::string_view raw_l
   st.read_block = source;
   const BlockCodes codes = classify_block(block, ctx);
   // check
+  st.read_non_modal = -1;
   const detail::BlockPlan b = detail::plan_block(st, codes, ctx);
+  st.read_non_modal = b.non_modal;
   detail::check_rotary_words(st, b);
 
   std::uint32_t sub = 0;

@@ -20,6 +20,7 @@ struct ExecState : ModalState {
   std::string file;
   Block adapted;  // the block in RS274/NGC when the program is in another dialect
   const Block* read_block = nullptr;  // what the last execute() read
+  int read_non_modal = -1;            // its group-0 code (gcode_id), -1: none
   // Fanuc/Haas: canned cycles are a modal group of their own (09), so the
   // last G0-G3 is still in force after G80 (LinuxCNC: no motion mode).
   int fanuc_group01 = gcode_id(80);

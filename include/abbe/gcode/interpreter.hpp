@@ -86,6 +86,9 @@ class Interpreter {
   // program units, offsets still into the caller's line). A post-processor
   // decides on this what to rewrite. Valid until the next execute().
   const Block& block_read() const;
+  // The group-0 code of that block (gcode_id: G4 G10 G28 G30 G52 G53 G92 …),
+  // -1 when it has none.
+  int non_modal_read() const;
 
   bool program_ended() const;        // M2 / M30 seen
   Eigen::Vector3d position() const;  // current tool tip, mm
