@@ -26,6 +26,7 @@
 #include "input_stream.hpp"
 #include "interpreter_options.hpp"
 #include "output_options.hpp"
+#include "setup_options.hpp"
 
 namespace abbe::cli {
 namespace {
@@ -35,9 +36,7 @@ struct InterpretOptions {
   bool canon = false;
   std::string output = "-";  // -o: stdout by default
   std::string machine;
-  std::optional<double> tool_length;
-  std::vector<std::string> tools;         // "H=L"
-  std::vector<std::string> work_offsets;  // "G55=x,y,z"
+  SetupOptions setup;
   gcode::DialectOptions dialect;
 };
 
@@ -50,19 +49,7 @@ gcode::InterpreterConfig make_config(const InterpretOptions& o) {
   // without one in the table is accepted (one warning, tool_length unknown).
   config.allow_unknown_tool_length = true;
   config.dialect = o.dialect;
-  if (o.tool_length) {
-    if (!std::isfinite(*o.tool_length))
-      bad_option("--tool-length", "must be a finite number of mm");
-    config.default_tool_length = *o.tool_length;
-  }
-  for (const auto& t : o.tools) {
-    const auto [h, length] = parse_tool_option(t);
-    config.tool_lengths[h] = length;
-  }
-  for (const auto& w : o.work_offsets) {
-    const auto [index, offset] = parse_work_offset_option(w);
-    config.work_offsets[index] = offset;
-  }
+  apply_setup_options(o.setup, config);
   return config;
 }
 
@@ -163,11 +150,7 @@ const CommandRegistrar registrar(
                    "STRAIGHT_FEED, ARC_FEED, DWELL");
       sub.add_option("--machine", o->machine,
                      "Machine file (YAML): tool length, tool table and work offsets");
-      sub.add_option("--tool-length", o->tool_length,
-                     "Tool length when no G43 is active, mm (overrides the machine file)");
-      sub.add_option("--tool", o->tools, "Tool length for G43 Hn as n=L (mm), repeatable");
-      sub.add_option("--work-offset", o->work_offsets,
-                     "Work offset as G54..G59=x,y,z (mm, overrides the machine file), repeatable");
+      add_setup_options(sub, o->setup);
       add_output_option(sub, o->output, "the canonical motions or the summary");
       add_dialect_options(sub, o->dialect);
       return [o] { return run_interpret(*o); };

@@ -24,6 +24,7 @@
 #include "dialect_option.hpp"
 #include "input_stream.hpp"
 #include "interpreter_options.hpp"
+#include "setup_options.hpp"
 #include "progress.hpp"
 
 namespace abbe::cli {
@@ -35,8 +36,7 @@ struct PathOptions {
   std::string format = "csv";
   double step = 5.0;
   double rapid_rate = 10000.0;
-  std::optional<double> tool_length;
-  std::vector<std::string> tools;  // "H=L"
+  SetupOptions setup;
   std::string machine;
   bool count_only = false;
   gcode::DialectOptions dialect;
@@ -50,15 +50,7 @@ gcode::InterpreterConfig make_config(const PathOptions& o) {
   // The tool-tip path does not depend on the length of a G43 tool: a tool
   // without one in the table is accepted (one warning, tool_length unknown).
   config.allow_unknown_tool_length = true;
-  if (o.tool_length) {
-    // With a machine the program starts at home (s = 0): keep P = −L·e_z for the new L.
-    if (!o.machine.empty()) config.initial_position.z() = -*o.tool_length;
-    config.default_tool_length = *o.tool_length;
-  }
-  for (const auto& t : o.tools) {
-    const auto [h, length] = parse_tool_option(t);
-    config.tool_lengths[h] = length;
-  }
+  apply_setup_options(o.setup, config);
   return config;
 }
 
@@ -134,9 +126,7 @@ const CommandRegistrar registrar(
                      "Rate of rapid (G0) motions for the time estimate, mm/min")
           ->check(CLI::PositiveNumber)
           ->capture_default_str();
-      sub.add_option("--tool-length", o->tool_length,
-                     "Tool length when no G43 is active, mm (overrides the machine file)");
-      sub.add_option("--tool", o->tools, "Tool length for G43 Hn as n=L (mm), repeatable");
+      add_setup_options(sub, o->setup);
       sub.add_option("--machine", o->machine,
                      "Machine file (YAML): tool length, tool table and work offsets");
       add_dialect_options(sub, o->dialect);

@@ -1,8 +1,9 @@
 #pragma once
-// The setup options of every command that reads a program with a machine
-// file (predict, compensate, verify): --tool-length L, --tool H=L,
-// --work-offset G55=x,y,z override the machine file's tool length, tool
-// table and work offsets. Bad values are InputErrors naming the option.
+// The setup options of every command that reads a program (path, interpret,
+// predict, compensate, verify): --tool-length L, --tool H=L, --work-offset
+// G55=x,y,z override the machine file's tool length, tool table and work
+// offsets (without a machine file: the defaults, zero). Bad values are
+// InputErrors naming the option.
 #include <CLI/CLI.hpp>
 #include <optional>
 #include <string>
@@ -20,8 +21,9 @@ struct SetupOptions {
 
 void add_setup_options(CLI::App& sub, SetupOptions& o);
 
-// Applies the options to a configuration made from a machine file (the
-// program starts at home, s = 0: a new tool length moves the start tip).
+// Applies the options to a configuration (the program starts with the
+// spindle where the configuration puts it: a new tool length moves the
+// start tip by the change of length).
 void apply_setup_options(const SetupOptions& o, gcode::InterpreterConfig& config);
 
 }  // namespace abbe::cli
