@@ -50,6 +50,24 @@ struct PredictOptions {
 const char* const kDatumOption[3] = {"--datum-primary", "--datum-secondary", "--datum-tertiary"};
 
 // predict --align: the points are written after the alignment is known.
+// Ends the points output with the summary, writes --summary-json and prints
+// the table: to stdout unless the points go there.
+void finish_outputs(const PredictOptions& o, pipeline::PredictionWriter* writer,
+                    io::AtomicOutputFile* out, const std::string& json, const std::string& table) {
+  if (writer) {
+    writer->finish(json);
+    out->commit();
+  }
+  if (!o.summary_json.empty()) {
+    io::AtomicOutputFile js(o.summary_json);
+    const std::string body = json + "\n";
+    js.write(body.data(), body.size());
+    js.commit();
+  }
+  const bool points_on_stdout = writer && (o.output == "-" || o.output.empty());
+  std::fputs(table.c_str(), points_on_stdout ? stderr : stdout);
+}
+
 int run_predict_aligned(const PredictOptions& o, const GlobalOptions& g,
                         const machine::Machine& machine, const pipeline::PredictOptions& po,
                         pipeline::PathFormat format) {
@@ -84,19 +102,8 @@ int run_predict_aligned(const PredictOptions& o, const GlobalOptions& g,
         if (writer) writer->write(p, line, devs, norms, aligned);
       });
   progress.finish();
-  const std::string json = pipeline::summary_json(prediction);
-  if (writer) {
-    writer->finish(json);
-    out->commit();
-  }
-  if (!o.summary_json.empty()) {
-    io::AtomicOutputFile js(o.summary_json);
-    const std::string body = json + "\n";
-    js.write(body.data(), body.size());
-    js.commit();
-  }
-  const bool points_on_stdout = writer && (o.output == "-" || o.output.empty());
-  std::fputs(pipeline::summary_table(prediction).c_str(), points_on_stdout ? stderr : stdout);
+  finish_outputs(o, writer.get(), out.get(), pipeline::summary_json(prediction),
+                 pipeline::summary_table(prediction));
   return kOk;
 }
 
@@ -145,21 +152,8 @@ int run_predict(const PredictOptions& o, const GlobalOptions& g) {
         if (pos >= 0) progress.update(static_cast<std::uint64_t>(pos));
       });
   progress.finish();
-
-  const std::string json = pipeline::summary_json(summary);
-  if (writer) {
-    writer->finish(json);
-    out->commit();
-  }
-  if (!o.summary_json.empty()) {
-    io::AtomicOutputFile js(o.summary_json);
-    const std::string body = json + "\n";
-    js.write(body.data(), body.size());
-    js.commit();
-  }
-  // The table goes to stdout unless the points do.
-  const bool points_on_stdout = writer && (o.output == "-" || o.output.empty());
-  std::fputs(pipeline::summary_table(summary).c_str(), points_on_stdout ? stderr : stdout);
+  finish_outputs(o, writer.get(), out.get(), pipeline::summary_json(summary),
+                 pipeline::summary_table(summary));
   if (!summary.travel_text.empty())
     spdlog::warn("{}: {}: the tables end at the travel (predicted there by the out-of-range "
                  "policy) and the machine cannot go there",
