@@ -23,13 +23,13 @@
 namespace abbe::compensate {
 namespace {
 
-using Eigen::Vector3d;
 using detail::append_word;
 using detail::BlockEditor;
 using detail::find_word;
 using detail::merge_short_pieces;
 using detail::SolvedPoint;
 using detail::split_into_pieces;
+using Eigen::Vector3d;
 constexpr char kAxis[3] = {'X', 'Y', 'Z'};
 constexpr char kCentre[3] = {'I', 'J', 'K'};
 
@@ -138,12 +138,12 @@ class Compensator {
   Vector3d solve(const path::PathPoint& pp) {
     if (travel_ && !travel_->add(pp.p, pp.tool_length, pp.line)) {
       if (!o_.allow_outside_travel)
-        throw InputError({file_, pp.line, 0, "", ""},
-                         fmt::format("the point ({:.4f}, {:.4f}, {:.4f}) mm is outside the "
-                                     "machine's travel: {} (--allow-outside-travel compensates "
-                                     "it anyway)",
-                                     pp.p.x(), pp.p.y(), pp.p.z(),
-                                     travel_->describe(pp.p, pp.tool_length)));
+        throw InputError(
+            {file_, pp.line, 0, "", ""},
+            fmt::format("the point ({:.4f}, {:.4f}, {:.4f}) mm is outside the "
+                        "machine's travel: {} (--allow-outside-travel compensates "
+                        "it anyway)",
+                        pp.p.x(), pp.p.y(), pp.p.z(), travel_->describe(pp.p, pp.tool_length)));
     }
     Solution sol;
     try {
@@ -205,8 +205,7 @@ class Compensator {
       try {
         fragmenter_.add(motions_[i], [&](const path::PathPoint& pp) {
           last_point_dir_ = pp.dir;
-          if (points_[i].empty() && pp.p == start && (pp.p - motions_[i].end).norm() > 0.0)
-            return;
+          if (points_[i].empty() && pp.p == start && (pp.p - motions_[i].end).norm() > 0.0) return;
           points_[i].push_back(pp);
         });
       } catch (const gcode::MotionRefused& e) {
@@ -634,8 +633,7 @@ class Compensator {
           if (const gcode::Word* f = find_word(block, 'F'))
             before += (ed.spaced() ? " " : "") + raw.substr(f->begin, f->end - f->begin);
         }
-        if (!before.empty() && !writes_arc_code(block))
-          ed.insert_before_axes(motion_word);
+        if (!before.empty() && !writes_arc_code(block)) ed.insert_before_axes(motion_word);
       }
     }
     std::size_t a = 0;

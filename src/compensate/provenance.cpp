@@ -81,8 +81,8 @@ std::string format_provenance(const Provenance& p, std::string_view eol) {
   line(fmt::format("(abbe model {})", comment_safe(p.model)));
   if (!p.overlay_time_s.empty())
     line(fmt::format("(abbe overlay-time {} s)", comment_safe(p.overlay_time_s)));
-  line(fmt::format("(abbe tol {} um step {} mm min-segment {} mm takeups {})", p.tol_um,
-                   p.step_mm, p.min_segment_mm, p.spread_takeups ? "spread" : "micro"));
+  line(fmt::format("(abbe tol {} um step {} mm min-segment {} mm takeups {})", p.tol_um, p.step_mm,
+                   p.min_segment_mm, p.spread_takeups ? "spread" : "micro"));
   for (const auto& s : p.setup) line(fmt::format("(abbe setup {})", comment_safe(s)));
   line(
       "(abbe setup valid only for these offsets, tool lengths and start point: check them at "

@@ -83,4 +83,12 @@ Eigen::Vector3d read_point(const OverlayFields& in, const char* key) {
 }
 
 }  // namespace effects
+EffectDescriptor make_descriptor(TermKind kind, std::string id, std::string term_name) {
+  EffectDescriptor d;
+  d.kind = kind;
+  d.id = std::move(id);
+  d.term_name = std::move(term_name);
+  return d;
+}
+
 }  // namespace abbe::diagnose

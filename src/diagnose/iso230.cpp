@@ -10,6 +10,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <utility>
 
 #include "abbe/io/csv_reader.hpp"
 #include "abbe/io/input_error.hpp"
@@ -244,18 +245,11 @@ std::string iso230_to_json(const std::vector<Iso230Result>& results, bool per_ta
     j["n_targets"] = r.targets.size();
     j["runs"] = r.runs;
     j["bidirectional"] = r.has_up && r.has_down;
-    j["A"] = number_or_null(r.A);
-    j["A_up"] = number_or_null(r.A_up);
-    j["A_down"] = number_or_null(r.A_down);
-    j["R"] = number_or_null(r.R);
-    j["R_up"] = number_or_null(r.R_up);
-    j["R_down"] = number_or_null(r.R_down);
-    j["B"] = number_or_null(r.B);
-    j["B_mean"] = number_or_null(r.B_mean);
-    j["E"] = number_or_null(r.E);
-    j["E_up"] = number_or_null(r.E_up);
-    j["E_down"] = number_or_null(r.E_down);
-    j["M"] = number_or_null(r.M);
+    const std::pair<const char*, double> parameters[] = {
+        {"A", r.A},       {"A_up", r.A_up},     {"A_down", r.A_down}, {"R", r.R},
+        {"R_up", r.R_up}, {"R_down", r.R_down}, {"B", r.B},           {"B_mean", r.B_mean},
+        {"E", r.E},       {"E_up", r.E_up},     {"E_down", r.E_down}, {"M", r.M}};
+    for (const auto& [key, value] : parameters) j[key] = number_or_null(value);
     if (per_target) {
       nlohmann::json ts = nlohmann::json::array();
       for (const Iso230Target& t : r.targets)

@@ -10,7 +10,6 @@
 #include <string_view>
 
 #include "abbe/gcode/motion_limits.hpp"
-
 #include "abbe/io/input_error.hpp"
 #include "fanuc_dialect.hpp"
 #include "interpreter_steps.hpp"

@@ -107,4 +107,10 @@ void AtomicOutputFile::commit() {
   committed_ = true;
 }
 
+void write_file_atomically(const std::string& path, std::string_view text) {
+  AtomicOutputFile f(path);
+  f.write(text.data(), text.size());
+  f.commit();
+}
+
 }  // namespace abbe::io

@@ -20,8 +20,8 @@ nlohmann::json stats_json(const ModelStats& s) {
 std::string stats_cells(const std::string& model, const char* moves, const ModelStats& s,
                         const std::string& lookups) {
   if (s.points == 0)
-    return fmt::format("  {:<7} {:<8} {:>8} {:>10} {:>10} {:>10} {:>10} {:>10} {:>8} {:>12}",
-                       model, moves, 0, "-", "-", "-", "-", "-", "-", lookups);
+    return fmt::format("  {:<7} {:<8} {:>8} {:>10} {:>10} {:>10} {:>10} {:>10} {:>8} {:>12}", model,
+                       moves, 0, "-", "-", "-", "-", "-", "-", lookups);
   return fmt::format(
       "  {:<7} {:<8} {:>8} {:>10.4f} {:>10.4f} {:>10.4f} {:>10.4f} {:>10.4f} {:>8} {:>12}", model,
       moves, s.points, s.max_abs_um.x(), s.max_abs_um.y(), s.max_abs_um.z(), s.rms_um(), s.max_um,

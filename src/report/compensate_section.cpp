@@ -119,31 +119,27 @@ void render_compensate_report(HtmlPage& page, const CompensationComparison& c, d
   const PredictedPath& p = c.compensated;
   if (!(k > 0.0) || !std::isfinite(k)) k = auto_exaggeration(o);
   const std::string model = o.models.empty() ? "" : model::to_string(o.models.front());
-  page.add_fact("original", o.program);
-  page.add_fact("compensated", p.program);
-  page.add_fact("machine", o.machine);
-  page.add_fact("model", model);
+  page.add_facts({{"original", o.program},
+                  {"compensated", p.program},
+                  {"machine", o.machine},
+                  {"model", model}});
 
   page.add_section("summary", "Summary");
-  Table t;
-  t.id = "compensate-table";
-  t.caption = fmt::format("Predicted distance from the nominal path ({} model)", model);
-  t.header = {"program", "moves", "points", "rms (µm)", "max (µm)", "at line"};
-  auto row = [&](const std::string& what, const char* moves, std::size_t n, double rms,
-                 double max, std::size_t line) {
+  Table t = make_table("compensate-table",
+                       fmt::format("Predicted distance from the nominal path ({} model)", model),
+                       {"program", "moves", "points", "rms (µm)", "max (µm)", "at line"});
+  auto row = [&](const std::string& what, const char* moves, std::size_t n, double rms, double max,
+                 std::size_t line) {
     const bool none = n == 0;
-    t.rows.push_back({what, moves, std::to_string(n),
-                      none ? "-" : fmt::format("{:.3f}", rms),
-                      none ? "-" : fmt::format("{:.3f}", max),
-                      none ? "-" : std::to_string(line)});
+    t.rows.push_back({what, moves, std::to_string(n), none ? "-" : fmt::format("{:.3f}", rms),
+                      none ? "-" : fmt::format("{:.3f}", max), none ? "-" : std::to_string(line)});
   };
   if (!o.cutting_stats.empty()) {
     const ModelPathStats& cs = o.cutting_stats[0];
     const ModelPathStats& rs = o.rapid_stats[0];
     row("original: predicted deviation |d|", "cutting", cs.points, cs.rms_um, cs.max_um,
         cs.max_line);
-    row("original: predicted deviation |d|", "rapid", rs.points, rs.rms_um, rs.max_um,
-        rs.max_line);
+    row("original: predicted deviation |d|", "rapid", rs.points, rs.rms_um, rs.max_um, rs.max_line);
   }
   const compensate::VerifyStats& v = c.verify;
   row("compensated: predicted → nominal path (abbe verify)", "cutting", v.points, v.rms_um,

@@ -46,16 +46,15 @@ DiagnosisForReport diagnose_for_report(const machine::Machine& machine,
 
 void render_diagnose_report(HtmlPage& page, const DiagnosisForReport& r) {
   const diagnose::Diagnosis& d = r.diagnosis;
-  page.add_fact("measured", d.measured_file);
-  page.add_fact("machine", d.machine);
-  page.add_fact("model", d.model);
-  page.add_fact("points", std::to_string(d.n_points));
+  page.add_facts({{"measured", d.measured_file},
+                  {"machine", d.machine},
+                  {"model", d.model},
+                  {"points", std::to_string(d.n_points)}});
 
   page.add_section("summary", "Models and the extension");
-  Table t;
-  t.id = "diagnose-models";
-  t.caption = "Residual |measured − predicted| over the measured points";
-  t.header = {"model", "rms (µm)", "max (µm)"};
+  Table t =
+      make_table("diagnose-models", "Residual |measured − predicted| over the measured points",
+                 {"model", "rms (µm)", "max (µm)"});
   for (const auto& m : d.models)
     t.rows.push_back({m.model, fmt::format("{:.3f}", m.rms_um), fmt::format("{:.3f}", m.max_um)});
   t.rows.push_back({d.model + " (diagnosed)", fmt::format("{:.3f}", d.baseline.rms_um),

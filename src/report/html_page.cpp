@@ -101,6 +101,18 @@ void HtmlPage::add_fact(const std::string& key, const std::string& value) {
   facts_.emplace_back(key, value);
 }
 
+void HtmlPage::add_facts(std::initializer_list<std::pair<std::string, std::string>> facts) {
+  for (const auto& f : facts) facts_.push_back(f);
+}
+
+Table make_table(std::string id, std::string caption, std::vector<std::string> header) {
+  Table t;
+  t.id = std::move(id);
+  t.caption = std::move(caption);
+  t.header = std::move(header);
+  return t;
+}
+
 std::string HtmlPage::render() const {
   std::string o = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
   o += fmt::format("<title>{}</title>\n<style>{}</style>\n</head>\n<body>\n", escape_xml(title_),

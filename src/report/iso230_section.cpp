@@ -65,13 +65,12 @@ void add_direction(LinePlot& plot, const diagnose::Iso230Result& r, bool up, con
 void render_iso230_report(HtmlPage& page, const std::vector<diagnose::Iso230Result>& results) {
   page.add_fact("components", std::to_string(results.size()));
   page.add_section("iso230-summary", "ISO 230-2 parameters");
-  Table t;
-  t.id = "iso230-table";
-  t.caption =
+  Table t = make_table(
+      "iso230-table",
       "Per component: accuracy A, repeatability R, reversal B (and mean reversal B̄), systematic "
-      "error E, mean bidirectional error M; ↑ ↓ the unidirectional values";
-  t.header = {"axis", "component", "unit", "runs", "A", "A↑", "A↓", "R",
-              "R↑",   "R↓",        "B",    "B̄",    "E", "E↑", "E↓", "M"};
+      "error E, mean bidirectional error M; ↑ ↓ the unidirectional values",
+      {"axis", "component", "unit", "runs", "A", "A↑", "A↓", "R", "R↑", "R↓", "B", "B̄", "E", "E↑",
+       "E↓", "M"});
   for (const auto& r : results)
     t.rows.push_back({std::string(1, r.axis), r.component, unit_text(r.unit),
                       std::to_string(r.runs), value(r.A), value(r.A_up), value(r.A_down),

@@ -52,10 +52,8 @@ void render_map_report(HtmlPage& page, const identify::WorkspaceMap& map,
   page.add_fact("grid", fmt::format("{} × {} × {} = {} points", map.xs.size(), map.ys.size(),
                                     map.zs.size(), map.points.size()));
   page.add_section("map-summary", "Volumetric error over the grid");
-  Table t;
-  t.id = "map-table";
-  t.caption = "|d| over all grid points, per model";
-  t.header = {"model", "mean |d| (µm)", "rms |d| (µm)", "max |d| (µm)"};
+  Table t = make_table("map-table", "|d| over all grid points, per model",
+                       {"model", "mean |d| (µm)", "rms |d| (µm)", "max |d| (µm)"});
   for (const auto& s : map.stats)
     t.rows.push_back({model::to_string(s.model), fmt::format("{:.3f}", s.mean_um),
                       fmt::format("{:.3f}", s.rms_um), fmt::format("{:.3f}", s.max_um)});

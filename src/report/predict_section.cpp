@@ -130,24 +130,22 @@ double auto_exaggeration(const PredictedPath& r) {
 
 void render_predict_report(HtmlPage& page, const PredictedPath& r, double k, double tolerance_um) {
   if (!(k > 0.0) || !std::isfinite(k)) k = auto_exaggeration(r);
-  page.add_fact("program", r.program);
-  page.add_fact("machine", r.machine);
-  page.add_fact("points", std::to_string(r.total_points));
+  page.add_facts(
+      {{"program", r.program}, {"machine", r.machine}, {"points", std::to_string(r.total_points)}});
 
   page.add_section("summary", "Summary");
-  Table t;
-  t.id = "summary-table";
-  t.caption =
+  Table t = make_table(
+      "summary-table",
       "Predicted deviation of the tool tip per model: cutting moves, rapids and all points (the "
-      "rows of `abbe predict`)";
-  t.header = {"model",        "moves",        "points",  "max |dx| (µm)",       "max |dy| (µm)",
-              "max |dz| (µm)", "rms |d| (µm)", "max |d| (µm)", "at line", "out-of-range lookups"};
+      "rows of `abbe predict`)",
+      {"model", "moves", "points", "max |dx| (µm)", "max |dy| (µm)", "max |dz| (µm)",
+       "rms |d| (µm)", "max |d| (µm)", "at line", "out-of-range lookups"});
   auto row = [&](const ModelPathStats& s, const char* moves, bool lookups) {
     const bool none = s.points == 0;
     auto num = [&](double v) { return none ? std::string("-") : fmt::format("{:.3f}", v); };
-    t.rows.push_back({model_name(s.model), moves, std::to_string(s.points),
-                      num(s.max_abs_um.x()), num(s.max_abs_um.y()), num(s.max_abs_um.z()),
-                      num(s.rms_um), num(s.max_um), none ? "-" : std::to_string(s.max_line),
+    t.rows.push_back({model_name(s.model), moves, std::to_string(s.points), num(s.max_abs_um.x()),
+                      num(s.max_abs_um.y()), num(s.max_abs_um.z()), num(s.rms_um), num(s.max_um),
+                      none ? "-" : std::to_string(s.max_line),
                       lookups ? std::to_string(s.out_of_range_lookups) : ""});
   };
   for (std::size_t m = 0; m < r.stats.size(); ++m) {

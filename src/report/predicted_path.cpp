@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <sstream>
 
+#include "abbe/io/sha256.hpp"
 #include "abbe/pipeline/interpreter_setup.hpp"
 #include "abbe/pipeline/model_set.hpp"
 #include "abbe/pipeline/program_path.hpp"
-#include "abbe/io/sha256.hpp"
 
 namespace abbe::report {
 namespace {

@@ -133,6 +133,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   std::string out;
   if (compensated(text, m.zero, m.zero_model, out)) check(out == text);
   out.clear();
-  if (compensated(text, m.sample, m.sample_model, out)) check(count_lines(out) >= count_lines(text));
+  if (compensated(text, m.sample, m.sample_model, out))
+    check(count_lines(out) >= count_lines(text));
   return 0;
 }

@@ -62,18 +62,9 @@ int run_diagnose(const DiagnoseCliOptions& o, const GlobalOptions& g) {
     };
   const diagnose::Diagnosis d = diagnose::diagnose(machine, data, opt);
   progress.finish();
-  if (!o.out.empty()) {
-    io::AtomicOutputFile f(o.out);
-    const std::string body = diagnose::report_json(d);
-    f.write(body.data(), body.size());
-    f.commit();
-  }
-  if (!o.overlay.empty()) {
-    io::AtomicOutputFile f(o.overlay);
-    const std::string body = diagnose::make_overlay(d, opt.extend).to_yaml();
-    f.write(body.data(), body.size());
-    f.commit();
-  }
+  if (!o.out.empty()) io::write_file_atomically(o.out, diagnose::report_json(d));
+  if (!o.overlay.empty())
+    io::write_file_atomically(o.overlay, diagnose::make_overlay(d, opt.extend).to_yaml());
   if (!g.quiet) {
     std::string text = diagnose::report_text(d);
     if (g.verbose > 0)

@@ -19,6 +19,7 @@
 #include "abbe/io/measured_data.hpp"
 #include "abbe/machine/machine.hpp"
 #include "command.hpp"
+#include "interpreter_options.hpp"
 #include "output_options.hpp"
 
 namespace abbe::cli {
@@ -32,16 +33,6 @@ struct IdentifyCliOptions {
   std::string output;
   std::string table_out;
 };
-
-[[noreturn]] void bad_option(const std::string& option, const std::string& message) {
-  throw InputError({"<command line>", 0, 0, option, ""}, message);
-}
-
-void write_file(const std::string& path, const std::string& text) {
-  io::AtomicOutputFile f(path);
-  f.write(text.data(), text.size());
-  f.commit();
-}
 
 // JSON numbers: NaN/∞ become null.
 nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
@@ -130,7 +121,7 @@ int run_linear(const IdentifyCliOptions& o, const machine::Machine& machine,
                                       {"condition", num(mf.fit.condition)}});
   }
   js["product_consistency"] = r.product_consistency;
-  if (!o.output.empty()) write_file(o.output, js.dump(2) + "\n");
+  if (!o.output.empty()) io::write_file_atomically(o.output, js.dump(2) + "\n");
   std::fputs(text.c_str(), summary_stream(o.output));
   return kOk;
 }
@@ -188,8 +179,8 @@ int run_tables(const IdentifyCliOptions& o, const machine::Machine& machine,
   text += fmt::format("  {} unidentifiable directions (the fit keeps angular errors smallest)\n",
                       t.fit.null_space.size());
   js["unidentifiable"] = t.unidentifiable;
-  if (!o.table_out.empty()) write_file(o.table_out, identify::table_fit_to_csv(t));
-  if (!o.output.empty()) write_file(o.output, js.dump(2) + "\n");
+  if (!o.table_out.empty()) io::write_file_atomically(o.table_out, identify::table_fit_to_csv(t));
+  if (!o.output.empty()) io::write_file_atomically(o.output, js.dump(2) + "\n");
   std::fputs(text.c_str(), summary_stream(o.output));
   return kOk;
 }

@@ -129,8 +129,9 @@ int run_interpret(const InterpretOptions& o) {
     throw;
   }
   if (!o.canon)
-    fmt::format_to(std::back_inserter(out), "lines={} motions={} rapid={} linear={} arc={} dwell={}\n",
-                   stats.lines, stats.motions, by_kind[0], by_kind[1], by_kind[2], by_kind[3]);
+    fmt::format_to(std::back_inserter(out),
+                   "lines={} motions={} rapid={} linear={} arc={} dwell={}\n", stats.lines,
+                   stats.motions, by_kind[0], by_kind[1], by_kind[2], by_kind[3]);
   flush();
   output.commit();
   return kOk;

@@ -18,6 +18,7 @@
 #include "abbe/machine/machine.hpp"
 #include "box_option.hpp"
 #include "command.hpp"
+#include "interpreter_options.hpp"
 #include "output_options.hpp"
 #include "progress.hpp"
 
@@ -34,16 +35,6 @@ struct MapCliOptions {
   std::string json;
   double tool_length = -1.0;  // < 0: the machine's
 };
-
-[[noreturn]] void bad_option(const std::string& option, const std::string& message) {
-  throw InputError({"<command line>", 0, 0, option, ""}, message);
-}
-
-void write_file(const std::string& path, const std::string& text) {
-  io::AtomicOutputFile f(path);
-  f.write(text.data(), text.size());
-  f.commit();
-}
 
 int run_map(const MapCliOptions& o, const GlobalOptions& g) {
   const machine::Machine machine = machine::Machine::load(o.machine);
@@ -66,7 +57,7 @@ int run_map(const MapCliOptions& o, const GlobalOptions& g) {
   if (progress.active()) mo.progress = [&](std::size_t done) { progress.update(done); };
   const identify::WorkspaceMap map = identify::compute_map(machine, mo);
   progress.finish();
-  if (!o.output.empty()) write_file(o.output, identify::map_to_csv(map));
+  if (!o.output.empty()) io::write_file_atomically(o.output, identify::map_to_csv(map));
   if (!o.slices.empty()) {
     std::error_code ec;
     std::filesystem::create_directories(o.slices, ec);
@@ -78,12 +69,12 @@ int run_map(const MapCliOptions& o, const GlobalOptions& g) {
     std::vector<std::size_t> zi{0, nz / 2, nz - 1};
     zi.erase(std::unique(zi.begin(), zi.end()), zi.end());
     for (std::size_t k : zi)
-      write_file(fmt::format("{}/xy_z{:g}.csv", o.slices, map.zs[k]),
-                 identify::map_slice_csv(map, "xy", k));
-    write_file(fmt::format("{}/xz_y{:g}.csv", o.slices, map.ys[map.ys.size() / 2]),
-               identify::map_slice_csv(map, "xz", map.ys.size() / 2));
-    write_file(fmt::format("{}/yz_x{:g}.csv", o.slices, map.xs[map.xs.size() / 2]),
-               identify::map_slice_csv(map, "yz", map.xs.size() / 2));
+      io::write_file_atomically(fmt::format("{}/xy_z{:g}.csv", o.slices, map.zs[k]),
+                                identify::map_slice_csv(map, "xy", k));
+    io::write_file_atomically(fmt::format("{}/xz_y{:g}.csv", o.slices, map.ys[map.ys.size() / 2]),
+                              identify::map_slice_csv(map, "xz", map.ys.size() / 2));
+    io::write_file_atomically(fmt::format("{}/yz_x{:g}.csv", o.slices, map.xs[map.xs.size() / 2]),
+                              identify::map_slice_csv(map, "yz", map.xs.size() / 2));
   }
 
   std::string text = fmt::format(
@@ -127,7 +118,7 @@ int run_map(const MapCliOptions& o, const GlobalOptions& g) {
   if (map.out_of_range_lookups > 0)
     text += fmt::format("  {} lookups outside the measured range ({})\n", map.out_of_range_lookups,
                         machine::to_string(machine.out_of_range()));
-  if (!o.json.empty()) write_file(o.json, js.dump(2) + "\n");
+  if (!o.json.empty()) io::write_file_atomically(o.json, js.dump(2) + "\n");
   std::fputs(text.c_str(), summary_stream(o.output == "-" ? o.output : o.json));
   return kOk;
 }

@@ -24,8 +24,8 @@
 #include "dialect_option.hpp"
 #include "input_stream.hpp"
 #include "interpreter_options.hpp"
-#include "setup_options.hpp"
 #include "progress.hpp"
+#include "setup_options.hpp"
 
 namespace abbe::cli {
 namespace {

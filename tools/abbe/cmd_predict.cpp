@@ -15,16 +15,16 @@
 #include "abbe/machine/machine.hpp"
 #include "abbe/model/model_kind.hpp"
 #include "abbe/pipeline/aligned_prediction.hpp"
+#include "abbe/pipeline/interpreter_setup.hpp"
 #include "abbe/pipeline/path_writer.hpp"
 #include "abbe/pipeline/predict.hpp"
-#include "abbe/pipeline/interpreter_setup.hpp"
 #include "abbe/pipeline/prediction_summary.hpp"
 #include "abbe/pipeline/prediction_writer.hpp"
 #include "command.hpp"
 #include "dialect_option.hpp"
-#include "setup_options.hpp"
 #include "input_stream.hpp"
 #include "progress.hpp"
+#include "setup_options.hpp"
 
 namespace abbe::cli {
 namespace {
@@ -58,12 +58,7 @@ void finish_outputs(const PredictOptions& o, pipeline::PredictionWriter* writer,
     writer->finish(json);
     out->commit();
   }
-  if (!o.summary_json.empty()) {
-    io::AtomicOutputFile js(o.summary_json);
-    const std::string body = json + "\n";
-    js.write(body.data(), body.size());
-    js.commit();
-  }
+  if (!o.summary_json.empty()) io::write_file_atomically(o.summary_json, json + "\n");
   const bool points_on_stdout = writer && (o.output == "-" || o.output.empty());
   std::fputs(table.c_str(), points_on_stdout ? stderr : stdout);
 }
@@ -155,9 +150,10 @@ int run_predict(const PredictOptions& o, const GlobalOptions& g) {
   finish_outputs(o, writer.get(), out.get(), pipeline::summary_json(summary),
                  pipeline::summary_table(summary));
   if (!summary.travel_text.empty())
-    spdlog::warn("{}: {}: the tables end at the travel (predicted there by the out-of-range "
-                 "policy) and the machine cannot go there",
-                 o.input, summary.travel_text);
+    spdlog::warn(
+        "{}: {}: the tables end at the travel (predicted there by the out-of-range "
+        "policy) and the machine cannot go there",
+        o.input, summary.travel_text);
   return kOk;
 }
 

@@ -19,6 +19,7 @@
 #include "abbe/io/atomic_file.hpp"
 #include "abbe/io/input_error.hpp"
 #include "abbe/io/measured_data.hpp"
+#include "abbe/io/sha256.hpp"
 #include "abbe/machine/machine.hpp"
 #include "abbe/report/compensate_section.hpp"
 #include "abbe/report/diagnose_section.hpp"
@@ -27,7 +28,6 @@
 #include "abbe/report/map_section.hpp"
 #include "abbe/report/predict_section.hpp"
 #include "abbe/report/predicted_path.hpp"
-#include "abbe/io/sha256.hpp"
 #include "command.hpp"
 #include "dialect_option.hpp"
 #include "input_stream.hpp"
@@ -99,9 +99,7 @@ std::pair<std::string, std::string> hashed_file(const std::string& path) {
 
 void write_page(const std::string& path, const report::HtmlPage& page) {
   const std::string html = page.render();
-  io::AtomicOutputFile out(path);
-  out.write(html.data(), html.size());
-  out.commit();
+  io::write_file_atomically(path, html);
   if (path != "-") spdlog::info("wrote {} ({} kB)", path, (html.size() + 512) / 1024);
 }
 

@@ -102,17 +102,18 @@ int run_verify(const VerifyCliOptions& o, const GlobalOptions& g) {
   std::string why;
   for (const auto& f : failures) why += "  FAIL: " + f + "\n";
   std::fputs(
-      fmt::format("{} against {} (model {}):\n{}"
-                  "  cutting moves, predicted compensated -> nominal: {} points, max {:.4f} µm (line {}), "
-                  "rms {:.4f} µm, {} beyond tol\n"
-                  "  cutting moves, nominal -> predicted compensated: {} points, max {:.4f} µm (line {}), "
-                  "rms {:.4f} µm, {} beyond tol\n"
-                  "{}  max {:.4f} µm, tol {} µm: {}\n",
-                  o.input, o.against,
-                  model::to_string(model.kind()) + (o.m.extend.empty() ? "" : " + " + o.m.extend),
-                  origin, s.points, s.max_um, s.max_line, s.rms_um, s.over_tol, s.backward_points,
-                  s.backward_max_um, s.backward_max_line, s.backward_rms_um, s.backward_over_tol,
-                  why, max, o.tol_um, failures.empty() ? "pass" : "FAIL")
+      fmt::format(
+          "{} against {} (model {}):\n{}"
+          "  cutting moves, predicted compensated -> nominal: {} points, max {:.4f} µm (line {}), "
+          "rms {:.4f} µm, {} beyond tol\n"
+          "  cutting moves, nominal -> predicted compensated: {} points, max {:.4f} µm (line {}), "
+          "rms {:.4f} µm, {} beyond tol\n"
+          "{}  max {:.4f} µm, tol {} µm: {}\n",
+          o.input, o.against,
+          model::to_string(model.kind()) + (o.m.extend.empty() ? "" : " + " + o.m.extend), origin,
+          s.points, s.max_um, s.max_line, s.rms_um, s.over_tol, s.backward_points,
+          s.backward_max_um, s.backward_max_line, s.backward_rms_um, s.backward_over_tol, why, max,
+          o.tol_um, failures.empty() ? "pass" : "FAIL")
           .c_str(),
       stdout);
   if (o.check && !failures.empty()) return kCheckFailed;

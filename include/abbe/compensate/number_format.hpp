@@ -11,9 +11,9 @@
 namespace abbe::compensate {
 
 struct NumberStyle {
-  int decimals = 0;          // decimal places of the original number
-  bool leading_zero = true;  // "0.5" rather than ".5"
-  bool plus_sign = false;    // "+1.0"
+  int decimals = 0;           // decimal places of the original number
+  bool leading_zero = true;   // "0.5" rather than ".5"
+  bool plus_sign = false;     // "+1.0"
   bool point_always = false;  // "5." rather than "5" (Fanuc reads "5" as 5 increments)
 };
 

@@ -11,8 +11,8 @@
 #include <array>
 #include <cstddef>
 #include <functional>
-#include <limits>
 #include <istream>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -26,9 +26,9 @@
 namespace abbe::compensate {
 
 struct CompensateOptions {
-  double tol_um = 1.0;    // allowed predicted deviation from the nominal path
-  double step = 5.0;      // fragment step, mm
-  int decimals = -1;      // max decimals of a corrected number; −1: 4 (mm) / 5 (inch)
+  double tol_um = 1.0;  // allowed predicted deviation from the nominal path
+  double step = 5.0;    // fragment step, mm
+  int decimals = -1;    // max decimals of a corrected number; −1: 4 (mm) / 5 (inch)
   // The machine's travel: a nominal point whose axis positions lie outside
   // is refused (InputError at its line) unless allow_outside_travel; then
   // it is counted. Empty: not checked.
@@ -51,17 +51,17 @@ struct CompensateSummary {
   std::size_t lines = 0;
   std::size_t blocks_changed = 0;
   std::size_t pieces_inserted = 0;  // every inserted line (pieces and take-up moves)
-  std::size_t takeup_moves = 0;     // inserted micro moves taking up a reversal jump ≥ min_segment
-  std::size_t takeups_spread = 0;   // reversal jumps < min_segment taken up along the move
-  double max_takeup_um = 0.0;       // largest of those jumps, µm
-  double max_takeup_length_mm = 0.0;  // longest stretch over which one was taken up
-  std::size_t short_pieces_kept = 0;  // pieces < min_segment kept because merging broke tol
+  std::size_t takeup_moves = 0;    // inserted micro moves taking up a reversal jump ≥ min_segment
+  std::size_t takeups_spread = 0;  // reversal jumps < min_segment taken up along the move
+  double max_takeup_um = 0.0;      // largest of those jumps, µm
+  double max_takeup_length_mm = 0.0;   // longest stretch over which one was taken up
+  std::size_t short_pieces_kept = 0;   // pieces < min_segment kept because merging broke tol
   std::size_t short_takeup_moves = 0;  // moves abbe wrote shorter than min_segment
   // Shortest move abbe wrote (inserted lines and blocks turned into take-up
   // moves), mm; 0 when none. min_segment_mm: the option in force.
   double shortest_inserted_mm = std::numeric_limits<double>::infinity();
   double min_segment_mm = 0.0;
-  std::size_t motion_blocks = 0;  // blocks that make at least one motion
+  std::size_t motion_blocks = 0;        // blocks that make at least one motion
   std::size_t points = 0;               // solved points
   double max_correction_um = 0.0;       // max |c − n|
   std::size_t out_of_range_points = 0;  // points with a lookup outside the tables

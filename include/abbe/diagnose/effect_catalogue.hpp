@@ -66,6 +66,10 @@ struct EffectDescriptor {
   void (*write_fields)(const Term& t, std::string& yaml) = nullptr;
 };
 
+// A descriptor with its kind, catalogue id and overlay term name (the
+// formulas and flags to be filled in).
+EffectDescriptor make_descriptor(TermKind kind, std::string id, std::string term_name);
+
 // Every registered kind: the built-in ones in DESIGN.md's order, then the
 // registered ones in the order of registration.
 const std::vector<EffectDescriptor>& effect_catalogue();

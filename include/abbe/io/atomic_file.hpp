@@ -7,6 +7,7 @@
 // written directly, since it cannot be replaced by a rename.
 #include <cstdio>
 #include <string>
+#include <string_view>
 
 namespace abbe::io {
 
@@ -40,5 +41,8 @@ class AtomicOutputFile {
   bool committed_ = false;
   int cleanup_slot_ = -1;  // io/temp_cleanup.hpp: removed on SIGINT/SIGTERM
 };
+
+// Writes `text` to `path` through an AtomicOutputFile and commits it.
+void write_file_atomically(const std::string& path, std::string_view text);
 
 }  // namespace abbe::io

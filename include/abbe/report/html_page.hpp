@@ -3,7 +3,9 @@
 // a few lines of inline JavaScript (a table of contents) — that needs no
 // network and reads the same offline in any browser. Sections are added in
 // order by the report renderers; everything given as text is escaped.
+#include <initializer_list>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace abbe::report {
@@ -29,6 +31,9 @@ struct Table {
   bool last_column_text = false;               // left-align the last column (prose)
 };
 
+// A table with its id, caption and header (rows to be added).
+Table make_table(std::string id, std::string caption, std::vector<std::string> header);
+
 class HtmlPage {
  public:
   explicit HtmlPage(std::string title);
@@ -49,6 +54,8 @@ class HtmlPage {
   void set_provenance(Provenance p);
   // Facts shown under the title (key: value).
   void add_fact(const std::string& key, const std::string& value);
+  // Several facts, in order.
+  void add_facts(std::initializer_list<std::pair<std::string, std::string>> facts);
 
   std::string render() const;
 

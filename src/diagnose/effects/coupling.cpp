@@ -7,9 +7,7 @@
 namespace abbe::diagnose::effects {
 
 EffectDescriptor coupling() {
-  EffectDescriptor d;
-  d.kind = TermKind::coupling;
-  d.id = d.term_name = "coupling";
+  EffectDescriptor d = make_descriptor(TermKind::coupling, "coupling", "coupling");
   d.basis = [](const Term& t, const PointContext& pc, BasisOut out) {
     out(t.direction, 0) = (pc.s[t.axis] - t.centre[t.axis]) / t.half[t.axis] *
                           (pc.s[t.with_axis] - t.centre[t.with_axis]) / t.half[t.with_axis];

@@ -10,9 +10,7 @@
 namespace abbe::diagnose::effects {
 
 EffectDescriptor cyclic() {
-  EffectDescriptor d;
-  d.kind = TermKind::cyclic;
-  d.id = d.term_name = "cyclic";
+  EffectDescriptor d = make_descriptor(TermKind::cyclic, "cyclic", "cyclic");
   d.columns = [](const Term&) { return 2; };
   d.basis = [](const Term& t, const PointContext& pc, BasisOut out) {
     const double a = units::kTwoPi * pc.s[t.axis] / t.period_mm;

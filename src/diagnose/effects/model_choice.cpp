@@ -7,9 +7,7 @@
 namespace abbe::diagnose::effects {
 
 EffectDescriptor model_choice() {
-  EffectDescriptor d;
-  d.kind = TermKind::model_choice;
-  d.id = d.term_name = "model_choice";
+  EffectDescriptor d = make_descriptor(TermKind::model_choice, "model_choice", "model_choice");
   d.reads_axis = d.writes_axis = d.reads_direction = false;
   d.basis = [](const Term&, const PointContext& pc, BasisOut out) {
     out.col(0) = pc.model_delta_um;

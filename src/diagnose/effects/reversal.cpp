@@ -6,9 +6,7 @@
 namespace abbe::diagnose::effects {
 
 EffectDescriptor reversal() {
-  EffectDescriptor d;
-  d.kind = TermKind::reversal;
-  d.id = d.term_name = "reversal";
+  EffectDescriptor d = make_descriptor(TermKind::reversal, "reversal", "reversal");
   d.basis = [](const Term& t, const PointContext& pc, BasisOut out) {
     out(t.direction, 0) = 0.5 * static_cast<double>(pc.dir[static_cast<std::size_t>(t.axis)]);
   };

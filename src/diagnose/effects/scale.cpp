@@ -7,9 +7,7 @@
 namespace abbe::diagnose::effects {
 
 EffectDescriptor scale() {
-  EffectDescriptor d;
-  d.kind = TermKind::scale;
-  d.id = d.term_name = "scale";
+  EffectDescriptor d = make_descriptor(TermKind::scale, "scale", "scale");
   d.basis = [](const Term& t, const PointContext& pc, BasisOut out) {
     out(t.direction, 0) = units::kMmPerUm * pc.s[t.axis];  // coefficient in µm/m (ppm)
   };

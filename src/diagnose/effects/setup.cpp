@@ -16,10 +16,7 @@ void write_set(const Term& t, std::string& y) { y += fmt::format("    set: \"{}\
 }  // namespace
 
 EffectDescriptor setup_offset() {
-  EffectDescriptor d;
-  d.kind = TermKind::setup_offset;
-  d.id = "setup";
-  d.term_name = "setup_offset";
+  EffectDescriptor d = make_descriptor(TermKind::setup_offset, "setup", "setup_offset");
   d.reads_axis = false;
   d.axis_is_direction = true;
   d.basis = [](const Term& t, const PointContext& pc, BasisOut out) {
@@ -39,10 +36,7 @@ EffectDescriptor setup_offset() {
 }
 
 EffectDescriptor setup_rotation() {
-  EffectDescriptor d;
-  d.kind = TermKind::setup_rotation;
-  d.id = "setup";
-  d.term_name = "setup_rotation";
+  EffectDescriptor d = make_descriptor(TermKind::setup_rotation, "setup", "setup_rotation");
   d.reads_direction = false;
   d.basis = [](const Term& t, const PointContext& pc, BasisOut out) {
     // A small rotation (µrad) about the axis through the centre: ω × (P − C), µm.

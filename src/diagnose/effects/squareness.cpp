@@ -7,9 +7,7 @@
 namespace abbe::diagnose::effects {
 
 EffectDescriptor squareness() {
-  EffectDescriptor d;
-  d.kind = TermKind::squareness;
-  d.id = d.term_name = "squareness";
+  EffectDescriptor d = make_descriptor(TermKind::squareness, "squareness", "squareness");
   d.basis = [](const Term& t, const PointContext& pc, BasisOut out) {
     out(t.direction, 0) = units::kMmPerUm * pc.s[t.axis];  // coefficient in µrad
   };

@@ -11,9 +11,7 @@
 namespace abbe::diagnose::effects {
 
 EffectDescriptor thermal_drift() {
-  EffectDescriptor d;
-  d.kind = TermKind::thermal_drift;
-  d.id = d.term_name = "thermal_drift";
+  EffectDescriptor d = make_descriptor(TermKind::thermal_drift, "thermal_drift", "thermal_drift");
   d.basis = [](const Term& t, const PointContext& pc, BasisOut out) {
     const double time = std::max(pc.t, 0.0);
     double f = t.tau_s > 0.0 ? 1.0 - std::exp(-time / t.tau_s) : time / units::kSecondsPerHour;

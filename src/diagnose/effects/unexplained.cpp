@@ -36,9 +36,7 @@ std::string variables(const Term& t, const char* separator) {
 }  // namespace
 
 EffectDescriptor unexplained() {
-  EffectDescriptor d;
-  d.kind = TermKind::unexplained;
-  d.id = d.term_name = "unexplained";
+  EffectDescriptor d = make_descriptor(TermKind::unexplained, "unexplained", "unexplained");
   d.reads_axis = d.writes_axis = false;
   d.columns = [](const Term& t) { return multi_indices(t) - 1; };
   d.basis = [](const Term& t, const PointContext& pc, BasisOut out) {
