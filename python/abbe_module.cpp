@@ -301,7 +301,8 @@ py::tuple py_compensate(const std::shared_ptr<machine::Machine>& machine, const 
 // export linuxcnc`); with `directory` the files are written too.
 py::dict py_export_linuxcnc(const std::shared_ptr<machine::Machine>& machine,
                             const py::object& directory, const std::string& model_name,
-                            const py::object& at, const py::object& tool_length, double step) {
+                            const py::object& at, const py::object& tool_length, double step,
+                            const std::string& units) {
   compensate::JointTableOptions o;
   const std::vector<model::ModelKind> kinds = parse_models(model_name);
   if (kinds.size() != 1) throw py::value_error("a LinuxCNC table holds one model");
@@ -315,6 +316,8 @@ py::dict py_export_linuxcnc(const std::shared_ptr<machine::Machine>& machine,
     o.at_tip = Eigen::Vector3d(v[0], v[1], v[2]);
   }
   o.step = step;
+  if (units != "mm" && units != "inch") throw py::value_error("units must be \"mm\" or \"inch\"");
+  o.inch = units == "inch";
   const auto tables = compensate::joint_tables(*machine, o);
   py::dict d;
   for (const auto& t : tables) {
@@ -322,7 +325,7 @@ py::dict py_export_linuxcnc(const std::shared_ptr<machine::Machine>& machine,
     a["nominal_mm"] = owned_array(std::vector<double>(t.nominal_mm));
     a["forward_um"] = owned_array(std::vector<double>(t.forward_um));
     a["reverse_um"] = owned_array(std::vector<double>(t.reverse_um));
-    a["text"] = compensate::linuxcnc_comp_text(t);
+    a["text"] = compensate::linuxcnc_comp_text(t, o.inch);
     d[py::str(std::string(1, static_cast<char>(std::tolower(machine::axis_letter(t.axis)))))] = a;
   }
   d["ini"] = compensate::linuxcnc_ini_text(*machine, o, tables);
@@ -439,6 +442,7 @@ PYBIND11_MODULE(abbe, m) {
   m.def("export_linuxcnc", &py_export_linuxcnc, py::arg("machine"),
         py::arg("directory") = py::none(), py::kw_only(), py::arg("model") = "ae-arm",
         py::arg("at") = py::none(), py::arg("tool_length") = py::none(), py::arg("step") = 0.0,
+        py::arg("units") = "mm",
         "LinuxCNC per-joint compensation tables (as `abbe export linuxcnc`, docs/export.md): "
         "a dict x, y, z = {nominal_mm, forward_um, reverse_um (predicted error along the "
         "axis), text (the COMP_FILE_TYPE 1 file)} and ini; with directory the files are "

@@ -110,14 +110,15 @@ std::array<JointTable, 3> joint_tables(const machine::Machine& machine,
   return out;
 }
 
-std::string linuxcnc_comp_text(const JointTable& table) {
+std::string linuxcnc_comp_text(const JointTable& table, bool inch) {
+  const double unit_mm = inch ? 25.4 : 1.0;
   fmt::memory_buffer b;
   for (std::size_t i = 0; i < table.nominal_mm.size(); ++i) {
-    io::append_fixed6(b, table.nominal_mm[i]);
+    io::append_fixed6(b, table.nominal_mm[i] / unit_mm);
     b.push_back(' ');
-    io::append_fixed6(b, -table.forward_um[i] * 1e-3);
+    io::append_fixed6(b, -table.forward_um[i] * 1e-3 / unit_mm);
     b.push_back(' ');
-    io::append_fixed6(b, -table.reverse_um[i] * 1e-3);
+    io::append_fixed6(b, -table.reverse_um[i] * 1e-3 / unit_mm);
     b.push_back('\n');
   }
   return fmt::to_string(b);
@@ -135,8 +136,10 @@ std::string linuxcnc_ini_text(const machine::Machine& machine, const JointTableO
       "# tool point: tip at X{:.4f} Y{:.4f} Z{:.4f} mm (machine coordinates), tool length "
       "{:.4f} mm\n",
       options.at_tip.x(), options.at_tip.y(), options.at_tip.z(), options.tool_length);
-  s += "# positions and trims in mm: [TRAJ] LINEAR_UNITS must be mm, joint positions the\n"
-       "# machine file's axis positions (same zero and direction)\n";
+  s += fmt::format(
+      "# positions and trims in {0}: [TRAJ] LINEAR_UNITS must be {0}, joint positions the\n"
+      "# machine file's axis positions (same zero and direction)\n",
+      options.inch ? "inch" : "mm");
   for (const JointTable& t : tables)
     s += fmt::format("# {}: {} entries, {}\n", machine::axis_letter(t.axis), t.nominal_mm.size(),
                      t.direction_dependent()
@@ -162,7 +165,7 @@ std::string export_linuxcnc(const machine::Machine& machine, const JointTableOpt
     f.write(text.data(), text.size());
     f.commit();
   };
-  for (const JointTable& t : tables) write(file_name(t.axis), linuxcnc_comp_text(t));
+  for (const JointTable& t : tables) write(file_name(t.axis), linuxcnc_comp_text(t, options.inch));
   const std::string ini = linuxcnc_ini_text(machine, options, tables);
   write("linuxcnc.ini", ini);
   std::string summary = ini + "\n";

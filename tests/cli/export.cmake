@@ -154,3 +154,13 @@ endif()
 # A tool point outside the travel: exit 1 naming --at.
 run(1 ${ABBE} export linuxcnc --machine ${MACHINE} --at 100,-250,-300 -o ${WORK}/bad)
 expect("--at.*not inside the travel" "--at outside")
+# --units inch: positions and trims in inch, said in the INI lines.
+run(0 ${ABBE} export linuxcnc --machine ${MACHINE} --units inch -o ${WORK}/inch)
+expect("LINEAR_UNITS must be inch" "--units inch")
+check_comp(${WORK}/inch/x.comp FALSE)
+file(STRINGS ${WORK}/inch/x.comp il)
+list(GET il 0 ifirst)
+if(NOT ifirst MATCHES "^-38.976378 ")
+  message(FATAL_ERROR "x.comp in inch: first line \"${ifirst}\"")
+endif()
+run(2 ${ABBE} export linuxcnc --machine ${MACHINE} --units furlong -o ${WORK}/bad)

@@ -36,6 +36,16 @@ def test_linuxcnc_matches_the_cli(tmp_path):
             assert (tmp_path / "cli" / f"{a}.comp").read_text() == t[a]["text"]
 
 
+def test_linuxcnc_in_inch():
+    m = abbe.Machine(MACHINE)
+    mm = abbe.export_linuxcnc(m)["x"]["text"].splitlines()[0].split()
+    inch = abbe.export_linuxcnc(m, units="inch")["x"]["text"].splitlines()[0].split()
+    assert float(inch[0]) == pytest.approx(float(mm[0]) / 25.4, abs=1e-6)
+    assert float(inch[1]) == pytest.approx(float(mm[1]) / 25.4, abs=1e-6)
+    with pytest.raises(ValueError):
+        abbe.export_linuxcnc(m, units="furlong")
+
+
 def test_zero_machine_gives_zero_tables():
     m = abbe.Machine(ZERO)
     for model in ("htm", "ae-arm", "dual"):

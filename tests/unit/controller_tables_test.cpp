@@ -160,6 +160,10 @@ TEST(ControllerTables, HandComputedLinuxCncFile) {
             std::string::npos)
       << text;
   EXPECT_EQ(text.substr(text.rfind('\n', text.size() - 2) + 1), "0 -0.004 -0.003\n");
+  // In inch (LINEAR_UNITS = inch): −990/25.4 and 0.002/25.4.
+  const std::string inch = linuxcnc_comp_text(x, true);
+  expect_linuxcnc_rules(inch);
+  EXPECT_EQ(inch.substr(0, inch.find('\n')), "-38.976378 0 0.000079");
   // Y and Z have no errors: all-zero files.
   for (int a : {1, 2}) {
     EXPECT_FALSE(tables[static_cast<std::size_t>(a)].direction_dependent());

@@ -28,6 +28,7 @@ struct ExportOptions {
   std::vector<double> at;             // linuxcnc: tool tip X,Y,Z (default: the travel's centre)
   std::vector<double> step;           // one value or X,Y,Z
   std::vector<std::size_t> count;     // grid: one value or X,Y,Z
+  std::string units = "mm";           // linuxcnc: the files' unit
 };
 
 [[noreturn]] void bad_option(const std::string& option, const std::string& message) {
@@ -60,6 +61,7 @@ int run_linuxcnc(const ExportOptions& o) {
                            : Eigen::Vector3d(o.at[0], o.at[1], o.at[2]);
   if (o.step.size() > 1) bad_option("--step", "one step for every joint");
   jo.step = o.step.empty() ? 0.0 : o.step[0];
+  jo.inch = o.units == "inch";
   if (!o.step.empty() && !(jo.step > 0.0)) bad_option("--step", "the step must be > 0 mm");
   std::fputs(compensate::export_linuxcnc(machine, jo, o.output).c_str(), stdout);
   return kOk;
@@ -121,6 +123,10 @@ const CommandRegistrar registrar(
                       "Largest distance between entries, mm (default 5, wider when the travel "
                       "needs more than 256 entries)")
           ->expected(1);
+      lin->add_option("--units", lo->units,
+                      "Unit of the files, as LinuxCNC's [TRAJ] LINEAR_UNITS (positions and trims)")
+          ->check(CLI::IsMember({"mm", "inch"}))
+          ->capture_default_str();
       lin->add_option("-o,--output", lo->output, "Output directory (created if missing)")
           ->required();
 

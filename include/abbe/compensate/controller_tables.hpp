@@ -56,6 +56,7 @@ struct JointTableOptions {
   Eigen::Vector3d at_tip = Eigen::Vector3d::Zero();  // tool tip P where the other axes stand, mm
   double tool_length = 0.0;                          // mm
   double step = 0.0;  // largest spacing, mm; 0: 5 mm, widened to fit kLinuxCncMaxEntries
+  bool inch = false;  // the files in inch (LinuxCNC's LINEAR_UNITS = inch), else mm
 };
 
 // The tool tip at the centre of the travel (axis positions) for tool length
@@ -70,10 +71,10 @@ std::array<JointTable, 3> joint_tables(const machine::Machine& machine,
                                        const JointTableOptions& options);
 
 // The COMP_FILE text for COMP_FILE_TYPE 1: one line per entry,
-// "nominal forward_trim reverse_trim" in mm, trims = −error (LinuxCNC adds
+// "nominal forward_trim reverse_trim" in mm (in inch when `inch`), trims = −error (LinuxCNC adds
 // the trim to the commanded joint position), no comment or header line
 // (LinuxCNC stops reading at the first line that is not three numbers).
-std::string linuxcnc_comp_text(const JointTable& table);
+std::string linuxcnc_comp_text(const JointTable& table, bool inch = false);
 
 // The INI lines that load the three files (joints 0, 1, 2 = X, Y, Z, as
 // with trivkins), with a comment block naming the machine, model and tool
