@@ -7,6 +7,8 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cctype>
+#include <cmath>
 #include <fstream>
 #include <memory>
 #include <optional>
@@ -14,10 +16,12 @@
 #include <string>
 #include <vector>
 
+#include "abbe/compensate/controller_tables.hpp"
 #include "abbe/compensate/program_compensator.hpp"
 #include "abbe/compensate/provenance.hpp"
 #include "abbe/diagnose/diagnosis.hpp"
 #include "abbe/gcode/dialect.hpp"
+#include "abbe/io/atomic_file.hpp"
 #include "abbe/io/input_error.hpp"
 #include "abbe/io/measured_data.hpp"
 #include "abbe/machine/machine.hpp"
@@ -302,6 +306,101 @@ py::tuple py_compensate(const std::shared_ptr<machine::Machine>& machine, const 
   return py::make_tuple(text, summary);
 }
 
+// export_linuxcnc(): the per-joint tables as arrays and texts (as `abbe
+// export linuxcnc`); with `directory` the files are written too.
+py::dict py_export_linuxcnc(const std::shared_ptr<machine::Machine>& machine,
+                            const py::object& directory, const std::string& model_name,
+                            const py::object& at, const py::object& tool_length, double step,
+                            const std::string& units) {
+  compensate::JointTableOptions o;
+  const std::vector<model::ModelKind> kinds = parse_models(model_name);
+  if (kinds.size() != 1) throw py::value_error("a LinuxCNC table holds one model");
+  o.model = kinds[0];
+  o.tool_length = tool_length.is_none() ? machine->tool_length() : tool_length.cast<double>();
+  if (at.is_none()) {
+    o.at_tip = compensate::travel_centre_tip(*machine, o.tool_length);
+  } else {
+    const auto v = at.cast<std::vector<double>>();
+    if (v.size() != 3) throw py::value_error("at must be (x, y, z) in mm");
+    o.at_tip = Eigen::Vector3d(v[0], v[1], v[2]);
+  }
+  o.step = step;
+  if (units != "mm" && units != "inch") throw py::value_error("units must be \"mm\" or \"inch\"");
+  o.inch = units == "inch";
+  const auto tables = compensate::joint_tables(*machine, o);
+  py::dict d;
+  for (const auto& t : tables) {
+    py::dict a;
+    a["nominal_mm"] = owned_array(std::vector<double>(t.nominal_mm));
+    a["forward_um"] = owned_array(std::vector<double>(t.forward_um));
+    a["reverse_um"] = owned_array(std::vector<double>(t.reverse_um));
+    a["text"] = compensate::linuxcnc_comp_text(t, o.inch);
+    d[py::str(std::string(1, static_cast<char>(std::tolower(machine::axis_letter(t.axis)))))] = a;
+  }
+  d["ini"] = compensate::linuxcnc_ini_text(*machine, o, tables);
+  if (!directory.is_none())
+    compensate::export_linuxcnc(
+        *machine, o,
+        py::str(py::module_::import("os").attr("fspath")(directory)).cast<std::string>());
+  return d;
+}
+
+// volumetric_grid(): the grid's nodes and per-model deviations (as `abbe
+// export grid`); with `output` the CSV is written too.
+py::dict py_volumetric_grid(const std::shared_ptr<machine::Machine>& machine,
+                            const std::string& model_names, const py::object& step,
+                            const py::object& count, const py::object& tool_length,
+                            const py::object& output) {
+  compensate::GridOptions o;
+  o.models = parse_models(model_names);
+  o.tool_length = tool_length.is_none() ? machine->tool_length() : tool_length.cast<double>();
+  auto three = [](const py::object& v, const char* name) {
+    if (py::isinstance<py::float_>(v) || py::isinstance<py::int_>(v))
+      return std::vector<double>(3, v.cast<double>());
+    auto r = v.cast<std::vector<double>>();
+    if (r.size() != 3) throw py::value_error(std::string(name) + " must be one value or three");
+    return r;
+  };
+  if (!step.is_none() && !count.is_none()) throw py::value_error("give step or count, not both");
+  if (!step.is_none()) {
+    const auto s = three(step, "step");
+    o.step = Eigen::Vector3d(s[0], s[1], s[2]);
+  }
+  if (!count.is_none()) {
+    const auto c = three(count, "count");
+    for (std::size_t a = 0; a < 3; ++a) {
+      if (!(c[a] >= 2.0) || c[a] != std::floor(c[a])) throw py::value_error("count: integers >= 2");
+      o.count[a] = static_cast<std::size_t>(c[a]);
+    }
+  }
+  compensate::VolumetricGrid grid;
+  {
+    py::gil_scoped_release release;
+    grid = compensate::volumetric_grid(*machine, o);
+  }
+  py::dict d;
+  d["x"] = owned_array(std::vector<double>(grid.nodes[0]));
+  d["y"] = owned_array(std::vector<double>(grid.nodes[1]));
+  d["z"] = owned_array(std::vector<double>(grid.nodes[2]));
+  d["tool_length"] = grid.tool_length;
+  py::dict models;
+  for (std::size_t m = 0; m < grid.models.size(); ++m) {
+    std::vector<double> e;
+    e.reserve(3 * grid.size());
+    for (const auto& v : grid.deviation_um[m]) e.insert(e.end(), {v.x(), v.y(), v.z()});
+    models[py::str(model::to_string(grid.models[m]))] = owned_matrix(std::move(e), 3);
+  }
+  d["models"] = models;
+  if (!output.is_none()) {
+    const std::string text = compensate::grid_csv_text(grid);
+    io::AtomicOutputFile f(
+        py::str(py::module_::import("os").attr("fspath")(output)).cast<std::string>());
+    f.write(text.data(), text.size());
+    f.commit();
+  }
+  return d;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(abbe, m) {
@@ -350,4 +449,18 @@ PYBIND11_MODULE(abbe, m) {
         py::arg("tol_um") = 1.0, py::arg("step") = 5.0, py::arg("dialect") = "linuxcnc",
         py::arg("min_segment") = 0.01, py::arg("spread_takeups") = false,
         "The compensated program as text and a summary dict (as `abbe compensate`).");
+  m.def("export_linuxcnc", &py_export_linuxcnc, py::arg("machine"),
+        py::arg("directory") = py::none(), py::kw_only(), py::arg("model") = "ae-arm",
+        py::arg("at") = py::none(), py::arg("tool_length") = py::none(), py::arg("step") = 0.0,
+        py::arg("units") = "mm",
+        "LinuxCNC per-joint compensation tables (as `abbe export linuxcnc`, docs/export.md): "
+        "a dict x, y, z = {nominal_mm, forward_um, reverse_um (predicted error along the "
+        "axis), text (the COMP_FILE_TYPE 1 file)} and ini; with directory the files are "
+        "written there.");
+  m.def("volumetric_grid", &py_volumetric_grid, py::arg("machine"), py::kw_only(),
+        py::arg("model") = "ae-arm", py::arg("step") = py::none(), py::arg("count") = py::none(),
+        py::arg("tool_length") = py::none(), py::arg("output") = py::none(),
+        "The volumetric grid (as `abbe export grid`): nodes x, y, z (mm, tool tip) and "
+        "models[name] = deviations (nx·ny·nz, 3) µm, x fastest; with output the CSV is "
+        "written there.");
 }

@@ -83,7 +83,7 @@ run(4 ${ABBE} verify ${program} --against ${program} --machine ${machine} --chec
 # An example in every --help (every command and subcommand).
 foreach(cmd path interpret predict compensate verify "simulate machine" "simulate campaign"
         "simulate measure" "report predict" "report map" "report compensate" "report diagnose"
-        map diagnose identify iso230 import)
+        "export linuxcnc" "export grid" map diagnose identify iso230 import)
   separate_arguments(words UNIX_COMMAND "${cmd}")
   run(0 ${ABBE} ${words} --help)
   if(NOT OUT MATCHES "Example")
