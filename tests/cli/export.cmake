@@ -17,18 +17,7 @@ set(ZERO ${SRC}/tests/data/compensate/zero.yaml)
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
 
-function(run expect_code)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL expect_code)
-    message(FATAL_ERROR "expected exit ${expect_code}, got ${rc}: ${ARGN}\n${out}\n${err}")
-  endif()
-  set(OUT "${out}${err}" PARENT_SCOPE)
-endfunction()
-function(expect pattern what)
-  if(NOT OUT MATCHES "${pattern}")
-    message(FATAL_ERROR "${what}: expected /${pattern}/ in:\n${OUT}")
-  endif()
-endfunction()
+include(${SRC}/tests/cli/lib/exit_code_helpers.cmake)
 
 # A COMP_FILE as LinuxCNC reads it: every line three numbers, nominal
 # strictly increasing, 2..256 lines; `zero`: every trim is 0.
