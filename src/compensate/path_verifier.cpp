@@ -128,6 +128,16 @@ struct PassStats {
   std::size_t max_line = 0;
   std::size_t over = 0;
   std::size_t unmatched = 0;
+  // Into one direction's fields of VerifyStats (the RMS over matched points).
+  void store(std::size_t& points, double& max_um, double& rms_um, std::size_t& line,
+             std::size_t& over_tol, std::size_t& unmatched_points) const {
+    points = n;
+    max_um = max;
+    rms_um = n > unmatched ? std::sqrt(sum2 / static_cast<double>(n - unmatched)) : 0.0;
+    line = max_line;
+    over_tol = over;
+    unmatched_points = unmatched;
+  }
 };
 
 // Streams the feed points of `a`; each is matched to the nearest (by
@@ -288,13 +298,7 @@ VerifyStats verify_program(std::istream& compensated, const std::string& compens
     };
     const PassStats st = run_pass(a, b, options.step, options.window, options.slack, options.tol_um,
                                   false, match, measure);
-    out.points = st.n;
-    out.max_um = st.max;
-    out.rms_um =
-        st.n > st.unmatched ? std::sqrt(st.sum2 / static_cast<double>(st.n - st.unmatched)) : 0.0;
-    out.max_line = st.max_line;
-    out.over_tol = st.over;
-    out.unmatched = st.unmatched;
+    st.store(out.points, out.max_um, out.rms_um, out.max_line, out.over_tol, out.unmatched);
   }
   compensated.clear();
   compensated.seekg(0);
@@ -317,13 +321,8 @@ VerifyStats verify_program(std::istream& compensated, const std::string& compens
     };
     const PassStats st = run_pass(a, b, options.step, options.window, options.slack, options.tol_um,
                                   true, predicted, predicted);
-    out.backward_points = st.n;
-    out.backward_max_um = st.max;
-    out.backward_rms_um =
-        st.n > st.unmatched ? std::sqrt(st.sum2 / static_cast<double>(st.n - st.unmatched)) : 0.0;
-    out.backward_max_line = st.max_line;
-    out.backward_over_tol = st.over;
-    out.backward_unmatched = st.unmatched;
+    st.store(out.backward_points, out.backward_max_um, out.backward_rms_um, out.backward_max_line,
+             out.backward_over_tol, out.backward_unmatched);
   }
   out.out_of_range_lookups = data.out_of_range_lookups;
   return out;

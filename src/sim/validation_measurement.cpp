@@ -97,4 +97,24 @@ std::string measured_to_csv(const std::vector<MeasuredPoint>& points) {
   return out;
 }
 
+io::MeasuredData to_measured_data(const std::vector<MeasuredPoint>& points,
+                                  const std::string& file) {
+  io::MeasuredData d;
+  d.file = file;
+  d.has_column = {true, true, true};
+  std::size_t line = 2;
+  for (const MeasuredPoint& m : points) {
+    io::MeasuredRow r;
+    r.p = m.tip.p;
+    for (std::size_t k = 0; k < 3; ++k) r.d[k] = m.deviation_um[static_cast<Eigen::Index>(k)];
+    r.t = m.tip.time;
+    for (std::size_t k = 0; k < 3; ++k) r.v[k] = static_cast<std::int8_t>(m.tip.dir[k]);
+    r.tool_length = m.tip.tool_length;
+    r.set = m.tip.set;
+    r.line = line++;
+    d.rows.push_back(r);
+  }
+  return d;
+}
+
 }  // namespace abbe::sim

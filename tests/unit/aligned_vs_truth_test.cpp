@@ -23,6 +23,7 @@
 #include "abbe/sim/laser_campaign.hpp"
 #include "abbe/sim/real_conventions.hpp"
 #include "abbe/sim/text_file.hpp"
+#include "truth_toolpath.hpp"
 
 namespace abbe {
 namespace {
@@ -71,21 +72,10 @@ Fixture make_fixture(const Campaign& c) {
 // The cutting points (linear and arc feeds) of a sample program.
 std::vector<path::PathPoint> cutting_points(const std::string& file,
                                             const sim::TruthMachine& truth) {
-  gcode::InterpreterConfig config;
-  config.tool_lengths = truth.tool_table;
-  config.default_tool_length = truth.tool_length;
-  config.initial_position = Eigen::Vector3d(0.0, 0.0, -truth.tool_length);
-  const std::string path = std::string(ABBE_SOURCE_DIR) + "/nc-samples/" + file;
-  std::ifstream in(path);
-  EXPECT_TRUE(in) << path;
-  path::Fragmenter fragmenter(path::FragmentOptions{});
   std::vector<path::PathPoint> points;
-  gcode::run_program(in, path, config, [&](const gcode::Motion& m) {
-    fragmenter.add(m, [&](const path::PathPoint& p) {
-      if (p.kind == gcode::MotionKind::linear || p.kind == gcode::MotionKind::arc)
-        points.push_back(p);
-    });
-  });
+  for (const path::PathPoint& p : test::truth_toolpath(file, truth))
+    if (p.kind == gcode::MotionKind::linear || p.kind == gcode::MotionKind::arc)
+      points.push_back(p);
   return points;
 }
 

@@ -43,6 +43,14 @@ VerifyStats verify(const std::string& compensated, const std::string& original, 
   return verify_program(c, "out", o, "in", pipeline::interpreter_config(m), em, vo);
 }
 
+// verify passes the compensated program at tol, every point matched.
+void expect_verified(const std::string& compensated, const std::string& original, double tol_um) {
+  const VerifyStats v = verify(compensated, original, tol_um);
+  EXPECT_LE(v.max_um, tol_um);
+  EXPECT_LE(v.backward_max_um, tol_um);
+  EXPECT_EQ(v.unmatched + v.backward_unmatched, 0u);
+}
+
 // Lengths (mm, along the curve) of the feed motions of a program.
 std::vector<double> feed_lengths(const std::string& text) {
   const machine::Machine m = machine::Machine::load(kSample);
@@ -103,9 +111,7 @@ TEST(CompensateMinSegment, EveryReversalIsTakenOnceWhicheverWay) {
   const Compensated d = compensate(program, CompensateOptions{});
   EXPECT_EQ(d.summary.takeups_spread + d.summary.takeup_moves, micro.summary.takeup_moves);
   EXPECT_LE(d.summary.max_takeup_um, 1.0);
-  const VerifyStats v = verify(d.text, program, 1.0);
-  EXPECT_LE(v.max_um, 1.0);
-  EXPECT_LE(v.backward_max_um, 1.0);
+  expect_verified(d.text, program, 1.0);
 }
 
 // With tol 20 µm every jump of the sample machine is within tol: those
@@ -120,10 +126,7 @@ TEST(CompensateMinSegment, JumpsWithinTolNeedNoMicroMove) {
   EXPECT_GT(r.summary.takeups_spread, 0u);
   EXPECT_EQ(r.summary.short_takeup_moves, 0u);
   EXPECT_GE(shortest(feed_lengths(r.text)), 0.01 - 1e-9);
-  const VerifyStats v = verify(r.text, program, 20.0);
-  EXPECT_LE(v.max_um, 20.0);
-  EXPECT_LE(v.backward_max_um, 20.0);
-  EXPECT_EQ(v.unmatched + v.backward_unmatched, 0u);
+  expect_verified(r.text, program, 20.0);
 }
 
 // A larger minimum merges pieces; it never makes the result worse than tol
@@ -134,9 +137,7 @@ TEST(CompensateMinSegment, LargerMinimumStillWithinTol) {
   CompensateOptions o;
   o.min_segment = 0.2;
   const Compensated r = compensate(program, o);
-  const VerifyStats v = verify(r.text, program, 1.0);
-  EXPECT_LE(v.max_um, 1.0);
-  EXPECT_LE(v.backward_max_um, 1.0);
+  expect_verified(r.text, program, 1.0);
   EXPECT_GE(r.summary.min_segment_mm, 0.2);
   // Every piece shorter than 0.2 mm is accounted for: a kept piece or a take-up move.
   std::size_t short_moves = 0;

@@ -37,31 +37,30 @@ TEST(CompensateSolver, ReachesTheNominalPointForEveryModel) {
   }
 }
 
-TEST(CompensateSolver, ZeroTablesLeaveThePointExactly) {
-  const machine::Machine m = machine::Machine::load(kZero);
+// The ae-arm solution for nominal point p (tool length 200 mm) on a machine file.
+Solution solve_on(const std::string& machine_file, const Eigen::Vector3d& p,
+                  const SolverOptions& o = {}) {
+  const machine::Machine m = machine::Machine::load(machine_file);
   const model::ErrorModel em(m, model::ModelKind::ae_arm);
-  const PointSolver solver(em);
   model::ModelData data;
   model::EvalPoint n;
-  n.p = Eigen::Vector3d(-333.3333, -123.4567, -287.0001);
+  n.p = p;
   n.tool_length = 200.0;
-  const Solution s = solver.solve(n, data);
+  return PointSolver(em, o).solve(n, data);
+}
+
+TEST(CompensateSolver, ZeroTablesLeaveThePointExactly) {
+  const Eigen::Vector3d p(-333.3333, -123.4567, -287.0001);
+  const Solution s = solve_on(kZero, p);
   EXPECT_TRUE(s.converged);
-  EXPECT_EQ(s.c, n.p);
+  EXPECT_EQ(s.c, p);
 }
 
 TEST(CompensateSolver, ReportsNonConvergence) {
-  const machine::Machine m = machine::Machine::load(kSample);
-  const model::ErrorModel em(m, model::ModelKind::ae_arm);
   SolverOptions o;
   o.tolerance_um = 0.0;  // unreachable
   o.max_iterations = 2;
-  const PointSolver solver(em, o);
-  model::ModelData data;
-  model::EvalPoint n;
-  n.p = Eigen::Vector3d(-500.0, -250.0, -300.0);
-  n.tool_length = 200.0;
-  const Solution s = solver.solve(n, data);
+  const Solution s = solve_on(kSample, Eigen::Vector3d(-500.0, -250.0, -300.0), o);
   EXPECT_FALSE(s.converged);
   EXPECT_EQ(s.iterations, 2);
 }

@@ -93,22 +93,7 @@ inline void full_box(const sim::TruthMachine& truth, Eigen::Vector3d& lo, Eigen:
 }
 
 inline io::MeasuredData to_measured(const std::vector<sim::MeasuredPoint>& pts) {
-  io::MeasuredData d;
-  d.file = "<vm>";
-  d.has_column = {true, true, true};
-  std::size_t line = 2;
-  for (const auto& m : pts) {
-    io::MeasuredRow r;
-    r.p = m.tip.p;
-    for (int k = 0; k < 3; ++k) r.d[static_cast<std::size_t>(k)] = m.deviation_um[k];
-    r.t = m.tip.time;
-    for (std::size_t k = 0; k < 3; ++k) r.v[k] = static_cast<std::int8_t>(m.tip.dir[k]);
-    r.tool_length = m.tip.tool_length;
-    r.set = m.tip.set;
-    r.line = line++;
-    d.rows.push_back(r);
-  }
-  return d;
+  return sim::to_measured_data(pts, "<vm>");
 }
 
 // Held-out gain of a fit of the given terms beyond the datum (an offset per

@@ -24,6 +24,16 @@ ParamVector random_params(std::mt19937& rng) {
   return p;
 }
 
+// A tool tip anywhere in the test machine's travel, tool length 100 mm.
+model::EvalPoint random_point(std::mt19937& rng) {
+  model::EvalPoint e;
+  e.p = {std::uniform_real_distribution<double>(0, 754)(rng),
+         std::uniform_real_distribution<double>(0, 500)(rng),
+         std::uniform_real_distribution<double>(-550, -100)(rng)};
+  e.tool_length = 100.0;
+  return e;
+}
+
 TEST(IdentifyDesign, MonomialNamesAndIndices) {
   EXPECT_EQ(kMonomialCount, 90);
   EXPECT_EQ(monomial_name(3), "f1");
@@ -48,11 +58,7 @@ TEST(IdentifyDesign, ExpansionReproducesTheChain) {
   std::mt19937 rng(3);
   for (int t = 0; t < 20; ++t) {
     const ParamVector p = 50.0 * random_params(rng);  // large: the ε² part matters
-    model::EvalPoint e;
-    e.p = {std::uniform_real_distribution<double>(0, 754)(rng),
-           std::uniform_real_distribution<double>(0, 500)(rng),
-           std::uniform_real_distribution<double>(-550, -100)(rng)};
-    e.tool_length = 100.0;
+    const model::EvalPoint e = random_point(rng);
     Eigen::Vector3d second;
     const Eigen::Vector3d d = chain.deviation_um(e, p, &second);
     const Eigen::Vector3d rebuilt = chain.monomials(e) * ChainExpansion::monomial_values(p);
@@ -110,11 +116,7 @@ TEST(IdentifyDesign, ChainMatchesDualErrorModelOnTabulatedParameters) {
   const ChainExpansion chain(base);
   model::ModelData data;
   for (int t = 0; t < 20; ++t) {
-    model::EvalPoint e;
-    e.p = {std::uniform_real_distribution<double>(0, 754)(rng),
-           std::uniform_real_distribution<double>(0, 500)(rng),
-           std::uniform_real_distribution<double>(-550, -100)(rng)};
-    e.tool_length = 100.0;
+    const model::EvalPoint e = random_point(rng);
     Eigen::Vector3d second;
     const Eigen::Vector3d mine = chain.deviation_um(e, p, &second) + chain.squareness_um(e.p);
     const model::Deviation ref = dual.evaluate(e, data);

@@ -121,10 +121,15 @@ TEST(ModelTableLookup, ClampCountsLookupsOutsideTheRange) {
   EXPECT_EQ(data.evaluations, 3u);
 }
 
-TEST(ModelTableLookup, ExtrapolateContinuesTheEndSegments) {
+// A machine with the short EXX table and the given out-of-range policy.
+machine::Machine short_machine(machine::OutOfRangePolicy policy) {
   auto spec = test::spec_with("w X' b Y Z t", short_table());
-  spec.out_of_range = machine::OutOfRangePolicy::extrapolate;
-  machine::Machine m(std::move(spec));
+  spec.out_of_range = policy;
+  return machine::Machine(std::move(spec));
+}
+
+TEST(ModelTableLookup, ExtrapolateContinuesTheEndSegments) {
+  const machine::Machine m = short_machine(machine::OutOfRangePolicy::extrapolate);
   ErrorModel ae(m, ModelKind::ae_arm);
   model::ModelData data;
   EXPECT_NEAR(ae.evaluate(at_x(-100.0), data).e_um.x(), 4.0, 1e-12);
@@ -133,9 +138,7 @@ TEST(ModelTableLookup, ExtrapolateContinuesTheEndSegments) {
 }
 
 TEST(ModelTableLookup, ErrorPolicyNamesTheAxisAndPosition) {
-  auto spec = test::spec_with("w X' b Y Z t", short_table());
-  spec.out_of_range = machine::OutOfRangePolicy::error;
-  machine::Machine m(std::move(spec));
+  const machine::Machine m = short_machine(machine::OutOfRangePolicy::error);
   ErrorModel ae(m, ModelKind::ae_arm);
   model::ModelData data;
   EXPECT_NO_THROW(ae.evaluate(at_x(-250.0), data));

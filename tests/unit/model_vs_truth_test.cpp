@@ -3,10 +3,9 @@
 // follow a smooth truth to 0.05 µm, at 0.5 mm the interpolation error is a
 // few nm), evaluated at every fragmented point of both thesis toolpaths.
 #include <gtest/gtest.h>
-
-#include <Eigen/Geometry>  // cross()
 #include <unistd.h>
 
+#include <Eigen/Geometry>  // cross()
 #include <filesystem>
 #include <fstream>
 
@@ -16,6 +15,7 @@
 #include "abbe/path/fragmenter.hpp"
 #include "abbe/sim/laser_campaign.hpp"
 #include "abbe/sim/text_file.hpp"
+#include "truth_toolpath.hpp"
 
 namespace abbe {
 namespace {
@@ -49,19 +49,7 @@ Fixture make_fixture(double angular_scale, const std::string& name, double spaci
 }
 
 std::vector<path::PathPoint> toolpath(const std::string& file, const sim::TruthMachine& truth) {
-  gcode::InterpreterConfig config;
-  config.tool_lengths = truth.tool_table;
-  config.default_tool_length = truth.tool_length;
-  config.initial_position = Eigen::Vector3d(0.0, 0.0, -truth.tool_length);
-  const std::string path = std::string(ABBE_SOURCE_DIR) + "/nc-samples/" + file;
-  std::ifstream in(path);
-  EXPECT_TRUE(in) << path;
-  path::Fragmenter fragmenter(path::FragmentOptions{});
-  std::vector<path::PathPoint> points;
-  gcode::run_program(in, path, config, [&](const gcode::Motion& m) {
-    fragmenter.add(m, [&](const path::PathPoint& p) { points.push_back(p); });
-  });
-  return points;
+  return test::truth_toolpath(file, truth);
 }
 
 struct Errors {

@@ -50,6 +50,23 @@ struct PredictOptions {
 const char* const kDatumOption[3] = {"--datum-primary", "--datum-secondary", "--datum-tertiary"};
 
 // predict --align: the points are written after the alignment is known.
+// The points output (none with --summary-only): the file and its writer.
+struct PointsOutput {
+  std::unique_ptr<io::AtomicOutputFile> out;
+  std::unique_ptr<pipeline::PredictionWriter> writer;
+};
+
+PointsOutput open_points(const PredictOptions& o, pipeline::PathFormat format,
+                         const std::vector<model::ModelKind>& models, bool aligned) {
+  PointsOutput p;
+  if (o.summary_only) return p;
+  p.out = std::make_unique<io::AtomicOutputFile>(o.output);
+  io::AtomicOutputFile* file = p.out.get();
+  p.writer = std::make_unique<pipeline::PredictionWriter>(
+      format, models, [file](const char* d, std::size_t n) { file->write(d, n); }, aligned);
+  return p;
+}
+
 // Ends the points output with the summary, writes --summary-json and prints
 // the table: to stdout unless the points go there.
 void finish_outputs(const PredictOptions& o, pipeline::PredictionWriter* writer,
@@ -79,13 +96,8 @@ int run_predict_aligned(const PredictOptions& o, const GlobalOptions& g,
     ao.tertiary = pipeline::LineSet::parse(o.datum[2], kDatumOption[2]);
   }
   InputStream input(o.input, "the input");
-  std::unique_ptr<io::AtomicOutputFile> out;
-  std::unique_ptr<pipeline::PredictionWriter> writer;
-  if (!o.summary_only) {
-    out = std::make_unique<io::AtomicOutputFile>(o.output);
-    writer = std::make_unique<pipeline::PredictionWriter>(
-        format, po.models, [&](const char* d, std::size_t n) { out->write(d, n); }, true);
-  }
+  PointsOutput points = open_points(o, format, po.models, true);
+  auto& writer = points.writer;
   Progress progress("predict", 0, !g.quiet, "points");
   const pipeline::AlignedPrediction prediction = pipeline::predict_aligned(
       input.stream(), o.input, machine, po, ao,
@@ -97,7 +109,7 @@ int run_predict_aligned(const PredictOptions& o, const GlobalOptions& g,
         if (writer) writer->write(p, line, devs, norms, aligned);
       });
   progress.finish();
-  finish_outputs(o, writer.get(), out.get(), pipeline::summary_json(prediction),
+  finish_outputs(o, writer.get(), points.out.get(), pipeline::summary_json(prediction),
                  pipeline::summary_table(prediction));
   return kOk;
 }
@@ -125,13 +137,8 @@ int run_predict(const PredictOptions& o, const GlobalOptions& g) {
     }
 
   InputStream input(o.input, "the input");
-  std::unique_ptr<io::AtomicOutputFile> out;
-  std::unique_ptr<pipeline::PredictionWriter> writer;
-  if (!o.summary_only) {
-    out = std::make_unique<io::AtomicOutputFile>(o.output);
-    writer = std::make_unique<pipeline::PredictionWriter>(
-        format, po.models, [&](const char* d, std::size_t n) { out->write(d, n); });
-  }
+  PointsOutput points = open_points(o, format, po.models, false);
+  auto& writer = points.writer;
 
   // Progress on a terminal: bytes of the input file read, or points from stdin.
   const bool from_file = !input.from_stdin();
@@ -147,7 +154,7 @@ int run_predict(const PredictOptions& o, const GlobalOptions& g) {
         if (pos >= 0) progress.update(static_cast<std::uint64_t>(pos));
       });
   progress.finish();
-  finish_outputs(o, writer.get(), out.get(), pipeline::summary_json(summary),
+  finish_outputs(o, writer.get(), points.out.get(), pipeline::summary_json(summary),
                  pipeline::summary_table(summary));
   if (!summary.travel_text.empty())
     spdlog::warn(

@@ -51,19 +51,8 @@ Setup make_setup(int points) {
     t.set = "run";
     tips.push_back(t);
   }
-  abbe::io::MeasuredData data;
-  data.file = "<bench>";
-  data.has_column = {true, true, true};
-  for (const auto& mp : abbe::sim::measure(g.truth, tips, 0.5, 2)) {
-    abbe::io::MeasuredRow row;
-    row.p = mp.tip.p;
-    for (int k = 0; k < 3; ++k) row.d[static_cast<std::size_t>(k)] = mp.deviation_um[k];
-    row.t = mp.tip.time;
-    for (std::size_t k = 0; k < 3; ++k) row.v[k] = static_cast<std::int8_t>(mp.tip.dir[k]);
-    row.tool_length = mp.tip.tool_length;
-    row.set = mp.tip.set;
-    data.rows.push_back(row);
-  }
+  abbe::io::MeasuredData data =
+      abbe::sim::to_measured_data(abbe::sim::measure(g.truth, tips, 0.5, 2), "<bench>");
   return Setup{std::move(g), std::move(m), std::move(data)};
 }
 

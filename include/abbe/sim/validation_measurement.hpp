@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "abbe/io/measured_data.hpp"
 #include "abbe/sim/truth_machine.hpp"
 
 namespace abbe::sim {
@@ -39,5 +40,10 @@ std::vector<MeasuredPoint> measure(const TruthMachine& truth, const std::vector<
                                    double noise_um, std::uint64_t seed);
 
 std::string measured_to_csv(const std::vector<MeasuredPoint>& points);
+
+// The same points as measured data in memory (what io::load_measured_data
+// gives for that CSV, rows numbered from line 2), named `file`.
+io::MeasuredData to_measured_data(const std::vector<MeasuredPoint>& points,
+                                  const std::string& file);
 
 }  // namespace abbe::sim
