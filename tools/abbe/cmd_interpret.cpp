@@ -36,8 +36,9 @@ struct InterpretOptions {
   std::string output = "-";  // -o: stdout by default
   std::string machine;
   std::optional<double> tool_length;
-  std::vector<std::string> tools;         // "H=L"
-  std::vector<std::string> work_offsets;  // "G55=x,y,z"
+  std::vector<std::string> tools;           // "H=L"
+  std::vector<std::string> tool_diameters;  // "n=D" (G41/G42)
+  std::vector<std::string> work_offsets;    // "G55=x,y,z"
   gcode::DialectOptions dialect;
 };
 
@@ -58,6 +59,10 @@ gcode::InterpreterConfig make_config(const InterpretOptions& o) {
   for (const auto& t : o.tools) {
     const auto [h, length] = parse_tool_option(t);
     config.tool_lengths[h] = length;
+  }
+  for (const auto& t : o.tool_diameters) {
+    const auto [n, diameter] = parse_tool_diameter_option(t);
+    config.tool_diameters[n] = diameter;
   }
   for (const auto& w : o.work_offsets) {
     const auto [index, offset] = parse_work_offset_option(w);
@@ -142,8 +147,9 @@ int run_interpret(const InterpretOptions& o) {
     throw;
   }
   if (!o.canon)
-    fmt::format_to(std::back_inserter(out), "lines={} motions={} rapid={} linear={} arc={} dwell={}\n",
-                   stats.lines, stats.motions, by_kind[0], by_kind[1], by_kind[2], by_kind[3]);
+    fmt::format_to(std::back_inserter(out),
+                   "lines={} motions={} rapid={} linear={} arc={} dwell={}\n", stats.lines,
+                   stats.motions, by_kind[0], by_kind[1], by_kind[2], by_kind[3]);
   flush();
   output.commit();
   return kOk;
@@ -166,6 +172,8 @@ const CommandRegistrar registrar(
       sub.add_option("--tool-length", o->tool_length,
                      "Tool length when no G43 is active, mm (overrides the machine file)");
       sub.add_option("--tool", o->tools, "Tool length for G43 Hn as n=L (mm), repeatable");
+      sub.add_option("--tool-diameter", o->tool_diameters,
+                     "Cutter diameter of tool n for G41/G42 as n=D (mm), repeatable");
       sub.add_option("--work-offset", o->work_offsets,
                      "Work offset as G54..G59=x,y,z (mm, overrides the machine file), repeatable");
       add_output_option(sub, o->output, "the canonical motions or the summary");

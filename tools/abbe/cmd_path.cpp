@@ -36,7 +36,8 @@ struct PathOptions {
   double step = 5.0;
   double rapid_rate = 10000.0;
   std::optional<double> tool_length;
-  std::vector<std::string> tools;  // "H=L"
+  std::vector<std::string> tools;           // "H=L"
+  std::vector<std::string> tool_diameters;  // "n=D" (G41/G42)
   std::string machine;
   bool count_only = false;
   gcode::DialectOptions dialect;
@@ -58,6 +59,10 @@ gcode::InterpreterConfig make_config(const PathOptions& o) {
   for (const auto& t : o.tools) {
     const auto [h, length] = parse_tool_option(t);
     config.tool_lengths[h] = length;
+  }
+  for (const auto& t : o.tool_diameters) {
+    const auto [n, diameter] = parse_tool_diameter_option(t);
+    config.tool_diameters[n] = diameter;
   }
   return config;
 }
@@ -137,6 +142,8 @@ const CommandRegistrar registrar(
       sub.add_option("--tool-length", o->tool_length,
                      "Tool length when no G43 is active, mm (overrides the machine file)");
       sub.add_option("--tool", o->tools, "Tool length for G43 Hn as n=L (mm), repeatable");
+      sub.add_option("--tool-diameter", o->tool_diameters,
+                     "Cutter diameter of tool n for G41/G42 as n=D (mm), repeatable");
       sub.add_option("--machine", o->machine,
                      "Machine file (YAML): tool length, tool table and work offsets");
       add_dialect_options(sub, o->dialect);
