@@ -210,6 +210,11 @@ void Interpreter::execute(const Block& written, std::string_view raw_line, const
                                       std::string(raw_line)},
                        "cutter radius compensation (G41/G42) is not supported by a command that "
                        "rewrites the program line by line");
+    if (w.letter == 'G' && std::abs(w.value - 43.1) < 1e-6)
+      throw InputError(SourceLocation{state_->file, written.line, std::size_t{w.begin} + 1, "",
+                                      std::string(raw_line)},
+                       "a dynamic tool length offset (G43.1) is not supported by a command that "
+                       "rewrites the program line by line (its Z word is not a coordinate)");
     if (w.letter == '@' || w.letter == '^')
       throw InputError(SourceLocation{state_->file, written.line, std::size_t{w.begin} + 1, "",
                                       std::string(raw_line)},
