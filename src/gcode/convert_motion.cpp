@@ -140,7 +140,7 @@ void convert_straight(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& 
   m.feed = rapid ? 0.0 : st.feed_rate_mm((m.end - m.start).norm());
   st.motion_mode = b.motion;
   if (st.comp.offsetting()) {  // the tool centre path (cutter_comp.cpp)
-    (*st.stamp)(m);
+    st.stamp(m);
     comp_straight(st, b, end, m);
     return;
   }
@@ -226,7 +226,7 @@ void convert_arc(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& end, 
   }
   st.motion_mode = motion;
   if (st.comp.offsetting()) {  // the tool centre path (cutter_comp.cpp)
-    (*st.stamp)(m);
+    st.stamp(m);
     comp_arc(st, b, end, centre.centre, m);
     return;
   }

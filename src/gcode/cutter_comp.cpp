@@ -123,7 +123,7 @@ void dequeue(ExecState& st) {
         m.center = st.tip(Eigen::Vector3d(e.centre.x(), e.centre.y(), from.z()));
       from = e.end;
     }
-    (*st.deliver)(m);
+    st.deliver(m);
   }
 }
 

@@ -227,10 +227,10 @@ void Interpreter::execute(const Block& written, std::string_view raw_line, const
 void Interpreter::finish(const MotionSink& sink) {
   detail::ExecState& st = *state_;
   if (st.comp.queue.empty()) return;
-  const std::function<void(Motion&)> deliver = [&](Motion& m) { sink(m); };
-  st.deliver = &deliver;
+  auto deliver = [&](Motion& m) { sink(m); };
+  st.deliver = detail::make_hook(deliver);
   detail::comp_flush(st);
-  st.deliver = nullptr;
+  st.deliver = {};
 }
 
 void Interpreter::enter_call() { state_->save_slots.emplace_back(); }
@@ -295,7 +295,7 @@ void Interpreter::execute_evaluated(const Block& written, std::string_view raw_l
   };
   // A finished motion to the sink (also the motions cutter radius
   // compensation held back from earlier blocks: they keep their line).
-  const std::function<void(Motion&)> deliver = [&](Motion& m) {
+  auto deliver = [&](Motion& m) {
     const double far = std::max({m.start.cwiseAbs().maxCoeff(), m.end.cwiseAbs().maxCoeff(),
                                  m.center.cwiseAbs().maxCoeff()});
     if (!(far <= kMaxCoordinateMm))
@@ -308,8 +308,8 @@ void Interpreter::execute_evaluated(const Block& written, std::string_view raw_l
       ctx.fail(anchor(), e.what());
     }
   };
-  st.deliver = &deliver;
-  const detail::Emit stamp = [&](Motion& m) {
+  st.deliver = detail::make_hook(deliver);
+  auto stamp = [&](Motion& m) {
     m.line = block.line;
     m.sub = sub++;
     m.tool_length = st.g43 && st.tool_length_unknown ? std::numeric_limits<double>::quiet_NaN()
@@ -317,7 +317,7 @@ void Interpreter::execute_evaluated(const Block& written, std::string_view raw_l
     m.spindle = st.spindle;
     m.tool = st.selected_tool;
   };
-  st.stamp = &stamp;
+  st.stamp = detail::make_hook(stamp);
   const detail::Emit emit = [&](Motion& m) {
     stamp(m);
     if (!st.comp.queue.empty()) {  // after the motions compensation holds back

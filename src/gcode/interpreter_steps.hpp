@@ -71,6 +71,17 @@ struct CutterComp {
   bool offsetting() const { return side != 0 && radius > 0.0; }
 };
 
+// A callable on a Motion held as a function pointer and its context.
+struct MotionHook {
+  void (*fn)(void*, Motion&) = nullptr;
+  void* ctx = nullptr;
+  void operator()(Motion& m) const { fn(ctx, m); }
+};
+template <class F>
+MotionHook make_hook(F& f) {
+  return {[](void* c, Motion& m) { (*static_cast<F*>(c))(m); }, &f};
+}
+
 // The modal state with the configuration it is read against.
 struct ExecState : ModalState {
   InterpreterConfig config;
@@ -84,9 +95,10 @@ struct ExecState : ModalState {
   std::vector<SaveSlot> save_slots = std::vector<SaveSlot>(1);
   CutterComp comp;
   // Hands a finished motion to the caller's sink, and numbers a motion of
-  // the current block (set by each execute call).
-  const std::function<void(Motion&)>* deliver = nullptr;
-  const std::function<void(Motion&)>* stamp = nullptr;
+  // the current block (set by each execute call; plain function pointers,
+  // so that the per-block cost stays that of the plain-block path).
+  MotionHook deliver;
+  MotionHook stamp;
 
   double unit() const { return inch ? units::kMmPerInch : 1.0; }
   Eigen::Vector3d g5x() const {
