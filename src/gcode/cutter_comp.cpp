@@ -20,11 +20,13 @@
 //   that finds them: an entry move not longer than the radius, a tool radius
 //   not below the radius of an arc the tool is inside, inside corners the
 //   tool cannot reach without gouging (the moved end would run backwards).
-// - Only G17: compensation in G18 (lathes) and G19 is refused, as is every
-//   frame change while it is on (units, plane, offsets, tool length, tool).
+// - G17 and G18 (in the plane's axes Z, X; lathe tool orientations are not
+//   modelled: G41.1/G42.1 L is refused), not G19; every frame change while
+//   it is on is refused (units, plane, offsets, tool length, tool).
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <array>
 #include <cmath>
 
 #include "abbe/gcode/arc_geometry.hpp"
@@ -57,6 +59,20 @@ double find_turn(const Eigen::Vector2d& p1, const Eigen::Vector2d& c, int turn,
   return (beta - alpha) + (turn + 1) * (2.0 * kPi);
 }
 
+// Compensation works in the plane's axes (first, second, normal): X Y Z in
+// G17, Z X Y in G18 (rs274ngc's comp_get_current); the queue holds points so.
+Eigen::Vector3d to_plane(const ExecState& st, const Eigen::Vector3d& p) {
+  const std::array<int, 3> ax = plane_axes(st.plane);
+  return {p[ax[0]], p[ax[1]], p[ax[2]]};
+}
+Eigen::Vector3d from_plane(const ExecState& st, const Eigen::Vector3d& q) {
+  const std::array<int, 3> ax = plane_axes(st.plane);
+  Eigen::Vector3d p;
+  p[ax[0]] = q.x();
+  p[ax[1]] = q.y();
+  p[ax[2]] = q.z();
+  return p;
+}
 Eigen::Vector2d xy(const Eigen::Vector3d& p) { return {p.x(), p.y()}; }
 Eigen::Vector2d polar(double r, double angle) { return {r * std::cos(angle), r * std::sin(angle)}; }
 
@@ -115,12 +131,14 @@ void dequeue(ExecState& st) {
   for (CompEntry& e : queue) {
     Motion& m = e.m;
     if (m.kind == MotionKind::dwell) {
-      m.start = m.end = st.tip(from);
+      m.start = m.end = st.tip(from_plane(st, from));
     } else {
-      m.start = st.tip(from);
-      m.end = st.tip(e.end);
-      if (m.kind == MotionKind::arc)
-        m.center = st.tip(Eigen::Vector3d(e.centre.x(), e.centre.y(), from.z()));
+      m.start = st.tip(from_plane(st, from));
+      m.end = st.tip(from_plane(st, e.end));
+      if (m.kind == MotionKind::arc) {
+        m.plane = st.plane;
+        m.center = st.tip(from_plane(st, Eigen::Vector3d(e.centre.x(), e.centre.y(), from.z())));
+      }
       from = e.end;
     }
     st.deliver(m);
@@ -170,7 +188,7 @@ bool front_is_arc(const CutterComp& c) {
 // The entry move (rs274ngc's convert_straight_comp1).
 void straight_first(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& p, const Motion& m) {
   CutterComp& c = st.comp;
-  const Eigen::Vector3d from = st.pos;
+  const Eigen::Vector3d from = to_plane(st, st.pos);
   const double distance = std::hypot(p.x() - from.x(), p.y() - from.y());
   if (distance <= c.radius)
     fail(b, fmt::format("the entry move ({:g}) is not longer than the tool radius ({:g})", distance,
@@ -193,7 +211,7 @@ void arc_first(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& p,
                const Eigen::Vector2d& centre, const Motion& m) {
   CutterComp& c = st.comp;
   const int turn = m.rotation;
-  const Eigen::Vector3d cur = st.pos;
+  const Eigen::Vector3d cur = to_plane(st, st.pos);
   const double radius = c.radius;
   if (std::hypot(p.x() - cur.x(), p.y() - cur.y()) <= radius)
     fail(b, "the radius of the entry arc is not greater than the tool radius");
@@ -219,7 +237,6 @@ void arc_first(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& p,
           arc_entry(m, end, new_centre, turn, find_turn(xy(cur), new_centre, turn, xy(end))));
   c.first_move = false;
   c.current = end;
-  st.pos = p;
 }
 
 }  // namespace
@@ -235,7 +252,7 @@ void convert_cutter_comp(ExecState& st, const BlockPlan& b) {
       move_endpoint_and_flush(st, b, xy(c.current));
       dequeue(st);
       c.exit_pending = true;
-      c.exit_nose_mm = st.nose_mm(c.current);
+      c.exit_nose_mm = st.nose_mm(from_plane(st, c.current));
     }
     c.side = 0;
     c.radius = 0.0;
@@ -245,11 +262,7 @@ void convert_cutter_comp(ExecState& st, const BlockPlan& b) {
   const Word* at = g->word;
   const bool dot_one = g->code == gcode_id(41, 1) || g->code == gcode_id(42, 1);
   const std::string name = gcode_name(g->code);
-  if (st.plane == Plane::xz)
-    b.ctx.fail(at, fmt::format("cutter radius compensation in the XZ plane ({} in G18, lathe "
-                               "tools) is not supported",
-                               name));
-  if (st.plane != Plane::xy)
+  if (st.plane == Plane::yz)
     b.ctx.fail(at, fmt::format("cutter radius compensation is allowed only in the XY or XZ "
                                "plane ({} in G19)",
                                name));
@@ -337,17 +350,19 @@ void check_comp_block(const ExecState& st, const BlockPlan& b) {
   if (c.has_polar_word()) refuse(c.has('@') ? c.word('@') : c.word('^'), "polar coordinates");
 }
 
-void comp_straight(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& p, const Motion& m) {
+void comp_straight(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& end_program,
+                   const Motion& m) {
   CutterComp& c = st.comp;
   const bool rapid = m.kind == MotionKind::rapid;
+  const Eigen::Vector3d p = to_plane(st, end_program);
   if (c.first_move) {
     straight_first(st, b, p, m);
-    st.pos = p;
+    st.pos = end_program;
     return;
   }
   // rs274ngc's convert_straight_comp2.
   const Eigen::Vector3d cur = c.current;
-  const Eigen::Vector3d op = st.pos;  // the programmed start
+  const Eigen::Vector3d op = to_plane(st, st.pos);  // the programmed start
   Eigen::Vector3d end = cur;
   end.z() = p.z();
   if (p.x() == op.x() && p.y() == op.y()) {  // no XY motion
@@ -435,14 +450,16 @@ void comp_straight(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& p, 
     }
   }
   c.current = end;
-  st.pos = p;
+  st.pos = end_program;
 }
 
-void comp_arc(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& p,
+void comp_arc(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& end_program,
               const Eigen::Vector2d& centre, const Motion& m) {
   CutterComp& c = st.comp;
+  const Eigen::Vector3d p = to_plane(st, end_program);
   if (c.first_move) {
     arc_first(st, b, p, centre, m);
+    st.pos = end_program;
     return;
   }
   // rs274ngc's convert_arc_comp2.
@@ -450,7 +467,7 @@ void comp_arc(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& p,
   const bool g3 = turn > 0;
   const double radius = c.radius;
   const Eigen::Vector3d cur = c.current;
-  const Eigen::Vector3d op = st.pos;
+  const Eigen::Vector3d op = to_plane(st, st.pos);
   const double arc_radius = (centre - xy(p)).norm();
   double theta = std::atan2(cur.y() - op.y(), cur.x() - op.x());
   theta = left(c) ? theta - kHalfPi : theta + kHalfPi;
@@ -534,7 +551,7 @@ void comp_arc(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& p,
     enqueue(st, cur, arc_entry(m, new_end, centre, turn, sweep));
   }
   c.current = new_end;
-  st.pos = p;
+  st.pos = end_program;
 }
 
 void comp_flush(ExecState& st) { dequeue(st); }

@@ -19,7 +19,7 @@ const std::vector<WordUse>& word_use_table() {
         gcode_id(82), gcode_id(84), gcode_id(86), gcode_id(89)},
        false},
       {'Q', {gcode_id(64), gcode_id(73), gcode_id(83)}, false},
-      {'L', {gcode_id(10)}, true},
+      {'L', {gcode_id(10), gcode_id(41, 1), gcode_id(42, 1)}, true},
       {'H', {gcode_id(43)}, false},
       {'D', {gcode_id(41), gcode_id(42), gcode_id(41, 1), gcode_id(42, 1)}, false},
   };

@@ -322,7 +322,7 @@ TEST(CutterComp, ImpossibleGeometryIsAnErrorAtItsLine) {
             std::string::npos)
       << step;
   EXPECT_NE(step.find("t.ngc:5:"), std::string::npos) << step;
-  EXPECT_NE(error_of("G18\nG41.1 D4\n").find("XZ plane"), std::string::npos);
+  EXPECT_NE(error_of("G18\nG41.1 D4 L1\n").find("lathe tool orientation"), std::string::npos);
   EXPECT_NE(error_of("G19\nG41.1 D4\n").find("only in the XY or XZ plane"), std::string::npos);
   EXPECT_NE(error_of("G41.1 D4\nG42.1 D4\n").find("when it is on"), std::string::npos);
   EXPECT_NE(error_of("G41.1\n").find("G41.1 with no D word"), std::string::npos);
@@ -338,6 +338,18 @@ TEST(CutterComp, ImpossibleGeometryIsAnErrorAtItsLine) {
   EXPECT_NE(error_of("G0 X-9\nG41.1 D4 G2 X-8 Y0 R5 F1\n").find("entry arc is not greater"),
             std::string::npos);
   EXPECT_NE(error_of("D1\n").find("D word with no"), std::string::npos);
+}
+
+TEST(CutterComp, XZPlaneWorksInZAndX) {
+  // G18: compensation works in the plane's axes (Z, X). A move along +Z
+  // is (1, 0) there; its left, turned by +90°, is (0, 1): +X. Tool radius 2.
+  const auto m = run("G18 G0 X0 Y0 Z-10 F100\nG41.1 D4 G1 Z0\nZ10\nG40 G0 Z20\n");
+  ASSERT_EQ(m.size(), 4u);
+  EXPECT_NEAR(m[1].end.x(), 2.0, 1e-12);
+  EXPECT_NEAR(m[1].end.z(), 0.0, 1e-12);
+  EXPECT_NEAR(m[2].end.x(), 2.0, 1e-12);
+  EXPECT_NEAR(m[2].end.z(), 10.0, 1e-12);
+  EXPECT_NEAR(m[3].end.x(), 0.0, 1e-12);
 }
 
 TEST(CutterComp, QueuedMotionsComeOutAtTheEnd) {
