@@ -34,8 +34,9 @@ const auto number = number_parser<true>{};   // [ "+" | "-" ] , blanks , unsigne
 const auto number_end = !char_("0-9.eE");
 // Letters of words abbe reads. U V W (other axes), N and O are not here: N
 // and O have their own rules, the rest is refused by the caller. A B C
-// (rotary axes) and E are read: the interpreter decides on them.
-const auto word_letter = char_("ABCDEFGHIJKLMPQRSTXYZabcdefghijklmpqrstxyz");
+// (rotary axes) and E are read: the interpreter decides on them. '@' and
+// '^' are rs274ngc's polar radius and angle (the interpreter turns them into X, Y).
+const auto word_letter = char_("ABCDEFGHIJKLMPQRSTXYZabcdefghijklmpqrstxyz@^");
 
 // Expressions (rs274ngc's read_real_value and read_real_expression).
 // Operators by precedence, each level left-associative.
@@ -173,7 +174,7 @@ const auto item = word | setting | comment;
 // O-word control flow: o100 sub, o<name> call [1] [2], o101 if [#1 GT 0], ...
 const auto o_line = &char_("Oo") >> (position >> omit[char_("Oo")] >> blanks >> o_label >> blanks >>
                                      position >> o_keyword)[set_o_word] >>
-                    blanks >> *(bracketed[add_o_argument]) >> -comment;
+                    blanks >> *(bracketed[add_o_argument]) >> *comment;
 
 const auto percent_line = percent >> -comment;
 const auto program_line = program_number >> -comment >> -checksum;

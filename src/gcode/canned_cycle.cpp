@@ -1,5 +1,7 @@
 #include "abbe/gcode/canned_cycle.hpp"
 
+#include <cmath>
+
 #include "abbe/gcode/modal_groups.hpp"
 
 namespace abbe::gcode {
@@ -24,6 +26,18 @@ Eigen::Vector3d expand_canned_cycle(const CannedCycle& c,
   for (int repeat = 0; repeat < c.repeats; ++repeat) {
     aa += c.increment.x();
     bb += c.increment.y();
+    if (c.radius_increment != 0.0 && !(aa == 0.0 && bb == 0.0)) {
+      const double theta = std::atan2(bb, aa);
+      const double radius = std::hypot(bb, aa) + c.radius_increment;
+      aa = radius * std::cos(theta);
+      bb = radius * std::sin(theta);
+    }
+    if (c.angle_increment != 0.0 && !(aa == 0.0 && bb == 0.0)) {
+      const double theta = std::atan2(bb, aa) + c.angle_increment;
+      const double radius = std::hypot(bb, aa);
+      aa = radius * std::cos(theta);
+      bb = radius * std::sin(theta);
+    }
     // Position over the hole: the first time at the current height (when it
     // is above R), afterwards at the clearance height; then down to R.
     if (repeat == 0 && current_cc > c.r) {

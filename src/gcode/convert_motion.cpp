@@ -51,6 +51,44 @@ void check_feed(const ExecState& st, const BlockPlan& b, const char* gname) {
                fmt::format("{} in feed per revolution mode (G95) with spindle speed 0", gname));
 }
 
+// Polar words (rs274ngc): @ the radius, ^ the angle in degrees, about the
+// program origin in X, Y. G90: the missing one is the current point's; G91:
+// both add to the current point's (indeterminate at the origin).
+void polar_end(const ExecState& st, const BlockPlan& b, bool g53, Eigen::Vector3d& end) {
+  const BlockCodes& c = b.codes;
+  const Word* radius = c.word('@');
+  const Word* angle = c.word('^');
+  const Word* first = radius ? radius : angle;
+  for (char a : {'X', 'Y'})
+    if (c.has(a))
+      b.ctx.fail(c.word(a),
+                 fmt::format("cannot give both polar coordinates (@, ^) and an {} word", a));
+  if (g53) b.ctx.fail(first, "polar coordinates (@, ^) with G53 are not supported");
+  if (is_cycle(b.motion) && st.plane != Plane::xy)
+    b.ctx.fail(first, fmt::format("polar coordinates (@, ^) with a canned cycle in the {} plane "
+                                  "are not supported",
+                                  plane_name(st.plane)));
+  const double x = st.pos.x();
+  const double y = st.pos.y();
+  double r = std::hypot(x, y);
+  double degrees = std::atan2(y, x) * 180.0 / M_PI;
+  if (st.incremental) {
+    if (x == 0.0 && y == 0.0)
+      b.ctx.fail(first,
+                 "incremental polar coordinates (G91 with @ or ^) are indeterminate at the origin");
+    if (radius) r += radius->value;
+    if (angle) degrees += angle->value;
+  } else {
+    if (radius && !angle && x == 0.0 && y == 0.0)
+      b.ctx.fail(first, "polar coordinates at the origin need the angle (^)");
+    if (radius) r = radius->value;
+    if (angle) degrees = angle->value;
+  }
+  const double rad = degrees * M_PI / 180.0;
+  end.x() = r * std::cos(rad);
+  end.y() = r * std::sin(rad);
+}
+
 }  // namespace
 
 void convert_motion(ExecState& st, const BlockPlan& b, const Emit& emit) {
@@ -67,6 +105,7 @@ void convert_motion(ExecState& st, const BlockPlan& b, const Emit& emit) {
   }
   // End point in the program frame (rs274ngc's find_ends).
   Eigen::Vector3d end = st.pos;
+  if (c.has_polar_word()) polar_end(st, b, g53, end);
   for (int a = 0; a < 3; ++a) {
     const Word* w = c.word(kAxisLetter[a]);
     if (!w) continue;
@@ -99,8 +138,13 @@ void convert_straight(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& 
   m.start = st.tip(st.pos);
   m.end = st.tip(end);
   m.feed = rapid ? 0.0 : st.feed_rate_mm((m.end - m.start).norm());
-  st.pos = end;
   st.motion_mode = b.motion;
+  if (st.comp.offsetting()) {  // the tool centre path (cutter_comp.cpp)
+    st.stamp(m);
+    comp_straight(st, b, end, m);
+    return;
+  }
+  st.pos = end;
   emit(m);
 }
 
@@ -127,7 +171,8 @@ void convert_arc(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& end, 
         if (!c.has(kCentreLetter[a]))
           ctx.fail(motion_word,
                    fmt::format("{} word missing in absolute-centre arc (G90.1)", kCentreLetter[a]));
-  } else if (!c.has(kAxisLetter[ax.first]) && !c.has(kAxisLetter[ax.second])) {
+  } else if (!c.has(kAxisLetter[ax.first]) && !c.has(kAxisLetter[ax.second]) &&
+             !c.has_polar_word()) {
     ctx.fail(motion_word,
              fmt::format("arc with no end point: {} and {} words missing for an "
                          "R-format arc in the {} plane",
@@ -179,8 +224,13 @@ void convert_arc(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& end, 
   } else {
     m.feed = st.feed_rate_mm(0.0);
   }
-  st.pos = end;
   st.motion_mode = motion;
+  if (st.comp.offsetting()) {  // the tool centre path (cutter_comp.cpp)
+    st.stamp(m);
+    comp_arc(st, b, end, centre.centre, m);
+    return;
+  }
+  st.pos = end;
   emit(m);
 }
 
@@ -229,11 +279,43 @@ void convert_cycle(ExecState& st, const BlockPlan& b, const Emit& emit) {
   cyc.initial_level = st.cycle_initial_level;
   const Word* wa = c.word(kAxisLetter[ax.first]);
   const Word* wb = c.word(kAxisLetter[ax.second]);
+  const Word* polar_r = c.word('@');
+  const Word* polar_a = c.word('^');
   if (st.incremental) {
     cyc.hole = cyc.current.head<2>();
     cyc.increment = Eigen::Vector2d(wa ? wa->value : 0.0, wb ? wb->value : 0.0);
+    if (polar_r || polar_a) {
+      // rs274ngc: each repeat turns the hole about the program origin.
+      cyc.radius_increment = polar_r ? polar_r->value : 0.0;
+      cyc.angle_increment = polar_a ? polar_a->value * M_PI / 180.0 : 0.0;
+      double aa = cyc.hole.x();
+      double bb = cyc.hole.y();
+      for (int k = 0; k < repeats; ++k) {
+        if (aa == 0.0 && bb == 0.0)
+          ctx.fail(polar_r ? polar_r : polar_a,
+                   "incremental polar coordinates (G91 with @ or ^) are indeterminate at the "
+                   "origin");
+        const double radius = std::hypot(bb, aa) + cyc.radius_increment;
+        const double theta = std::atan2(bb, aa);
+        aa = radius * std::cos(theta);
+        bb = radius * std::sin(theta);
+        if (cyc.angle_increment != 0.0 && aa == 0.0 && bb == 0.0)
+          ctx.fail(polar_r ? polar_r : polar_a,
+                   "incremental polar coordinates (G91 with @ or ^) are indeterminate at the "
+                   "origin");
+      }
+    }
     cyc.r = r_value + cyc.initial_level;
     cyc.bottom = cyc.r + cc_value;
+  } else if (polar_r || polar_a) {
+    // G17 (others are refused): the hole from the polar words about the
+    // program origin, the missing one from where the tool stands.
+    const double radius = polar_r ? polar_r->value : std::hypot(st.pos.y(), st.pos.x());
+    const double theta =
+        polar_a ? polar_a->value * M_PI / 180.0 : std::atan2(st.pos.y(), st.pos.x());
+    cyc.hole = Eigen::Vector2d(radius * std::cos(theta), radius * std::sin(theta));
+    cyc.r = r_value;
+    cyc.bottom = cc_value;
   } else {
     cyc.hole = Eigen::Vector2d(wa ? wa->value : cyc.current.x(), wb ? wb->value : cyc.current.y());
     cyc.r = r_value;

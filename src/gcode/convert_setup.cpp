@@ -23,8 +23,10 @@ void set_tool(ExecState& st, const BlockPlan& b, int l) {
                                         "(tool length along Z only)",
                                         a, l, a));
   const int tool = static_cast<int>(std::lround(p->value));
+  // R: the cutter radius (cutter radius compensation, G41/G42).
+  if (const Word* r = c.word('R')) st.config.tool_diameters[tool] = 2.0 * r->value * st.unit();
   const Word* z = c.word('Z');
-  if (!z) return;  // R (radius) only: cutter radius compensation is not modelled
+  if (!z) return;
   // L1: the length written; L10: the length that makes the current Z read Z.
   const double length = l == 1 ? z->value : st.pos.z() + st.tlo - z->value;
   st.config.tool_lengths[tool] = length * st.unit();

@@ -172,6 +172,15 @@ FanucFlow fanuc_flow(const Block& block, const BlockContext& ctx) {
 void adapt_fanuc_block(Block& block, std::string_view raw_line, bool inch, IntegerNumbers integers,
                        const BlockContext& ctx) {
   if (block.words.empty()) return;
+  for (const Word& w : block.words) {
+    if (w.letter == '@' || w.letter == '^')
+      ctx.fail(&w, fmt::format("polar coordinates ('{}') are not supported in the Fanuc dialect",
+                               w.letter));
+    // LinuxCNC's M codes without a Fanuc meaning (overrides, M61, M70-M73).
+    if (w.letter == 'M' &&
+        ((w.value >= 50 && w.value <= 53) || w.value == 61 || (w.value >= 70 && w.value <= 73)))
+      ctx.fail(&w, fmt::format("M code M{} is not supported", w.value));
+  }
   for (const RefusedCode& r : kRefused)
     if (const Word* w = find_code(block, 'G', r.id))
       ctx.fail(w, fmt::format("{} ({}) is not supported", r.name, gcode_name(r.id)));

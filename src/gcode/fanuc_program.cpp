@@ -17,7 +17,7 @@ namespace {
 
 struct StoredLine {
   std::string text;
-  std::size_t number = 0;  // 1-based line in the file
+  std::size_t number = 0;      // 1-based line in the file
   bool program_start = false;  // an O-number line
 };
 
@@ -86,15 +86,21 @@ ProgramStats run_fanuc_program(std::istream& in, const std::string& file,
                                    "(M98 L) multiply beyond what abbe follows",
                                    kMaxExecutedBlocks));
     const FanucFlow flow = fanuc_flow(block, ctx);
-    interpreter.execute(block, line.text, counting_sink);
+    // execute() refuses macro variables and expressions by name; the rest
+    // runs like the LinuxCNC dialect's blocks (cutter radius compensation
+    // included, which line-by-line rewriting refuses).
+    if (block.has_code())
+      interpreter.execute(block, line.text, counting_sink);
+    else
+      interpreter.execute_evaluated(block, line.text, counting_sink);
     if (interpreter.program_ended()) break;
     if (flow.call) {
       const auto called = programs.find(*flow.call);
       if (called == programs.end())
         ctx.fail(flow.at, fmt::format("subprogram O{} is not in this file", *flow.call));
       if (calls.size() >= kMaxSubprogramNesting)
-        ctx.fail(flow.at, fmt::format("subprograms nested deeper than {} levels",
-                                      kMaxSubprogramNesting));
+        ctx.fail(flow.at,
+                 fmt::format("subprograms nested deeper than {} levels", kMaxSubprogramNesting));
       if (flow.repeats == 0) {
         ++pc;
         continue;
@@ -106,9 +112,10 @@ ProgramStats run_fanuc_program(std::istream& in, const std::string& file,
     if (flow.ret) {
       if (calls.empty()) {
         // M99 in the main program starts it again, endlessly, on the control.
-        spdlog::warn("{}:{}: M99 in the main program repeats it without end on the control; "
-                     "abbe follows one pass",
-                     file, line.number);
+        spdlog::warn(
+            "{}:{}: M99 in the main program repeats it without end on the control; "
+            "abbe follows one pass",
+            file, line.number);
         break;
       }
       Frame& frame = calls.back();
@@ -126,6 +133,7 @@ ProgramStats run_fanuc_program(std::istream& in, const std::string& file,
   if (!calls.empty() && pc >= lines.size())
     throw InputError(SourceLocation{file, lines.empty() ? 0 : lines.back().number, 0, "", ""},
                      "the file ends inside a subprogram (no M99)");
+  interpreter.finish(counting_sink);
   return stats;
 }
 

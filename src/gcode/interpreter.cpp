@@ -61,7 +61,11 @@ BlockPlan plan_block(const ModalState& st, const BlockCodes& c, const BlockConte
   const auto& motion_code = c.group(GGroup::motion);
   const auto& non_modal = c.group(GGroup::non_modal);
   b.non_modal = non_modal ? non_modal->code : -1;
-  const bool g92_axes = uses_axis_words(b.non_modal);
+  const auto& tool_length = c.group(GGroup::tool_length);
+  // G43.1 takes the axis words as the tool offset (rs274ngc: no motion).
+  const bool g43_1 = tool_length && tool_length->code == gcode_id(43, 1);
+  const int axis_user = g43_1 && !uses_axis_words(b.non_modal) ? gcode_id(43, 1) : b.non_modal;
+  const bool g92_axes = uses_axis_words(b.non_modal) || g43_1;
   const Word* first_axis = nullptr;
   for (char a : kAxisLetters)
     if (!first_axis && c.has(a)) first_axis = c.word(a);
@@ -69,6 +73,11 @@ BlockPlan plan_block(const ModalState& st, const BlockCodes& c, const BlockConte
   if ((b.non_modal == gcode_id(28, 1) || b.non_modal == gcode_id(30, 1)) && c.has_axis_word())
     ctx.fail(first_axis, fmt::format("{} takes no axis words (it stores the current position)",
                                      gcode_name(b.non_modal)));
+
+  if (g43_1 && uses_axis_words(b.non_modal) && c.has_axis_word())
+    ctx.fail(tool_length->word,
+             fmt::format("cannot use two G codes that both use axis words ({} and {})",
+                         gcode_name(gcode_id(43, 1)), gcode_name(b.non_modal)));
 
   // The motion this block makes (rs274ngc: an explicit motion code, or the
   // modal one when axis words are present and nothing else uses them).
@@ -78,7 +87,7 @@ BlockPlan plan_block(const ModalState& st, const BlockCodes& c, const BlockConte
     if (g92_axes && c.has_axis_word())
       ctx.fail(b.motion_word,
                fmt::format("cannot use two G codes that both use axis words ({} and {})",
-                           gcode_name(b.motion), gcode_name(b.non_modal)));
+                           gcode_name(b.motion), gcode_name(axis_user)));
   } else if (c.has_axis_word() && !g92_axes) {
     if (st.motion_mode == gcode_id(80))
       ctx.fail(first_axis, "axis words without a motion code (no motion mode is active)");
@@ -96,13 +105,18 @@ BlockPlan plan_block(const ModalState& st, const BlockCodes& c, const BlockConte
       if (c.has(a))
         ctx.fail(c.word(a), fmt::format("rotary axis word {} with {} is not supported "
                                         "(3-axis machines: X, Y, Z)",
-                                        a, gcode_name(b.non_modal)));
+                                        a, gcode_name(axis_user)));
+  // rs274ngc: polar words only with a motion.
+  if (g92_axes && c.has_polar_word())
+    ctx.fail(c.has('@') ? c.word('@') : c.word('^'),
+             fmt::format("polar coordinates (@, ^) can only be used for motion, not with {}",
+                         gcode_name(axis_user)));
 
   const auto& path = c.group(GGroup::path_control);
-  const auto& tool_length = c.group(GGroup::tool_length);
-  check_word_use(
-      c, ctx,
-      {b.motion, b.non_modal, path ? path->code : -1, tool_length ? tool_length->code : -1});
+  const auto& comp = c.group(GGroup::cutter_comp);
+  check_word_use(c, ctx,
+                 {b.motion, b.non_modal, path ? path->code : -1,
+                  tool_length ? tool_length->code : -1, comp ? comp->code : -1});
   return b;
 }
 
@@ -191,7 +205,47 @@ void Interpreter::execute(const Block& written, std::string_view raw_line, const
                          : "parameters, expressions and O-words are not supported by a command "
                            "that rewrites the program line by line");
   }
+  for (const Word& w : written.words) {
+    if (w.letter == 'G' && (std::abs(w.value - 41.0) < 1e-6 || std::abs(w.value - 42.0) < 1e-6 ||
+                            std::abs(w.value - 41.1) < 1e-6 || std::abs(w.value - 42.1) < 1e-6))
+      throw InputError(SourceLocation{state_->file, written.line, std::size_t{w.begin} + 1, "",
+                                      std::string(raw_line)},
+                       "cutter radius compensation (G41/G42) is not supported by a command that "
+                       "rewrites the program line by line");
+    if (w.letter == 'G' && std::abs(w.value - 43.1) < 1e-6)
+      throw InputError(SourceLocation{state_->file, written.line, std::size_t{w.begin} + 1, "",
+                                      std::string(raw_line)},
+                       "a dynamic tool length offset (G43.1) is not supported by a command that "
+                       "rewrites the program line by line (its Z word is not a coordinate)");
+    if (w.letter == '@' || w.letter == '^')
+      throw InputError(SourceLocation{state_->file, written.line, std::size_t{w.begin} + 1, "",
+                                      std::string(raw_line)},
+                       "polar coordinates (@, ^) are not supported by a command that rewrites "
+                       "the program line by line");
+  }
   execute_evaluated(written, raw_line, sink);
+}
+
+void Interpreter::finish(const MotionSink& sink) {
+  detail::ExecState& st = *state_;
+  if (st.comp.queue.empty()) return;
+  auto deliver = [&](Motion& m) { sink(m); };
+  st.deliver = detail::make_hook(deliver);
+  detail::comp_flush(st);
+  st.deliver = {};
+}
+
+void Interpreter::enter_call() { state_->save_slots.emplace_back(); }
+
+void Interpreter::leave_call(std::size_t line, std::string_view raw_line) {
+  detail::ExecState& st = *state_;
+  if (st.save_slots.size() <= 1) return;
+  const detail::SaveSlot slot = st.save_slots.back();
+  st.save_slots.pop_back();
+  if (slot.valid && slot.autorestore) {
+    const BlockContext ctx{st.file, line, raw_line};
+    detail::restore_modes(st, slot.modes, ctx, nullptr);
+  }
 }
 
 void Interpreter::execute_evaluated(const Block& written, std::string_view raw_line,
@@ -234,21 +288,18 @@ void Interpreter::execute_evaluated(const Block& written, std::string_view raw_l
   const detail::BlockPlan b = detail::plan_block(st, codes, ctx);
   st.read_non_modal = b.non_modal;
   detail::check_rotary_words(st, b);
+  detail::check_comp_block(st, b);
 
   std::uint32_t sub = 0;
   // The word a refused motion is reported at: the first axis, centre or radius word.
   const auto anchor = [&]() -> const Word* {
     for (const auto& w : block.words)
-      if (std::string_view("XYZIJKR").find(w.letter) != std::string_view::npos) return &w;
+      if (std::string_view("XYZIJKR@^").find(w.letter) != std::string_view::npos) return &w;
     return block.words.empty() ? nullptr : &block.words.front();
   };
-  const detail::Emit emit = [&](Motion& m) {
-    m.line = block.line;
-    m.sub = sub++;
-    m.tool_length = st.g43 && st.tool_length_unknown ? std::numeric_limits<double>::quiet_NaN()
-                                                     : st.active_length_mm();
-    m.spindle = st.spindle;
-    m.tool = st.selected_tool;
+  // A finished motion to the sink (also the motions cutter radius
+  // compensation held back from earlier blocks: they keep their line).
+  auto deliver = [&](Motion& m) {
     const double far = std::max({m.start.cwiseAbs().maxCoeff(), m.end.cwiseAbs().maxCoeff(),
                                  m.center.cwiseAbs().maxCoeff()});
     if (!(far <= kMaxCoordinateMm))
@@ -261,13 +312,38 @@ void Interpreter::execute_evaluated(const Block& written, std::string_view raw_l
       ctx.fail(anchor(), e.what());
     }
   };
+  st.deliver = detail::make_hook(deliver);
+  auto stamp = [&](Motion& m) {
+    m.line = block.line;
+    m.sub = sub++;
+    m.tool_length = st.g43 && st.tool_length_unknown ? std::numeric_limits<double>::quiet_NaN()
+                                                     : st.active_length_mm();
+    m.spindle = st.spindle;
+    m.tool = st.selected_tool;
+  };
+  st.stamp = detail::make_hook(stamp);
+  const detail::Emit emit = [&](Motion& m) {
+    stamp(m);
+    if (!st.comp.queue.empty()) {  // after the motions compensation holds back
+      detail::comp_enqueue_dwell(st, m);
+      return;
+    }
+    if (st.comp.exit_pending && m.kind != MotionKind::dwell) {
+      // The first move after G40 starts where the compensated tool stands.
+      m.start = st.comp.exit_nose_mm - Eigen::Vector3d(0, 0, st.active_length_mm());
+      st.comp.exit_pending = false;
+    }
+    deliver(m);
+  };
 
   // convert, in rs274ngc's order of execution
   detail::convert_feed_mode(st, b);
   detail::convert_feed_speed_tool(st, b);
+  detail::convert_modal_save(st, b);
   detail::convert_dwell(st, b, emit);
   detail::convert_plane(st, b);
   detail::convert_units(st, b);
+  detail::convert_cutter_comp(st, b);
   detail::convert_tool_length(st, b);
   detail::convert_coord_system(st, b);
   detail::convert_path_control(st, b);

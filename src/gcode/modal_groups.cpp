@@ -64,8 +64,13 @@ GInfo g_info(int id) {
     case gcode_id(21):
       return {GGroup::units};
     case gcode_id(40):
+    case gcode_id(41):
+    case gcode_id(41, 1):
+    case gcode_id(42):
+    case gcode_id(42, 1):
       return {GGroup::cutter_comp};
     case gcode_id(43):
+    case gcode_id(43, 1):
     case gcode_id(49):
       return {GGroup::tool_length};
     case gcode_id(98):
@@ -109,14 +114,8 @@ GInfo g_info(int id) {
     case gcode_id(38, 4):
     case gcode_id(38, 5):
       return {std::nullopt, "probing"};
-    case gcode_id(41):
-    case gcode_id(41, 1):
-    case gcode_id(42):
-    case gcode_id(42, 1):
-      return {std::nullopt, "cutter radius compensation"};
-    case gcode_id(43, 1):
     case gcode_id(43, 2):
-      return {std::nullopt, "dynamic tool length offset"};
+      return {std::nullopt, "additional tool length offset"};
     case gcode_id(59, 1):
     case gcode_id(59, 2):
     case gcode_id(59, 3):
@@ -152,6 +151,7 @@ std::optional<MGroup> m_group(int number) {
     case 60:
       return MGroup::stopping;
     case 6:
+    case 61:
       return MGroup::tool_change;
     case 3:
     case 4:
@@ -163,7 +163,16 @@ std::optional<MGroup> m_group(int number) {
       return MGroup::coolant;
     case 48:
     case 49:
+    case 50:
+    case 51:
+    case 52:
+    case 53:
       return MGroup::overrides;
+    case 70:
+    case 71:
+    case 72:
+    case 73:
+      return MGroup::modal_save;
     default:
       return std::nullopt;
   }
@@ -235,8 +244,6 @@ ABBE_COLD void fail_m_twice(const BlockContext& where, const Word& w, int first,
 ABBE_COLD void fail_letter(const BlockContext& where, const Word& w) {
   const char letter = w.letter;
   switch (letter) {
-    case 'D':
-      where.fail(&w, "D word (cutter radius compensation tool) is not supported");
     case 'E':
       where.fail(&w, "E word is not supported");
     case 'N':
@@ -258,14 +265,13 @@ ABBE_COLD void fail_unexpected(const BlockContext& where, const Word& w) {
 
 #undef ABBE_COLD
 
-constexpr std::uint32_t letter_bit(char letter) { return 1U << (letter - 'A'); }
+constexpr std::uint32_t letter_bit(char letter) { return 1U << BlockCodes::letter_index(letter); }
 
-// Letters refused outright: U V W axes, D, E, and N or O after the start.
+// Letters refused outright: U V W axes, E, and N or O after the start.
 // (Rotary words A B C are checked by the interpreter: accepted while their
 // axis does not move.)
 constexpr std::uint32_t kRefusedLetters = letter_bit('U') | letter_bit('V') | letter_bit('W') |
-                                          letter_bit('D') | letter_bit('E') | letter_bit('N') |
-                                          letter_bit('O');
+                                          letter_bit('E') | letter_bit('N') | letter_bit('O');
 
 }  // namespace
 
@@ -308,12 +314,12 @@ BlockCodes classify_block(const Block& block, const BlockContext& where) {
       if ((codes.m_mask >> index) & 1U) fail_m_twice(where, w, codes.m[index].code, number);
       codes.m_mask |= 1U << index;
       codes.m[index] = CodeWord{number, &w};
-    } else if (letter >= 'A' && letter <= 'Z') {
+    } else if ((letter >= 'A' && letter <= 'Z') || letter == '@' || letter == '^') {
       const std::uint32_t bit = letter_bit(letter);
       if (bit & kRefusedLetters) fail_letter(where, w);
       if (codes.letter_mask & bit) fail_repeated(where, w);
       codes.letter_mask |= bit;
-      codes.letters[static_cast<std::size_t>(letter - 'A')] = &w;
+      codes.letters[BlockCodes::letter_index(letter)] = &w;
     } else {
       fail_unexpected(where, w);
     }

@@ -171,7 +171,7 @@ InputError explain_parse_stop(std::string_view line, std::size_t stop, const ast
     }
   } else if (items.words_and_comments >= grammar::kMaxItemsPerBlock) {
     message = fmt::format("too many words in one block (more than {})", grammar::kMaxItemsPerBlock);
-  } else if (is_alpha(c)) {
+  } else if (is_alpha(c) || c == '@' || c == '^') {
     message = explain_letter(line, stop, items, column);
   } else if (is_digit(c) || c == '.' || c == '+' || c == '-') {
     // Items that end with a number: all but '/', '%' and comments.
@@ -211,10 +211,6 @@ InputError explain_parse_stop(std::string_view line, std::size_t stop, const ast
         break;
       case '*':
         message = "bad checksum: '*' must be followed by digits and end the line";
-        break;
-      case '@':
-      case '^':
-        message = fmt::format("polar coordinates ('{}') are not supported", c);
         break;
       case '<':
         message = "named parameters (<...>) are not supported";

@@ -109,6 +109,9 @@ class Runner {
     if (!config.dialect.var_file.empty()) parameters_.read_var_file(config.dialect.var_file);
   }
 
+  // Motions cutter radius compensation still holds back at the end.
+  void finish() { interpreter_.finish(counting_sink_); }
+
   void run(std::istream& in, const std::string& file) {
     BlockReader reader(in, file);
     Block block;
@@ -264,6 +267,7 @@ class Runner {
       fail(here, "more than 30 arguments in a call");
     frames_.push_back(Frame{pc, here});
     parameters_.enter_call(args);
+    interpreter_.enter_call();
     if (back_to(o.label, pc)) return;
     if (!config_.dialect.subroutine_path.empty()) {
       const std::string path = config_.dialect.subroutine_path + "/" + o.label + ".ngc";
@@ -295,6 +299,8 @@ class Runner {
     // LinuxCNC: #<_value> is the returned value (0 without one), #<_value_returned> says which.
     parameters_.set("_value", value);
     parameters_.set("_value_returned", has_value ? 1.0 : 0.0);
+    // M73's state comes back first (rs274ngc restores it at the return).
+    interpreter_.leave_call(line_at(here).block.line, line_at(here).text);
     pc = frames_.back().return_to;
     frames_.pop_back();
     parameters_.return_from_call();
@@ -542,6 +548,7 @@ ProgramStats run_rs274_program(std::istream& in, const std::string& file,
   ProgramStats stats;
   Runner runner(file, config, sink, stats);
   runner.run(in, file);
+  runner.finish();
   return stats;
 }
 

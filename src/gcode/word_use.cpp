@@ -19,8 +19,9 @@ const std::vector<WordUse>& word_use_table() {
         gcode_id(82), gcode_id(84), gcode_id(86), gcode_id(89)},
        false},
       {'Q', {gcode_id(64), gcode_id(73), gcode_id(83)}, false},
-      {'L', {gcode_id(10)}, true},
+      {'L', {gcode_id(10), gcode_id(41, 1), gcode_id(42, 1)}, true},
       {'H', {gcode_id(43)}, false},
+      {'D', {gcode_id(41), gcode_id(42), gcode_id(41, 1), gcode_id(42, 1)}, false},
   };
   return table;
 }
@@ -39,8 +40,14 @@ std::string word_users(const WordUse& use) {
 
 void check_word_use(const BlockCodes& codes, const BlockContext& ctx,
                     std::initializer_list<int> active) {
+  // M codes that read a word: M50-M53 P (override on/off), M61 Q (tool).
+  const auto* overrides = codes.group(MGroup::overrides);
+  const auto* tool_change = codes.group(MGroup::tool_change);
+  const bool m_reads_p = overrides && overrides->code >= 50 && overrides->code <= 53;
+  const bool m_reads_q = tool_change && tool_change->code == 61;
   for (const WordUse& use : word_use_table()) {
     if (!codes.has(use.letter)) continue;
+    if ((use.letter == 'P' && m_reads_p) || (use.letter == 'Q' && m_reads_q)) continue;
     bool used = false;
     for (int code : active) {
       if (code < 0) continue;

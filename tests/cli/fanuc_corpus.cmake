@@ -41,6 +41,21 @@ foreach(line ${cases})
 endforeach()
 message(STATUS "fanuc corpus: ${n_accepted} accepted, ${n_refused} refused by name")
 
+# With the cutter's diameter (tool 2, a 1/2 in end mill) the SOLIDWORKS CAM
+# contours get past G41 D002 and stop at rs274ngc's rule for the entry move:
+# their entry moves (0.0002 and 0.3) are shorter than the tool radius.
+file(GLOB solidworks RELATIVE ${DATA} ${DATA}/nick-burrill-solidworks-*.nc)
+foreach(file ${solidworks})
+  execute_process(COMMAND ${ABBE} path ${DATA}/${file} --dialect fanuc --count
+                          --tool-diameter 2=12.7
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  string(FIND "${err}" "cutter radius compensation: the entry move" at)
+  if(NOT rc EQUAL 1 OR at EQUAL -1)
+    message(FATAL_ERROR "${file} with --tool-diameter 2=12.7: expected the entry move "
+                        "refusal, exit ${rc}\n${err}")
+  endif()
+endforeach()
+
 # Hand checks: the first motions (tool tip, machine coordinates, mm; no
 # machine file: G54 = 0, stored G28 position = 0, tools without a length).
 function(expect_first file expected)

@@ -24,7 +24,7 @@ add_test(NAME interpret_refuses_bad_input
          COMMAND sh -c "\"$1\" interpret \"$2\"; echo exit=$?" sh $<TARGET_FILE:abbe>
                  ${CMAKE_CURRENT_SOURCE_DIR}/data/bad/cutter-comp-g41.nc)
 set_tests_properties(interpret_refuses_bad_input PROPERTIES LABELS cli
-  PASS_REGULAR_EXPRESSION "cutter-comp-g41.nc:3:1: error: cutter radius compensation \\(G41\\) is not supported.*exit=1")
+  PASS_REGULAR_EXPRESSION "cutter-comp-g41.nc:3:1: error: cutter radius compensation \\(G41\\) without a D word.*exit=1")
 
 # Compensated programs in rs274 (tests/interop/run_interop.sh, docs/interop.md).
 add_executable(abbe_compensated_compare ${CMAKE_CURRENT_SOURCE_DIR}/interop/compensated_compare.cpp)

@@ -90,6 +90,8 @@ tool_table() {  # file length_per_tool_number_inch
 tool_args() {  # length_per_tool_number_inch
   for n in $(seq 1 99); do
     printf -- '--tool\n%d=%s\n' "$n" "$(awk -v n="$n" -v k="$1" 'BEGIN{printf "%.6f", n*k*25.4}')"
+    # The table's D0.1 (inch): the cutter diameter of G41/G42.
+    printf -- '--tool-diameter\n%d=2.54\n' "$n"
   done
 }
 plain_table="$work/tools-zero.tbl"

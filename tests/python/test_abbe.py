@@ -119,7 +119,7 @@ def test_bad_points_shape(machine):
 
 def test_bad_program_names_line_and_column():
     with pytest.raises(abbe.InputError, match=r"<string>:2:1: error: cutter radius compensation"):
-        abbe.path(code="G21\nG41 X1\n")
+        abbe.path(code="G21\nG41 G1 X1 F100\n")
 
 
 def test_missing_machine_file():

@@ -233,8 +233,12 @@ TEST(Interpreter, UnusedWordsAreErrors) {
 
 TEST(Interpreter, UnsupportedConstructsAreRefusedByName) {
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {"G41 D1", "cutter radius compensation (G41) is not supported"},
-      {"G42", "cutter radius compensation (G42) is not supported"},
+      {"G41 D1",
+       "cutter radius compensation (G41/G42) is not supported by a command that "
+       "rewrites the program line by line"},
+      {"G42.1 D2", "cutter radius compensation (G41/G42) is not supported by a command"},
+      {"G0 @1 ^2", "polar coordinates (@, ^) are not supported by a command"},
+      {"G43.1 Z2", "(G43.1) is not supported by a command that rewrites"},
       {"G68 X0 Y0 R45", "coordinate system rotation (G68) is not supported"},
       {"G33 Z-1 K1", "spindle-synchronised motion (threading) (G33)"},
       {"G76 P1 Z-1", "(G76) is not supported"},

@@ -315,7 +315,23 @@ TEST(ParserRefuses, LettersAbbeDoesNotRead) {
     const char upper = static_cast<char>(std::toupper(static_cast<unsigned char>(axis[0])));
     expect_refused(line, 4, std::string("axis word '") + upper + "'");
   }
-  expect_refused("G1 @1 ^90", 4, "polar coordinates");
+  // Polar words are read (rs274ngc's @ radius and ^ angle); a polar word
+  // needs a number like every other word.
+  const Block polar = parse("G1 @1.5 ^-90");
+  ASSERT_EQ(polar.words.size(), 3u);
+  EXPECT_EQ(polar.words[1].letter, '@');
+  EXPECT_DOUBLE_EQ(polar.words[1].value, 1.5);
+  EXPECT_EQ(polar.words[2].letter, '^');
+  EXPECT_DOUBLE_EQ(polar.words[2].value, -90.0);
+  expect_refused("G1 @ ^90", 4, "word '@' has no number");
+}
+
+TEST(Parser, OWordLineWithSeveralComments) {
+  // rs274ngc allows more than one comment after an O-word's arguments
+  // (LinuxCNC's daisy.ngc: "O200 call [1] [#107] (Dai-)  (G)").
+  const Block b = parse("O200 call [1]     [2] (Dai-)  (G)");
+  EXPECT_EQ(b.o.keyword, abbe::gcode::OKeyword::call);
+  EXPECT_EQ(b.o.args.size(), 2u);
 }
 
 TEST(ParserRefuses, MisplacedStructure) {

@@ -33,6 +33,24 @@ std::pair<int, double> parse_tool_option(const std::string& text) {
   return {h, length};
 }
 
+std::pair<int, double> parse_tool_diameter_option(const std::string& text) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0)
+    bad_option("--tool-diameter", "expected n=D (e.g. 1=6), got '" + text + "'");
+  int n = 0;
+  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + eq, n);
+  if (ec != std::errc() || ptr != text.data() + eq || n < 0)
+    bad_option("--tool-diameter", "tool number must be a non-negative integer in '" + text + "'");
+  const std::string value = text.substr(eq + 1);
+  char* end = nullptr;
+  errno = 0;
+  const double diameter = std::strtod(value.c_str(), &end);
+  if (value.empty() || end != value.c_str() + value.size() || errno != 0 ||
+      !std::isfinite(diameter))
+    bad_option("--tool-diameter", "tool diameter must be a number of mm in '" + text + "'");
+  return {n, diameter};
+}
+
 // "G55=x,y,z": work offset (mm) of G54..G59.
 std::pair<std::size_t, Eigen::Vector3d> parse_work_offset_option(const std::string& text) {
   const auto eq = text.find('=');

@@ -12,6 +12,8 @@ namespace abbe::cli {
 
 // "H=L": tool length L (mm) for G43 Hn.
 std::pair<int, double> parse_tool_option(const std::string& text);
+// "n=D": cutter diameter (mm) of tool n, for G41/G42 (--tool-diameter).
+std::pair<int, double> parse_tool_diameter_option(const std::string& text);
 
 // "G55=x,y,z": work offset (mm) of G54..G59, as index 0..5 and vector.
 std::pair<std::size_t, Eigen::Vector3d> parse_work_offset_option(const std::string& text);

@@ -11,6 +11,8 @@ void add_setup_options(CLI::App& sub, SetupOptions& o) {
                  "Tool length when no G43 is active, mm (overrides the machine file)");
   sub.add_option("--tool", o.tools,
                  "Tool length for G43 Hn as n=L (mm, overrides the machine file), repeatable");
+  sub.add_option("--tool-diameter", o.tool_diameters,
+                 "Cutter diameter of tool n for G41/G42 as n=D (mm), repeatable");
   sub.add_option("--work-offset", o.work_offsets,
                  "Work offset as G54..G59=x,y,z (mm, overrides the machine file), repeatable");
 }
@@ -25,6 +27,10 @@ void apply_setup_options(const SetupOptions& o, gcode::InterpreterConfig& config
   for (const auto& t : o.tools) {
     const auto [h, length] = parse_tool_option(t);
     config.tool_lengths[h] = length;
+  }
+  for (const auto& t : o.tool_diameters) {
+    const auto [n, diameter] = parse_tool_diameter_option(t);
+    config.tool_diameters[n] = diameter;
   }
   for (const auto& w : o.work_offsets) {
     const auto [index, offset] = parse_work_offset_option(w);

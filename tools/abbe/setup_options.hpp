@@ -15,7 +15,8 @@ namespace abbe::cli {
 
 struct SetupOptions {
   std::optional<double> tool_length;
-  std::vector<std::string> tools;         // "H=L"
+  std::vector<std::string> tools;           // "H=L"
+  std::vector<std::string> tool_diameters;  // "n=D" (G41/G42)
   std::vector<std::string> work_offsets;  // "G55=x,y,z"
 };
 

@@ -21,12 +21,17 @@ struct CannedCycle {
   double initial_level = 0.0;  // cc where the current series of cycles started (G98 level)
   Eigen::Vector2d hole = Eigen::Vector2d::Zero();       // position before the first increment
   Eigen::Vector2d increment = Eigen::Vector2d::Zero();  // per repeat (G91), zero in G90
-  double r = 0.0;                                       // R plane (absolute)
-  double bottom = 0.0;                                  // hole bottom (absolute)
-  bool retract_to_r = true;                             // G99 (else G98: back to the initial level)
-  int repeats = 1;                                      // L
-  double dwell = 0.0;  // P, seconds (G82, G86, G89; G74/G84: 0 when not given)
-  double peck = 0.0;   // Q (G73, G83), > 0
+  // Polar words in G91 (G17): per repeat, after `increment`, the hole's
+  // radius about the program origin grows by this and its angle turns by
+  // this (radians), as rs274ngc does (indeterminate at the origin: an error).
+  double radius_increment = 0.0;
+  double angle_increment = 0.0;
+  double r = 0.0;            // R plane (absolute)
+  double bottom = 0.0;       // hole bottom (absolute)
+  bool retract_to_r = true;  // G99 (else G98: back to the initial level)
+  int repeats = 1;           // L
+  double dwell = 0.0;        // P, seconds (G82, G86, G89; G74/G84: 0 when not given)
+  double peck = 0.0;         // Q (G73, G83), > 0
   // G73/G83: how far above the previous depth the tool returns (0.010 in;
   // rs274ngc: 0.010 in inch programs, 0.010 * 25.4 in mm programs).
   double peck_clearance = 0.254;

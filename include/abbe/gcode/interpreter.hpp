@@ -12,11 +12,14 @@
 // three planes, with the G98 level kept for a series of cycles. Supported:
 // G0-G3 (IJK, R, P turns, helices), G4, G10 L1/L2/L10/L20, G17-G19,
 // G20/G21, G28/G28.1/G30/G30.1 (through the intermediate point to the
-// stored position, InterpreterConfig::g28_position), G40, G43/G49, G52,
+// stored position, InterpreterConfig::g28_position), G40/G41/G42/G41.1/G42.1
+// (cutter radius compensation in G17 as rs274ngc: entry move, inside and
+// outside corners of lines and arcs), G43/G43.1/G49, G52,
 // G53, G54-G59, G61/G61.1/G64 (carried in ModalState), G80, G90/G91,
 // G90.1/G91.1, G92/G92.1/G92.2/G92.3, G93/G94/G95 (Motion::feed follows),
-// G97, G98/G99; M0 M1 M2 M3 M4 M5 M6 M7 M8 M9 M30 M48 M49 M60; rotary words
-// A B C whose axis does not move (one warning). A program whose first line
+// G97, G98/G99; M0 M1 M2 M3 M4 M5 M6 M7 M8 M9 M30 M48-M53 (carried) M60
+// M61 M70-M73; polar words @ ^ on motions; rotary words A B C whose axis
+// does not move (one warning). A program whose first line
 // is '%' ends at the next '%'. Everything else is refused. A program in the
 // Fanuc/Haas dialect (InterpreterConfig::dialect) is read through an adapter
 // that turns each block into its RS274/NGC equivalent (docs/fanuc.md).
@@ -45,6 +48,9 @@ struct InterpreterConfig {
                                               Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
                                               Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   std::map<int, double> tool_lengths;  // H number -> tool length, mm (G43 H)
+  // Tool number -> cutter diameter, mm: the radius of G41/G42 (D word or
+  // the tool in the spindle). G41.1/G42.1 take the diameter from D instead.
+  std::map<int, double> tool_diameters;
   // Length of the tool in the spindle when no G43 is active (the program then
   // drives the spindle nose s directly and P = s - L·e_z), mm.
   double default_tool_length = 0.0;
@@ -80,6 +86,17 @@ class Interpreter {
   // block with parameters, expressions or an O-word: a caller that goes
   // line by line (compensate, verify) cannot follow them.
   void execute_evaluated(const Block& block, std::string_view raw_line, const MotionSink& sink);
+
+  // Subroutine call levels (gcode::run_program calls them at o<name> call
+  // and at its return/endsub): M70/M72/M71 save, restore and invalidate the
+  // modal state of the current level; M73 saves it and the return restores
+  // it (rs274ngc). `line`, `raw_line`: the return's line, for errors.
+  void enter_call();
+  void leave_call(std::size_t line, std::string_view raw_line);
+
+  // The end of the program: motions that cutter radius compensation still
+  // holds back (it waits for the next move to place a corner) go to `sink`.
+  void finish(const MotionSink& sink);
 
   // The last executed block as the interpreter read it: the caller's block,
   // or its RS274/NGC form for a program in another dialect (numbers in

@@ -27,8 +27,8 @@ enum class GGroup : std::uint8_t {
   arc_distance,  // group 4: G90.1 G91.1
   feed_mode,     // group 5: G93 G94 G95
   units,         // group 6: G20 G21
-  cutter_comp,   // group 7: G40
-  tool_length,   // group 8: G43 G49
+  cutter_comp,   // group 7: G40 G41 G41.1 G42 G42.1
+  tool_length,   // group 8: G43 G43.1 G49
   retract,       // group 10: G98 G99
   coord_system,  // group 12: G54 .. G59
   path_control,  // group 13: G61 G61.1 G64
@@ -38,10 +38,11 @@ enum class GGroup : std::uint8_t {
 
 enum class MGroup : std::uint8_t {
   stopping,     // M0 M1 M2 M30 M60
-  tool_change,  // M6
+  tool_change,  // M6 M61
   spindle,      // M3 M4 M5
   coolant,      // M7 M8 M9
-  overrides,    // M48 M49
+  overrides,    // M48 M49 M50 M51 M52 M53 (carried: no geometry)
+  modal_save,   // M70 M71 M72 M73 (save / invalidate / restore the modal state)
   count
 };
 
@@ -64,10 +65,15 @@ struct BlockContext {
 struct BlockCodes {
   std::uint32_t g_mask = 0;       // bit i: g[i] holds the code of GGroup i
   std::uint32_t m_mask = 0;       // bit i: m[i] holds the code of MGroup i
-  std::uint32_t letter_mask = 0;  // bit i: letters[i] is the word of letter 'A' + i
+  std::uint32_t letter_mask = 0;  // bit letter_index(c): letters[that] is the word of letter c
   std::array<CodeWord, static_cast<std::size_t>(GGroup::count)> g;
   std::array<CodeWord, static_cast<std::size_t>(MGroup::count)> m;
-  std::array<const Word*, 26> letters;
+  std::array<const Word*, 31> letters;
+
+  // 'A'..'Z' -> 0..25, '^' (polar angle) -> 29, '@' (polar radius) -> 30.
+  static constexpr unsigned letter_index(char letter) {
+    return letter == '@' ? 30U : static_cast<unsigned>(letter - 'A');
+  }
 
   // The code of a modal group, nullptr if the block has none.
   const CodeWord* group(GGroup which) const {
@@ -80,16 +86,19 @@ struct BlockCodes {
   }
   // The word of a letter (upper case, not G or M), nullptr if absent.
   const Word* word(char letter) const {
-    const auto i = static_cast<std::size_t>(letter - 'A');
+    const auto i = static_cast<std::size_t>(letter_index(letter));
     return (letter_mask >> i) & 1U ? letters[i] : nullptr;
   }
-  bool has(char letter) const { return (letter_mask >> (letter - 'A')) & 1U; }
-  // X, Y, Z or a rotary word A, B, C (rs274ngc: any axis word makes a move).
+  bool has(char letter) const { return (letter_mask >> letter_index(letter)) & 1U; }
+  // X, Y, Z, a rotary word A, B, C or a polar word @ ^ (rs274ngc: any axis
+  // word makes a move).
   bool has_axis_word() const {
-    constexpr std::uint32_t kAxes =
-        (1U << ('X' - 'A')) | (1U << ('Y' - 'A')) | (1U << ('Z' - 'A')) | kRotaryLetters;
+    constexpr std::uint32_t kAxes = (1U << ('X' - 'A')) | (1U << ('Y' - 'A')) |
+                                    (1U << ('Z' - 'A')) | kRotaryLetters | kPolarLetters;
     return (letter_mask & kAxes) != 0;
   }
+  static constexpr std::uint32_t kPolarLetters = (1U << 29) | (1U << 30);  // ^ @
+  bool has_polar_word() const { return (letter_mask & kPolarLetters) != 0; }
   static constexpr std::uint32_t kRotaryLetters = 0x7U;  // A, B, C
   bool has_rotary_word() const { return (letter_mask & kRotaryLetters) != 0; }
 };
