@@ -9,7 +9,8 @@ namespace abbe::report {
 namespace {
 
 constexpr const char* kStyle = R"(
-body { font-family: "DejaVu Sans", Arial, sans-serif; margin: 24px; color: #222; background: #fafafa; }
+body { font-family: "DejaVu Sans", Arial, sans-serif; margin: 24px; color: #222; background: #fafafa;
+       line-height: 1.3; }
 h1 { font-size: 24px; margin-bottom: 4px; }
 h2 { font-size: 19px; margin-top: 32px; border-bottom: 1px solid #ccc; padding-bottom: 4px; }
 h3 { font-size: 16px; margin-top: 20px; }

@@ -13,7 +13,7 @@ real input events:
 - zoom: the wheel zooms in;
 - hover: moving the mouse onto the drawn point of the largest |d| shows the
   tooltip with that point's source line and |d|, which are the "at line"
-  and "max |d|" of the summary table (the decimation keeps the extremes);
+  and "max |d|" of the summary table's "all" row (the decimation keeps the extremes);
 - tolerance: a tolerance above every |d| leaves no point above it, one
   below every |d| puts all points above it.
 Prints what it checked; exit 0 when all passed, 1 otherwise.
@@ -124,7 +124,8 @@ def run(b, path, fid):
     model = b.eval(f"document.getElementById('{fid}-model').value")
     row = b.eval("(function () { var rows = document.querySelectorAll('#summary-table tr');"
                  " for (var i = 1; i < rows.length; i++) { var c = rows[i].cells;"
-                 f" if (c[0].textContent === '{model}') return [c[5].textContent, c[6].textContent]; }}"
+                 f" if (c[0].textContent === '{model}' && c[1].textContent === 'all')"
+                 " return [c[7].textContent, c[8].textContent]; }"
                  " return null; })()")
     if m and row:
         check(m.group(1) == row[1] and abs(float(m.group(2)) - float(row[0])) < 0.0015,
