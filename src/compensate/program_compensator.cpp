@@ -462,9 +462,11 @@ class Compensator {
     if (zw) ed.set(kAxis[n], zw->value + mean_n / unit_, zw->value, false);
   }
 
-  void note_inserted_length(double mm) {
+  // `takeup`: a take-up (micro) move; short pieces are counted by
+  // merge_short_pieces as kept pieces, not here.
+  void note_inserted_length(double mm, bool takeup) {
     s_.shortest_inserted_mm = std::min(s_.shortest_inserted_mm, mm);
-    if (mm < o_.min_segment) ++s_.short_takeup_moves;
+    if (takeup && mm < o_.min_segment) ++s_.short_takeup_moves;
   }
 
   // A reversal jump (mm) taken up along the move rather than by a micro
@@ -625,10 +627,10 @@ class Compensator {
           cmd_[k] = set_abs(ed, kAxis[k], target[k], cmd_[k], cmd_[k], incremental_, true);
         block_written = true;
         ++s_.takeup_moves;
-        note_inserted_length((d_start - delta_).norm());
+        note_inserted_length((d_start - delta_).norm(), true);
       } else {  // a G1 line before the block, which then needs its motion word
         before = micro_line(target, ed.spaced());
-        note_inserted_length((d_start - delta_).norm());
+        note_inserted_length((d_start - delta_).norm(), true);
         if (!before.empty() && !feed_set_) {
           if (const gcode::Word* f = find_word(block, 'F'))
             before += (ed.spaced() ? " " : "") + raw.substr(f->begin, f->end - f->begin);
@@ -645,7 +647,8 @@ class Compensator {
       const Vector3d start_cmd = cmd_;
       if (j > 0 || block_written)
         note_inserted_length(arc ? (sp[b].t - sp[a].t) * len
-                                 : ((sp[b].n + sp[b].delta) - (sp[a].n + sp[a].delta_out)).norm());
+                                 : ((sp[b].n + sp[b].delta) - (sp[a].n + sp[a].delta_out)).norm(),
+                             false);
       if (j == 0 && !block_written) {
         for (int k = 0; k < 3; ++k) {
           const gcode::Word* w = find_word(block, kAxis[k]);
@@ -666,7 +669,7 @@ class Compensator {
         const std::string mline = micro_line(prog(sp[b].n) + sp[b].delta_out / unit_, ed.spaced());
         if (!mline.empty()) {
           ++s_.takeup_moves;
-          note_inserted_length((sp[b].delta_out - sp[b].delta).norm());
+          note_inserted_length((sp[b].delta_out - sp[b].delta).norm(), true);
           pieces.push_back(mline);
           after_micro = arc;
         }

@@ -16,39 +16,37 @@ namespace abbe::cli {
   throw InputError(where, message);
 }
 
-std::pair<int, double> parse_tool_option(const std::string& text) {
-  const auto eq = text.find('=');
-  if (eq == std::string::npos || eq == 0)
-    bad_option("--tool", "expected H=L (e.g. 1=200), got '" + text + "'");
-  int h = 0;
-  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + eq, h);
-  if (ec != std::errc() || ptr != text.data() + eq || h < 0)
-    bad_option("--tool", "tool number must be a non-negative integer in '" + text + "'");
-  const std::string value = text.substr(eq + 1);
-  char* end = nullptr;
-  errno = 0;
-  const double length = std::strtod(value.c_str(), &end);
-  if (value.empty() || end != value.c_str() + value.size() || errno != 0 || !std::isfinite(length))
-    bad_option("--tool", "tool length must be a number of mm in '" + text + "'");
-  return {h, length};
-}
+namespace {
 
-std::pair<int, double> parse_tool_diameter_option(const std::string& text) {
+// "n=V": a non-negative tool number and a finite number of mm, for `option`
+// (`form` and `example` in the message, `what` names the value).
+std::pair<int, double> parse_numbered_mm(const std::string& text, const std::string& option,
+                                         const char* form, const char* example, const char* what) {
   const auto eq = text.find('=');
   if (eq == std::string::npos || eq == 0)
-    bad_option("--tool-diameter", "expected n=D (e.g. 1=6), got '" + text + "'");
+    bad_option(option,
+               std::string("expected ") + form + " (e.g. " + example + "), got '" + text + "'");
   int n = 0;
   const auto [ptr, ec] = std::from_chars(text.data(), text.data() + eq, n);
   if (ec != std::errc() || ptr != text.data() + eq || n < 0)
-    bad_option("--tool-diameter", "tool number must be a non-negative integer in '" + text + "'");
+    bad_option(option, "tool number must be a non-negative integer in '" + text + "'");
   const std::string value = text.substr(eq + 1);
   char* end = nullptr;
   errno = 0;
-  const double diameter = std::strtod(value.c_str(), &end);
-  if (value.empty() || end != value.c_str() + value.size() || errno != 0 ||
-      !std::isfinite(diameter))
-    bad_option("--tool-diameter", "tool diameter must be a number of mm in '" + text + "'");
-  return {n, diameter};
+  const double v = std::strtod(value.c_str(), &end);
+  if (value.empty() || end != value.c_str() + value.size() || errno != 0 || !std::isfinite(v))
+    bad_option(option, std::string(what) + " must be a number of mm in '" + text + "'");
+  return {n, v};
+}
+
+}  // namespace
+
+std::pair<int, double> parse_tool_option(const std::string& text) {
+  return parse_numbered_mm(text, "--tool", "H=L", "1=200", "tool length");
+}
+
+std::pair<int, double> parse_tool_diameter_option(const std::string& text) {
+  return parse_numbered_mm(text, "--tool-diameter", "n=D", "1=6", "tool diameter");
 }
 
 // "G55=x,y,z": work offset (mm) of G54..G59.
