@@ -17,7 +17,7 @@ void convert_feed_mode(ExecState& st, const BlockPlan& b) {
   // rs274ngc: entering or leaving inverse time sets the feed rate to 0.
   if (mode != st.feed_mode &&
       (mode == FeedMode::inverse_time || st.feed_mode == FeedMode::inverse_time))
-    st.feed_mm = 0.0;
+    st.feed_mm = st.f_word = 0.0;
   st.feed_mode = mode;
 }
 
@@ -26,6 +26,7 @@ void convert_feed_speed_tool(ExecState& st, const BlockPlan& b) {
   if (const Word* f = c.word('F')) {
     if (f->value < 0) b.ctx.fail(f, "negative feed rate (F)");
     st.feed_mm = st.feed_mode == FeedMode::inverse_time ? f->value : f->value * st.unit();
+    st.f_word = f->value;
   }
   if (const Word* s = c.word('S')) {
     if (s->value < 0) b.ctx.fail(s, "negative spindle speed (S)");
@@ -57,6 +58,11 @@ void convert_feed_speed_tool(ExecState& st, const BlockPlan& b) {
   }
   if (const auto& m = c.group(MGroup::spindle))
     st.spindle_direction = m->code == 3 ? 1 : m->code == 4 ? -1 : 0;
+  if (const auto& m = c.group(MGroup::coolant)) {
+    if (m->code == 7) st.mist = true;
+    if (m->code == 8) st.flood = true;
+    if (m->code == 9) st.mist = st.flood = false;
+  }
 }
 
 void convert_dwell(ExecState& st, const BlockPlan& b, const Emit& emit) {
@@ -161,6 +167,32 @@ void convert_tool_length(ExecState& st, const BlockPlan& b) {
     const Word* z = c.word('Z');
     st.tool_length_unknown = false;
     set_tool_offset(st, true, z ? z->value * st.unit() : 0.0);
+  } else if (tool_length->code == gcode_id(43, 2)) {
+    // Additional offset (rs274ngc): the length of tool H, or the Z word,
+    // added to the offset in force (0 without G43).
+    const Word* hw = c.word('H');
+    if (hw && c.has_axis_word())
+      b.ctx.fail(tool_length->word, "G43.2 cannot have both an H word and axis words");
+    if (!hw && !c.has_axis_word())
+      b.ctx.fail(tool_length->word, "G43.2 needs an H word (a tool) or a Z word (a length)");
+    for (char a : {'X', 'Y'})
+      if (c.has(a))
+        b.ctx.fail(c.word(a), fmt::format("a tool offset along {} (G43.2 {}) is not supported "
+                                          "(abbe's tool lies along Z)",
+                                          a, a));
+    const bool was_unknown = st.g43 && st.tool_length_unknown;
+    double add = 0.0;
+    if (hw) {
+      if (hw->value < 0 || !is_integer(hw->value))
+        b.ctx.fail(hw, "H word must be a non-negative integer");
+      if (hw->value > 99999.0) b.ctx.fail(hw, "H word (tool number) is above 99999");
+      add = table_length(st, b.ctx, hw, static_cast<int>(std::lround(hw->value)));
+    } else if (const Word* z = c.word('Z')) {
+      add = z->value * st.unit();
+      st.tool_length_unknown = false;
+    }
+    st.tool_length_unknown = st.tool_length_unknown || was_unknown;
+    set_tool_offset(st, true, (st.g43 ? st.tool_length_mm : 0.0) + add);
   } else {
     set_tool_offset(st, false, 0.0);
   }
@@ -206,6 +238,7 @@ void restore_modes(ExecState& st, const SavedModes& saved, const BlockContext& c
   st.plane = saved.plane;
   st.feed_mode = saved.feed_mode;
   st.feed_mm = saved.feed_mm;
+  st.f_word = st.feed_mode == FeedMode::inverse_time ? st.feed_mm : st.feed_mm / st.unit();
   const Eigen::Vector3d old = st.g5x();
   st.coord_index = saved.coord_index;
   st.pos += old - st.g5x();

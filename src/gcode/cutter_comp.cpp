@@ -254,6 +254,7 @@ void convert_cutter_comp(ExecState& st, const BlockPlan& b) {
       c.exit_pending = true;
       c.exit_nose_mm = st.nose_mm(from_plane(st, c.current));
     }
+    c.code = gcode_id(40);
     c.side = 0;
     c.radius = 0.0;
     c.first_move = true;
@@ -309,6 +310,7 @@ void convert_cutter_comp(ExecState& st, const BlockPlan& b) {
     radius = -radius;
     side = -side;
   }
+  c.code = g->code;
   c.side = side;
   c.radius = radius;
   c.first_move = true;

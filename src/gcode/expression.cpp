@@ -85,11 +85,11 @@ double evaluate(const Block& block, CodeRange code, const ParameterStore& parame
         double v = c.value;
         if (c.op != ExprOp::number) {
           const std::string& name = block.names[c.arg];
-          const double* p = parameters.find(name);
+          const std::optional<double> p = parameters.find(name);
           if (c.op == ExprOp::exists) {
-            v = p != nullptr ? 1.0 : 0.0;
+            v = p ? 1.0 : 0.0;
           } else {
-            if (p == nullptr)
+            if (!p)
               fail_at(site, c.column, fmt::format("named parameter #<{}> is not defined", name));
             v = *p;
           }

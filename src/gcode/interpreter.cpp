@@ -62,9 +62,11 @@ BlockPlan plan_block(const ModalState& st, const BlockCodes& c, const BlockConte
   const auto& non_modal = c.group(GGroup::non_modal);
   b.non_modal = non_modal ? non_modal->code : -1;
   const auto& tool_length = c.group(GGroup::tool_length);
-  // G43.1 takes the axis words as the tool offset (rs274ngc: no motion).
-  const bool g43_1 = tool_length && tool_length->code == gcode_id(43, 1);
-  const int axis_user = g43_1 && !uses_axis_words(b.non_modal) ? gcode_id(43, 1) : b.non_modal;
+  // G43.1 and G43.2 take the axis words as the tool offset (rs274ngc: no
+  // motion; G43.2 refuses them beside an H word).
+  const bool g43_1 =
+      tool_length && (tool_length->code == gcode_id(43, 1) || tool_length->code == gcode_id(43, 2));
+  const int axis_user = g43_1 && !uses_axis_words(b.non_modal) ? tool_length->code : b.non_modal;
   const bool g92_axes = uses_axis_words(b.non_modal) || g43_1;
   const Word* first_axis = nullptr;
   for (char a : kAxisLetters)
@@ -77,7 +79,7 @@ BlockPlan plan_block(const ModalState& st, const BlockCodes& c, const BlockConte
   if (g43_1 && uses_axis_words(b.non_modal) && c.has_axis_word())
     ctx.fail(tool_length->word,
              fmt::format("cannot use two G codes that both use axis words ({} and {})",
-                         gcode_name(gcode_id(43, 1)), gcode_name(b.non_modal)));
+                         gcode_name(tool_length->code), gcode_name(b.non_modal)));
 
   // The motion this block makes (rs274ngc: an explicit motion code, or the
   // modal one when axis words are present and nothing else uses them).
@@ -212,11 +214,18 @@ void Interpreter::execute(const Block& written, std::string_view raw_line, const
                                       std::string(raw_line)},
                        "cutter radius compensation (G41/G42) is not supported by a command that "
                        "rewrites the program line by line");
-    if (w.letter == 'G' && std::abs(w.value - 43.1) < 1e-6)
+    if (w.letter == 'G' &&
+        (std::abs(w.value - 43.1) < 1e-6 ||
+         (std::abs(w.value - 43.2) < 1e-6 &&
+          std::any_of(written.words.begin(), written.words.end(), [](const Word& v) {
+            return v.letter == 'X' || v.letter == 'Y' || v.letter == 'Z';
+          }))))
       throw InputError(SourceLocation{state_->file, written.line, std::size_t{w.begin} + 1, "",
                                       std::string(raw_line)},
-                       "a dynamic tool length offset (G43.1) is not supported by a command that "
-                       "rewrites the program line by line (its Z word is not a coordinate)");
+                       fmt::format("a dynamic tool length offset ({}) is not supported by a "
+                                   "command that rewrites the program line by line (its Z word "
+                                   "is not a coordinate)",
+                                   std::abs(w.value - 43.1) < 1e-6 ? "G43.1" : "G43.2 Z"));
     if (w.letter == '@' || w.letter == '^')
       throw InputError(SourceLocation{state_->file, written.line, std::size_t{w.begin} + 1, "",
                                       std::string(raw_line)},

@@ -54,8 +54,9 @@ struct CompEntry {
   double original_turns = 0.0;  // arcs: sweep (radians) as queued; 0: not checked
 };
 struct CutterComp {
-  int side = 0;         // 1: left (G41), -1: right (G42), 0: off
-  double radius = 0.0;  // program units; 0: no offset although the side is set
+  int code = gcode_id(40);  // G40, G41, G41.1, G42, G42.1 (as gcode_id) in force
+  int side = 0;             // 1: left (G41), -1: right (G42), 0: off
+  double radius = 0.0;      // program units; 0: no offset although the side is set
   bool first_move = true;
   Eigen::Vector3d current = Eigen::Vector3d::Zero();  // tool centre, program frame
   std::vector<CompEntry> queue;
@@ -95,6 +96,9 @@ struct ExecState : ModalState {
   // M70-M73: one slot per subroutine call level (the main program is level 0).
   std::vector<SaveSlot> save_slots = std::vector<SaveSlot>(1);
   CutterComp comp;
+  double f_word = 0.0;  // the F word as written (program units, or 1/min in G93): #<_feed>
+  bool mist = false;    // M7 (M9 ends it); carried, not motion
+  bool flood = false;   // M8 (M9 ends it)
   // Hands a finished motion to the caller's sink, and numbers a motion of
   // the current block (set by each execute call; plain function pointers,
   // so that the per-block cost stays that of the plain-block path).

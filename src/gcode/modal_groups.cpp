@@ -71,6 +71,7 @@ GInfo g_info(int id) {
       return {GGroup::cutter_comp};
     case gcode_id(43):
     case gcode_id(43, 1):
+    case gcode_id(43, 2):
     case gcode_id(49):
       return {GGroup::tool_length};
     case gcode_id(98):
@@ -114,8 +115,6 @@ GInfo g_info(int id) {
     case gcode_id(38, 4):
     case gcode_id(38, 5):
       return {std::nullopt, "probing"};
-    case gcode_id(43, 2):
-      return {std::nullopt, "additional tool length offset"};
     case gcode_id(59, 1):
     case gcode_id(59, 2):
     case gcode_id(59, 3):

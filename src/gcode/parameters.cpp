@@ -15,10 +15,14 @@ double ParameterStore::get(int n) const {
   return numbered_[static_cast<std::size_t>(n)];
 }
 
-const double* ParameterStore::find(const std::string& name) const {
-  const auto& scope = (!name.empty() && name[0] == '_') ? globals_ : locals_.back();
+std::optional<double> ParameterStore::find(const std::string& name) const {
+  const bool global = !name.empty() && name[0] == '_';
+  if (global && live_named)
+    if (const auto v = live_named(name)) return v;
+  const auto& scope = global ? globals_ : locals_.back();
   const auto it = scope.find(name);
-  return it == scope.end() ? nullptr : &it->second;
+  if (it == scope.end()) return std::nullopt;
+  return it->second;
 }
 
 void ParameterStore::set(const std::string& name, double value) {

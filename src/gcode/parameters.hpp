@@ -26,9 +26,15 @@ class ParameterStore {
   double get(int n) const;  // n valid
   void set(int n, double value) { numbered_[static_cast<std::size_t>(n)] = value; }
 
-  // nullptr if not defined (locals of the current call level, or globals for "_...").
-  const double* find(const std::string& name) const;
+  // nullopt if not defined (locals of the current call level, or globals
+  // for "_..."; a predefined global comes from `live_named`).
+  std::optional<double> find(const std::string& name) const;
   void set(const std::string& name, double value);
+  // A predefined named parameter (#<_x>, …): read-only, rs274ngc refuses to
+  // assign it.
+  bool read_only(const std::string& name) const {
+    return !name.empty() && name[0] == '_' && live_named && live_named(name).has_value();
+  }
 
   // A subroutine call: saves #1..#30, sets them to `arguments` (the rest to 0)
   // and opens a new scope of local names; return_from_call undoes both.
@@ -40,6 +46,7 @@ class ParameterStore {
 
   // Predefined parameters computed from the interpreter (nullopt: stored value).
   std::function<std::optional<double>(int)> live;
+  std::function<std::optional<double>(const std::string&)> live_named;
 
  private:
   std::vector<double> numbered_;

@@ -106,6 +106,11 @@ class Runner {
       }
       return std::nullopt;
     };
+    parameters_.live_named = [this](const std::string& name) -> std::optional<double> {
+      if (name == "_line") return static_cast<double>(current_line_);
+      if (name == "_call_level") return static_cast<double>(frames_.size());
+      return interpreter_.predefined_parameter(name);
+    };
     if (!config.dialect.var_file.empty()) parameters_.read_var_file(config.dialect.var_file);
   }
 
@@ -134,6 +139,7 @@ class Runner {
  private:
   void execute(Block& block, std::string_view text, const std::string& file) {
     ++stats_.lines;
+    current_line_ = block.line;
     if (block.has_code()) {
       const CodeSite s{file, block.line, text};
       for (const WordExpression& w : block.word_expressions)
@@ -147,6 +153,10 @@ class Runner {
         };
         std::vector<Pending> pending;
         for (const ParameterSetting& p : block.settings) {
+          if (p.name >= 0 && parameters_.read_only(block.names[static_cast<std::size_t>(p.name)]))
+            fail_at(s, p.column,
+                    fmt::format("cannot assign to the read-only parameter #<{}>",
+                                block.names[static_cast<std::size_t>(p.name)]));
           int n = 0;
           if (p.name < 0) {
             n = integer_value(evaluate(block, p.index, parameters_, s), s, p.column,
@@ -522,6 +532,7 @@ class Runner {
   Interpreter interpreter_;
   const MotionSink& sink_;
   ProgramStats& stats_;
+  std::size_t current_line_ = 0;  // line of the block being executed (#<_line>)
   MotionSink counting_sink_ = [this](const Motion& m) {
     ++stats_.motions;
     sink_(m);

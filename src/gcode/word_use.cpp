@@ -20,7 +20,7 @@ const std::vector<WordUse>& word_use_table() {
        false},
       {'Q', {gcode_id(64), gcode_id(73), gcode_id(83)}, false},
       {'L', {gcode_id(10), gcode_id(41, 1), gcode_id(42, 1)}, true},
-      {'H', {gcode_id(43)}, false},
+      {'H', {gcode_id(43), gcode_id(43, 2)}, false},
       {'D', {gcode_id(41), gcode_id(42), gcode_id(41, 1), gcode_id(42, 1)}, false},
   };
   return table;

@@ -68,6 +68,33 @@ AxisRecord read_record(const Reader& r, const YAML::Node& node, Axis axis,
   return rec;
 }
 
+// An optional mapping from a tool/H number (integer >= 0) to a length in mm
+// (>= 0): tool_table (H -> tool length) and tool_diameters (T -> diameter).
+std::map<int, double> read_tool_map(const Reader& r, const YAML::Node& root, const char* key_name,
+                                    const char* number_kind, const char* value_kind) {
+  std::map<int, double> out;
+  const YAML::Node node = root[key_name];
+  if (!node) return out;
+  r.expect_map(node, key_name);
+  for (const auto& kv : node) {
+    const std::string key = r.scalar_key(kv.first, key_name);
+    const std::string f = fmt::format("{}.{}", key_name, key);
+    int number = 0;
+    try {
+      std::size_t used = 0;
+      number = std::stoi(key, &used);
+      if (used != key.size()) throw std::invalid_argument(key);
+    } catch (const std::exception&) {
+      r.fail(kv.first, f, fmt::format("`{}` is not {} (an integer)", key, number_kind));
+    }
+    if (number < 0) r.fail(kv.first, f, fmt::format("{} must not be negative", number_kind));
+    const double value = r.number(kv.second, f);
+    if (value < 0.0) r.fail(kv.second, f, fmt::format("{} must not be negative", value_kind));
+    out[number] = value;
+  }
+  return out;
+}
+
 }  // namespace
 
 Machine Machine::load(const std::string& yaml_path) {
@@ -85,8 +112,8 @@ Machine Machine::parse(const std::string& yaml_text, const std::string& file,
   const YAML::Node root = r.load(yaml_text);  // const: lookups never insert keys
   if (!root.IsMap()) r.fail(root, "", "a machine file is a YAML mapping (see docs/formats.md)");
   r.check_keys(root, "",
-               {"name", "chain", "travel", "tool_length", "tool_table", "work_offsets",
-                "home_positions", "squareness", "table", "out_of_range", "axes"});
+               {"name", "chain", "travel", "tool_length", "tool_table", "tool_diameters",
+                "work_offsets", "home_positions", "squareness", "table", "out_of_range", "axes"});
 
   MachineSpec spec;
   spec.file = file;
@@ -115,25 +142,9 @@ Machine Machine::parse(const std::string& yaml_text, const std::string& file,
   spec.tool_length = r.number(tl, "tool_length");
   if (spec.tool_length < 0.0) r.fail(tl, "tool_length", "the tool length must not be negative");
 
-  if (const YAML::Node tt = root["tool_table"]) {
-    r.expect_map(tt, "tool_table");
-    for (const auto& kv : tt) {
-      std::string key = r.scalar_key(kv.first, "tool_table");
-      std::string f = "tool_table." + key;
-      int h = 0;
-      try {
-        std::size_t used = 0;
-        h = std::stoi(key, &used);
-        if (used != key.size()) throw std::invalid_argument(key);
-      } catch (const std::exception&) {
-        r.fail(kv.first, f, fmt::format("`{}` is not an H number (an integer)", key));
-      }
-      if (h < 0) r.fail(kv.first, f, "H numbers are not negative");
-      double l = r.number(kv.second, f);
-      if (l < 0.0) r.fail(kv.second, f, "the tool length must not be negative");
-      spec.tool_table[h] = l;
-    }
-  }
+  spec.tool_table = read_tool_map(r, root, "tool_table", "an H number", "the tool length");
+  spec.tool_diameters =
+      read_tool_map(r, root, "tool_diameters", "a tool number", "the tool diameter");
 
   if (const YAML::Node wo = root["work_offsets"]) {
     r.check_keys(wo, "work_offsets", {"G54", "G55", "G56", "G57", "G58", "G59"});

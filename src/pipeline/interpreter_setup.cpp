@@ -8,6 +8,7 @@ gcode::InterpreterConfig interpreter_config(const machine::Machine& machine) {
   gcode::InterpreterConfig config;
   config.default_tool_length = machine.tool_length();
   config.tool_lengths = machine.tool_table();
+  config.tool_diameters = machine.tool_diameters();
   config.work_offsets = machine.work_offsets();
   config.initial_position = Eigen::Vector3d(0.0, 0.0, -machine.tool_length());
   const machine::HomePositions home = machine::read_home_positions(machine.spec().file);

@@ -92,7 +92,30 @@ TEST(LinuxCncCodes, G43_1TakesTheToolLengthFromZ) {
             std::string::npos);
   EXPECT_NE(error_of("G92 X1 G43.1 Z1\n").find("both use axis words (G43.1 and G92)"),
             std::string::npos);
-  EXPECT_NE(error_of("G43.2 H1\n").find("additional tool length offset (G43.2)"),
+}
+
+TEST(LinuxCncCodes, G43_2AddsToTheToolLengthOffset) {
+  // rs274 (LinuxCNC 2.9): G43.1 Z3 then G43.2 H1 with tool 1 = 12.7 mm
+  // gives USE_TOOL_LENGTH_OFFSET(0 0 15.7); G49 clears both.
+  InterpreterConfig config;
+  config.tool_lengths[1] = 12.7;
+  const auto m = run("G21 G43.1 Z3\nG43.2 H1\nG0 X1\nG43.2 Z0.3\nG0 X2\nG49\nG0 X3\n", config);
+  ASSERT_EQ(m.size(), 3u);
+  expect_end(m[0], 1, 0, -15.7);
+  EXPECT_NEAR(m[0].tool_length, 15.7, 1e-12);
+  expect_end(m[1], 2, 0, -16.0);
+  EXPECT_NEAR(m[1].tool_length, 16.0, 1e-12);
+  expect_end(m[2], 3, 0, 0);
+  // Without G43 in force it adds to nothing; G20: the Z word is inches.
+  const auto inch = run("G20 G43.2 Z1\nG0 X0\n", config);
+  ASSERT_EQ(inch.size(), 1u);
+  EXPECT_NEAR(inch[0].tool_length, 25.4, 1e-12);
+  EXPECT_NE(error_of("G43.2\n").find("G43.2 needs an H word (a tool) or a Z word"),
+            std::string::npos);
+  EXPECT_NE(error_of("G43.2 H1 Z1\n", config).find("both an H word and axis words"),
+            std::string::npos);
+  EXPECT_NE(error_of("G43.2 X1\n").find("a tool offset along X (G43.2 X)"), std::string::npos);
+  EXPECT_NE(error_of("G43.2 H7\n").find("tool 7 has no length in the tool table"),
             std::string::npos);
 }
 

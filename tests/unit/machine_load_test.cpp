@@ -66,6 +66,16 @@ TEST(MachineLoad, GoodTextParses) {
   EXPECT_EQ(m.out_of_range(), OutOfRangePolicy::clamp);
 }
 
+TEST(MachineLoad, ToolDiametersAreOptional) {
+  EXPECT_TRUE(Machine::parse(kGood, "m.yaml", kDir).tool_diameters().empty());
+  const Machine m = Machine::parse(replace(kGood, "tool_length: 130.0\n",
+                                           "tool_length: 130.0\ntool_diameters: {2: 12.7, 7: 6}\n"),
+                                   "m.yaml", kDir);
+  EXPECT_EQ(m.tool_diameters().size(), 2u);
+  EXPECT_EQ(m.tool_diameters().at(2), 12.7);
+  EXPECT_EQ(m.tool_diameters().at(7), 6.0);
+}
+
 struct Bad {
   std::string from, to;  // the edit applied to kGood
   std::size_t line;
@@ -105,6 +115,14 @@ INSTANTIATE_TEST_SUITE_P(
         Bad{"tool_length: 130.0", "tool_length: -5", 7, "tool_length", "negative"},
         Bad{"tool_length: 130.0", "tool_length: 130.0\ntool_table: {T1: 5}", 8, "tool_table.T1",
             "H number"},
+        Bad{"tool_length: 130.0", "tool_length: 130.0\ntool_diameters: {D2: 5}", 8,
+            "tool_diameters.D2", "not a tool number"},
+        Bad{"tool_length: 130.0", "tool_length: 130.0\ntool_diameters: {2: -5}", 8,
+            "tool_diameters.2", "the tool diameter must not be negative"},
+        Bad{"tool_length: 130.0", "tool_length: 130.0\ntool_diameters: {-1: 5}", 8,
+            "tool_diameters.-1", "must not be negative"},
+        Bad{"tool_length: 130.0", "tool_length: 130.0\ntool_diameters: [5]", 8, "tool_diameters",
+            "mapping"},
         Bad{"tool_length: 130.0", "tool_length: 130.0\nwork_offsets: {G60: [0, 0, 0]}", 8,
             "work_offsets.G60", "unknown key"},
         Bad{"tool_length: 130.0", "tool_length: 130.0\nsquareness: {EC0X: 1}", 8, "squareness.EC0X",

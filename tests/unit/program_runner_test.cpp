@@ -97,6 +97,61 @@ TEST(Parameters, NamedIndirectAndPredefined) {
   EXPECT_DOUBLE_EQ(p[1].y(), 3.0);
 }
 
+// Three predefined named parameters read after `setup`, returned through a
+// G53 move (machine coordinates, no tool length, mm).
+Eigen::Vector3d predefined(const std::string& setup, const std::string& a, const std::string& b,
+                           const std::string& c) {
+  InterpreterConfig config;
+  config.tool_lengths[1] = 12.7;
+  config.tool_diameters[1] = 2.54;
+  const auto e = ends(setup + "#1=#<" + a + "> #2=#<" + b + "> #3=#<" + c +
+                          ">\nG40\nG49 G80 G21 G90\nG53 G0 X#1 Y#2 Z#3\n",
+                      config);
+  return e.empty() ? Eigen::Vector3d::Constant(-1e9) : e.back();
+}
+
+TEST(Parameters, PredefinedNamedMirrorTheState) {
+  // Values as the standalone rs274 (LinuxCNC 2.9) printed them for the same
+  // program with tool 1 of length 0.5 in (12.7 mm).
+  const std::string s1 = "G21 G90 G17\nG10 L2 P1 X100 Y0 Z0\nT1 M6\nG43 H1\nG0 X1 Y2 Z3\n";
+  Eigen::Vector3d v = predefined(s1, "_x", "_abs_x", "_abs_z");
+  EXPECT_NEAR(v.x(), 1.0, 1e-12);
+  EXPECT_NEAR(v.y(), 101.0, 1e-12);
+  EXPECT_NEAR(v.z(), 15.7, 1e-12);  // Z 3 + tool length 12.7
+  EXPECT_EQ(predefined(s1, "_ccomp", "_current_tool", "_tool_offset"), Eigen::Vector3d(400, 1, 1));
+  EXPECT_EQ(predefined(s1, "_motion_mode", "_plane", "_coord_system"),
+            Eigen::Vector3d(0, 170, 540));
+  EXPECT_EQ(predefined(s1, "_metric", "_imperial", "_absolute"), Eigen::Vector3d(1, 0, 1));
+  const std::string s2 = s1 + "M3 S1000 M8\nG41 G1 X20 F200\n";
+  EXPECT_EQ(predefined(s2, "_ccomp", "_rpm", "_flood"), Eigen::Vector3d(410, 1000, 1));
+  EXPECT_EQ(predefined(s2, "_spindle_on", "_spindle_cw", "_motion_mode"),
+            Eigen::Vector3d(1, 1, 10));
+  const std::string s3 = s2 + "G40 G1 X30\nG81 X40 Y2 R5 Z-1\n";
+  EXPECT_EQ(predefined(s3, "_motion_mode", "_retract_r_plane", "_retract_old_z"),
+            Eigen::Vector3d(810, 1, 0));
+  v = predefined(s3 + "G80\nG20\n", "_x", "_feed", "_imperial");
+  EXPECT_NEAR(v.x(), 40.0 / 25.4, 1e-12);
+  EXPECT_EQ(v.y(), 200.0);  // the F word as written, not converted
+  EXPECT_EQ(v.z(), 1.0);
+  EXPECT_EQ(predefined("G0 X1\nM9\nG42.1 D1 G1 X3 F1\n", "_ccomp", "_mist", "_task"),
+            Eigen::Vector3d(421, 0, 0));
+  // The line being executed and the subroutine call level.
+  const auto line = ends("G21\n\nG0 X#<_line> Y[EXISTS[#<_y>]]\n");
+  ASSERT_EQ(line.size(), 1u);
+  EXPECT_EQ(line[0], Eigen::Vector3d(3, 1, 0));
+  const auto level =
+      ends("G21\no1 sub\nG0 Y#<_call_level>\no1 endsub\no1 call\nG0 X#<_call_level>\n");
+  ASSERT_EQ(level.size(), 2u);
+  EXPECT_EQ(level[0].y(), 1.0);
+  EXPECT_EQ(level[1].x(), 0.0);
+  // Read-only, as in rs274ngc; names abbe does not follow stay undefined.
+  EXPECT_NE(error_of("G21\n#<_x> = 5\n")
+                .find("t.ngc:2:1: error: cannot assign to the read-only parameter #<_x>"),
+            std::string::npos);
+  EXPECT_NE(error_of("G0 X#<_current_pocket>\n").find("#<_current_pocket> is not defined"),
+            std::string::npos);
+}
+
 TEST(ControlFlow, SubroutineWithArgumentsAndLocalScope) {
   const auto e = ends(
       "G21\n#1=100\no<move> sub\n#<x> = [#1*2]\nG0 X#<x> Y#2\no<move> endsub\n"

@@ -28,6 +28,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -119,6 +120,12 @@ class Interpreter {
   Plane plane() const;                       // G17/G18/G19
   bool retract_to_r() const;                 // G99 (false: G98) for canned cycles
   Eigen::Vector3d program_position() const;  // current point in the program frame, program units
+
+  // LinuxCNC's read-only predefined named parameters that mirror the state
+  // after the last block (#<_x>, #<_abs_z>, #<_motion_mode>, #<_ccomp>,
+  // #<_metric>, …; `name` in rs274ngc's form: lower case, with the leading
+  // '_'). nullopt for any other name. predefined_parameters.cpp lists them.
+  std::optional<double> predefined_parameter(const std::string& name) const;
 
  private:
   std::unique_ptr<detail::ExecState> state_;

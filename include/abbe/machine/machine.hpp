@@ -53,6 +53,7 @@ struct MachineSpec {
   std::array<Travel, 3> travel{};
   double tool_length = 0.0;                   // mm, the tool in the spindle without G43
   std::map<int, double> tool_table;           // H -> L, mm
+  std::map<int, double> tool_diameters;       // T -> diameter, mm (G41/G42 radius = diameter/2)
   std::array<Eigen::Vector3d, 6> work_offsets{// G54..G59, mm
                                               Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
                                               Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
@@ -83,6 +84,7 @@ class Machine {
   const Travel& travel(Axis a) const { return spec_.travel[static_cast<std::size_t>(index(a))]; }
   double tool_length() const { return spec_.tool_length; }
   const std::map<int, double>& tool_table() const { return spec_.tool_table; }
+  const std::map<int, double>& tool_diameters() const { return spec_.tool_diameters; }
   const std::array<Eigen::Vector3d, 6>& work_offsets() const { return spec_.work_offsets; }
   const Squareness& squareness() const { return spec_.squareness; }
   OutOfRangePolicy out_of_range() const { return spec_.out_of_range; }
