@@ -18,6 +18,7 @@
 #include "abbe/path/fragmenter.hpp"
 #include "abbe/pipeline/program_path.hpp"
 #include "block_editor.hpp"
+#include "cycle_corrector.hpp"
 #include "piece_splitter.hpp"
 
 namespace abbe::compensate {
@@ -25,6 +26,8 @@ namespace {
 
 using detail::append_word;
 using detail::BlockEditor;
+using detail::CycleBlock;
+using detail::CycleCorrector;
 using detail::find_word;
 using detail::merge_short_pieces;
 using detail::SolvedPoint;
@@ -43,7 +46,7 @@ bool writes_arc_code(const gcode::Block& b) {
   return false;
 }
 
-class Compensator {
+class Compensator final : public detail::CycleHost {
  public:
   Compensator(const std::string& file, const gcode::InterpreterConfig& config,
               const model::ErrorModel& model, const CompensateOptions& o, const TextSink& out)
@@ -131,11 +134,11 @@ class Compensator {
     out_(buf_.data(), buf_.size());
     buf_.clear();
   }
-  void warn(std::size_t line, const std::string& text) {
+  void warn(std::size_t line, const std::string& text) override {
     if (s_.warnings.size() < 20) s_.warnings.push_back(fmt::format("{}:{}: {}", file_, line, text));
   }
 
-  Vector3d solve(const path::PathPoint& pp) {
+  Vector3d solve(const path::PathPoint& pp) override {
     if (travel_ && !travel_->add(pp.p, pp.tool_length, pp.line)) {
       if (!o_.allow_outside_travel)
         throw InputError(
@@ -176,7 +179,7 @@ class Compensator {
     // (numbers in program units) for a program in another dialect.
     const gcode::Block& block = interp_.block_read();
     // G80 (or no cycle since) ends a series of cycles: the interpreter's modal state says so.
-    if (interp_.modal().motion_mode == gcode::gcode_id(80)) in_cycle_ = false;
+    if (interp_.modal().motion_mode == gcode::gcode_id(80)) cycles_.end_series();
     if (!motions_.empty()) ++s_.motion_blocks;
     if (motions_.empty()) {
       if (interp_.non_modal_read() == gcode::gcode_id(92) && 1e3 * delta_.norm() > 1e-3)
@@ -217,18 +220,12 @@ class Compensator {
     std::vector<std::string> pieces;
     std::string before;  // a micro move written before the block
     bool feed_block = false;
-    if (motions_.size() == 1) in_cycle_ = false;
+    if (motions_.size() == 1) cycles_.end_series();
     if (motions_.size() > 1) {
-      cycle(block, editor, pieces);
-      // The cycle leaves the tool at its clearance height: the initial level
-      // (G98), which carries the correction of the point where the sequence
-      // began, or the R plane (G99), nominal in G90 and relative to the
-      // initial level in G91.
-      const int n = plane_axes(interp_.plane())[2];
-      // The written depth word is the modal one afterwards.
-      if (const gcode::Word* w = find_word(block, kAxis[n])) orig_cc_ = w->value;
-      const double level = interp_.retract_to_r() && !incremental_ ? 0.0 : initial_level_delta_;
-      cmd_[n] = prog(p_after_)[n] + level / unit_;
+      const CycleBlock cycle{block,   motions_,     points_,  interp_.plane(),
+                             interp_.retract_to_r(), incremental_, unit_, decimals_,
+                             plain_,  p_after_,     delta_};
+      cycles_.correct(cycle, *this, editor, pieces, cmd_, s_);
     } else if (motions_[0].kind == gcode::MotionKind::rapid || g53)
       rapid(block, editor, g53);
     else
@@ -274,13 +271,13 @@ class Compensator {
   }
 
   // Program-frame coordinates (program units) of a tool-tip point of this block.
-  Vector3d prog(const Vector3d& p) const { return pos_after_ + (p - p_after_) / unit_; }
+  Vector3d prog(const Vector3d& p) const override { return pos_after_ + (p - p_after_) / unit_; }
 
   // Sets axis/centre word `letter` so that the absolute program value is
   // `target_abs`; returns the absolute value in effect. `reference` is the
   // absolute value an increment is taken from (G91).
   double set_abs(BlockEditor& ed, char letter, double target_abs, double reference,
-                 double baseline_abs, bool incremental, bool may_insert) {
+                 double baseline_abs, bool incremental, bool may_insert) override {
     // No word for an axis whose position the program has not yet set.
     const int axis = letter - 'X';
     if (axis >= 0 && axis < 3 && !known_[static_cast<std::size_t>(axis)]) may_insert = false;
@@ -318,148 +315,6 @@ class Compensator {
         cmd_[a] = set_abs(ed, kAxis[a], target, cmd_[a], cmd_[a], incremental_, true);
       }
     }
-  }
-
-  void cycle(const gcode::Block& block, BlockEditor& ed, std::vector<std::string>& pieces) {
-    const auto ax = plane_axes(interp_.plane());
-    const int n = ax[2];
-    if (!in_cycle_) initial_level_delta_ = delta_[n];
-    in_cycle_ = true;
-    const double level = incremental_ ? initial_level_delta_ : 0.0;
-    if (incremental_) {
-      const gcode::Word* l = find_word(block, 'L');
-      if (l && l->value > 1.0) {
-        repeated_cycle(block, ed, pieces, static_cast<int>(std::lround(l->value)), level);
-        return;
-      }
-    }
-    // The hole bottom: the feed end farthest from where the cycle leaves the tool.
-    std::optional<std::size_t> hole;
-    double far = -1.0;
-    for (std::size_t i = 0; i < motions_.size(); ++i) {
-      if (motions_[i].kind != gcode::MotionKind::linear || points_[i].empty()) continue;
-      const double dist = (motions_[i].end - p_after_).norm();
-      if (dist > far) {
-        far = dist;
-        hole = i;
-      }
-    }
-    if (!hole) return;
-    const Vector3d d = solve(points_[*hole].back());
-    const Vector3d h = prog(motions_[*hole].end);
-    for (int k = 0; k < 2; ++k) {
-      const int a = ax[static_cast<std::size_t>(k)];
-      cmd_[a] = set_abs(ed, kAxis[a], h[a] + d[a] / unit_, cmd_[a], cmd_[a], incremental_, true);
-    }
-    // The depth word: absolute in G90; in G91 relative to the R plane, which
-    // does not move, so it moves by the correction along the drill axis.
-    const gcode::Word* zw = find_word(block, kAxis[n]);
-    const double cc = incremental_ ? (zw ? zw->value : orig_cc_) : h[n];
-    const double v = ed.set(kAxis[n], cc + (d[n] - level) / unit_, cc + depth_delta_ / unit_, true);
-    depth_delta_ = (v - cc) * unit_;
-  }
-
-  // G91 canned cycle with L repeats. One increment serves every hole, so
-  // the holes cannot all be corrected as written. With G98 (retract to the
-  // initial level) the block is expanded: the L word goes, the block drills
-  // the first hole and inserted lines (X, Y increments and, where it
-  // changes, the depth Z) drill the others — a modal cycle repeats at each
-  // new position exactly as its L repeats would, so every hole gets its own
-  // correction. With G99 a continued block would take R from the R plane in
-  // rs274ngc, not from the initial level; there the holes get the
-  // correction δ_before + k·g (k = 1..L), g the least-squares fit to the
-  // corrections δ_k at the bottoms, and the depth the mean of δ_k − δ_before.
-  void repeated_cycle(const gcode::Block& block, BlockEditor& ed, std::vector<std::string>& pieces,
-                      int repeats, double level) {
-    const auto ax = plane_axes(interp_.plane());
-    const int n = ax[2];
-    std::vector<Vector3d> holes, bottoms;  // corrections and nominal points at the bottoms
-    for (std::size_t i = 0; i < motions_.size(); ++i) {
-      if (motions_[i].kind != gcode::MotionKind::linear || points_[i].empty()) continue;
-      // The feed into a hole: the drill axis moves; its end is the bottom
-      // when the next motion leaves it (a retract).
-      const Vector3d d = motions_[i].end - motions_[i].start;
-      if (std::abs(d[n]) <= 0.0) continue;
-      const bool bottom = i + 1 == motions_.size() ||
-                          (motions_[i + 1].end[n] - motions_[i + 1].start[n]) * d[n] < 0.0;
-      if (bottom) {
-        holes.push_back(solve(points_[i].back()));
-        bottoms.push_back(motions_[i].end);
-      }
-    }
-    if (holes.size() != static_cast<std::size_t>(repeats)) {
-      ++s_.uncompensated_blocks;
-      warn(block.line, "canned cycle with L repeats in G91: holes left uncompensated");
-      return;
-    }
-    const gcode::Word* zw = find_word(block, kAxis[n]);
-    const double cc = zw ? zw->value : orig_cc_;
-    bool exact = true;  // as written, every hole is where it must be
-    for (const auto& h : holes)
-      for (int k = 0; k < 3; ++k)
-        exact = exact && round_to((h[k] - (k == n ? level : delta_[k])) / unit_, decimals_) == 0.0;
-    if (exact) {  // the increments as written: the tool ends L of them on
-      for (int k = 0; k < 2; ++k) {
-        const int a = ax[static_cast<std::size_t>(k)];
-        const gcode::Word* w = find_word(block, kAxis[a]);
-        cmd_[a] += static_cast<double>(repeats) * (w ? w->value : 0.0);
-      }
-      return;
-    }
-    if (!interp_.retract_to_r()) {
-      ed.remove('L');
-      const char* sep = ed.spaced() ? " " : "";
-      double cc_written = cc + depth_delta_ / unit_;
-      for (std::size_t k = 0; k < holes.size(); ++k) {
-        const Vector3d h = prog(bottoms[k]) + holes[k] / unit_;
-        const double cc_k = cc + (holes[k][n] - level) / unit_;
-        if (k == 0) {
-          for (int i = 0; i < 2; ++i) {
-            const int a = ax[static_cast<std::size_t>(i)];
-            cmd_[a] = set_abs(ed, kAxis[a], h[a], cmd_[a], cmd_[a], true, true);
-          }
-          cc_written = ed.set(kAxis[n], cc_k, cc_written, true);
-          continue;
-        }
-        std::string line;
-        for (int i = 0; i < 2; ++i) {
-          const int a = ax[static_cast<std::size_t>(i)];
-          const double v = round_to(h[a] - cmd_[a], decimals_);
-          append_word(line, line.empty() ? "" : sep, kAxis[a], v, plain_, decimals_);
-          cmd_[a] += v;
-        }
-        const double z = round_to(cc_k, decimals_);
-        if (z != round_to(cc_written, decimals_)) {
-          append_word(line, sep, kAxis[n], z, plain_, decimals_);
-          cc_written = z;
-        }
-        pieces.push_back(line);
-      }
-      depth_delta_ = (cc_written - cc) * unit_;
-      return;
-    }
-    ++s_.shared_increment_blocks;
-    warn(block.line,
-         "canned cycle with L repeats in G91 G99: one increment serves every hole "
-         "(least-squares correction)");
-    Vector3d num = Vector3d::Zero();
-    double den = 0.0;
-    double mean_n = 0.0;
-    for (std::size_t k = 0; k < holes.size(); ++k) {
-      const double kk = static_cast<double>(k + 1);
-      num += kk * (holes[k] - delta_);
-      den += kk * kk;
-      mean_n += (holes[k][n] - level) / static_cast<double>(holes.size());
-    }
-    const Vector3d g = num / den;
-    for (int k = 0; k < 2; ++k) {
-      const int a = ax[static_cast<std::size_t>(k)];
-      const gcode::Word* w = find_word(block, kAxis[a]);
-      const double inc = (w ? w->value : 0.0) + g[a] / unit_;
-      const double v = ed.set(kAxis[a], inc, w ? w->value : 0.0, true);
-      cmd_[a] += static_cast<double>(repeats) * v;
-    }
-    if (zw) ed.set(kAxis[n], zw->value + mean_n / unit_, zw->value, false);
   }
 
   // `takeup`: a take-up (micro) move; short pieces are counted by
@@ -758,8 +613,6 @@ class Compensator {
   std::vector<gcode::Motion> motions_;
   std::vector<std::vector<path::PathPoint>> points_;
   Vector3d delta_ = Vector3d::Zero();  // commanded − nominal tool tip, mm
-  double depth_delta_ = 0.0;           // correction in the modal canned-cycle depth, mm
-  double orig_cc_ = 0.0;               // the modal depth word of the original (program units)
   Vector3d cmd_ = Vector3d::Zero();    // commanded point, program frame and units
   Vector3d pos_after_ = Vector3d::Zero(), p_after_ = Vector3d::Zero();
   double unit_ = 1.0;
@@ -776,15 +629,11 @@ class Compensator {
   std::vector<std::size_t> breaks_;
   std::vector<double> reversals_;
   std::array<std::int8_t, 3> last_point_dir_{0, 0, 0};  // of the last fragment point
-  // G91 canned cycles: their R is relative to the initial level, the height
-  // where the cycle sequence began, which carries that point's correction
-  // along the drill axis (mm); the depth word takes it out.
-  bool in_cycle_ = false;
+  CycleCorrector cycles_;
   // Per axis: the program has set its position (an absolute axis word).
   // Before that the start is the assumed machine home: abbe writes no word
   // for the axis (docs/compensation.md, "Running it on a machine").
   std::array<bool, 3> known_{false, false, false};
-  double initial_level_delta_ = 0.0;
   Vector3d last_end_ = Vector3d::Zero();
 };
 

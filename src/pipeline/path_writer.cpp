@@ -75,37 +75,35 @@ void format_head(Out& out, PathFormat format, const path::PathPoint& pt, bool fi
   }
 }
 
+// The text around the middle fields, per format.
+struct MiddleSyntax {
+  const char* tool_length;
+  const char* unknown_length;  // G43 with a tool of unknown length
+  const char* line;
+  const char* kind;
+  const char* feed;
+  const char* time;  // what comes before the tail's time
+};
+constexpr MiddleSyntax kCsvMiddle{",", "unknown", ",", ",", ",", ","};
+constexpr MiddleSyntax kJsonMiddle{",\"tool_length\":", "null",         ",\"line\":",
+                                   ",\"kind\":\"",        "\",\"feed\":", ",\"time\":"};
+
 template <class Out>
 void format_middle(Out& out, PathFormat format, const path::PathPoint& pt) {
-  if (format == PathFormat::csv) {
-    out.ch(',');
-    if (std::isnan(pt.tool_length))  // G43 with a tool of unknown length
-      out.text("unknown");
-    else
-      out.num(pt.tool_length);
-    out.ch(',');
-    out.uint(pt.line);
-    out.ch(',');
-    const KindName& kind = kind_name(pt.kind);
-    out.block(kind.text, kind.size);
-    out.ch(',');
-    out.num(pt.feed);
-    out.ch(',');
-  } else {
-    out.text(",\"tool_length\":");
-    if (std::isnan(pt.tool_length))
-      out.text("null");
-    else
-      out.num(pt.tool_length);
-    out.text(",\"line\":");
-    out.uint(pt.line);
-    out.text(",\"kind\":\"");
-    const KindName& kind = kind_name(pt.kind);
-    out.block(kind.text, kind.size);
-    out.text("\",\"feed\":");
-    out.num(pt.feed);
-    out.text(",\"time\":");
-  }
+  const MiddleSyntax& syntax = format == PathFormat::csv ? kCsvMiddle : kJsonMiddle;
+  out.text(syntax.tool_length);
+  if (std::isnan(pt.tool_length))
+    out.text(syntax.unknown_length);
+  else
+    out.num(pt.tool_length);
+  out.text(syntax.line);
+  out.uint(pt.line);
+  out.text(syntax.kind);
+  const KindName& kind = kind_name(pt.kind);
+  out.block(kind.text, kind.size);
+  out.text(syntax.feed);
+  out.num(pt.feed);
+  out.text(syntax.time);
 }
 
 template <class Out>

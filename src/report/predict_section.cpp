@@ -50,6 +50,17 @@ std::vector<std::size_t> display_subset(const PredictedPath& r, std::size_t n) {
 
 constexpr std::size_t kPlotPoints = 1500;
 
+// |d| of model m along the path at the shown points, with hover text.
+Series norm_series(const PredictedPath& r, std::size_t m, const std::vector<std::size_t>& shown) {
+  Series s;
+  for (std::size_t i : shown) {
+    s.x.push_back(r.path_length[i]);
+    s.y.push_back(r.deviation_um[m][i].norm());
+    s.hover.push_back(hover_text(r, m, i));
+  }
+  return s;
+}
+
 LinePlot deviation_plot(const PredictedPath& r, const std::vector<std::size_t>& shown,
                         std::size_t m) {
   LinePlot plot;
@@ -70,15 +81,10 @@ LinePlot deviation_plot(const PredictedPath& r, const std::vector<std::size_t>& 
     }
     plot.series.push_back(std::move(s));
   }
-  Series d;
+  Series d = norm_series(r, m, shown);
   d.name = "|d|";
   d.colour = "#000000";
   d.width = 1.8;
-  for (std::size_t i : shown) {
-    d.x.push_back(r.path_length[i]);
-    d.y.push_back(r.deviation_um[m][i].norm());
-    d.hover.push_back(hover_text(r, m, i));
-  }
   plot.series.push_back(std::move(d));
   plot.max_hover_targets = 100;
   return plot;
@@ -91,15 +97,10 @@ LinePlot comparison_plot(const PredictedPath& r, const std::vector<std::size_t>&
   plot.x = {"path length", "mm", {}, {}};
   plot.y = {"|d|", "µm", {}, {}};
   for (std::size_t m = 0; m < r.models.size(); ++m) {
-    Series s;
+    Series s = norm_series(r, m, shown);
     s.name = model_name(r.models[m]);
     s.colour = model_colour(r.models[m]);
     s.style = model::descriptor(r.models[m]).dashed ? SeriesStyle::dashed : SeriesStyle::line;
-    for (std::size_t i : shown) {
-      s.x.push_back(r.path_length[i]);
-      s.y.push_back(r.deviation_um[m][i].norm());
-      s.hover.push_back(hover_text(r, m, i));
-    }
     plot.series.push_back(std::move(s));
   }
   plot.max_hover_targets = 150;

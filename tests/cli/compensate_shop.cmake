@@ -188,13 +188,14 @@ expect("machine.yaml:10:3 \\[tool_table.1\\]: error: duplicate key `1` \\(first 
 
 # --- Signals: an interrupted run leaves no OUT.tmp.XXXXXX ---------------------------
 # The program comes from a FIFO whose writer stays open: the command waits
-# for input with its temporary output created, and is signalled there.
+# for input with its temporary output created (waited for up to 10 s: a
+# loaded machine may take more than a second to start it), and is signalled there.
 file(MAKE_DIRECTORY ${WORK}/sig)
 foreach(cmd "compensate" "path" "predict")
   foreach(sig INT TERM)
     file(REMOVE ${WORK}/sig/fifo)
     execute_process(
-      COMMAND bash -c "set -m; mkfifo \"$1/fifo\"; (printf 'G21 G90\\nG0 X-10 Y-10 Z-10\\nG1 X-100 F500\\n'; sleep 30) >\"$1/fifo\" & w=$!; \"$0\" ${cmd} \"$1/fifo\" --machine \"$2\" -o \"$1/out.txt\" >/dev/null 2>&1 & pid=$!; sleep 1; ls \"$1\" | grep -c 'out.txt.tmp'; kill -${sig} $pid; wait $pid; rc=$?; kill -- -$w; echo rc=$rc"
+      COMMAND bash -c "set -m; mkfifo \"$1/fifo\"; (printf 'G21 G90\\nG0 X-10 Y-10 Z-10\\nG1 X-100 F500\\n'; sleep 30) >\"$1/fifo\" & w=$!; \"$0\" ${cmd} \"$1/fifo\" --machine \"$2\" -o \"$1/out.txt\" >/dev/null 2>&1 & pid=$!; for i in $(seq 100); do ls \"$1\" | grep -q 'out.txt.tmp' && break; sleep 0.1; done; ls \"$1\" | grep -c 'out.txt.tmp'; kill -${sig} $pid; wait $pid; rc=$?; kill -- -$w; echo rc=$rc"
               ${ABBE} ${WORK}/sig ${MACHINE}
       OUTPUT_VARIABLE out)
     file(GLOB left ${WORK}/sig/out.txt*)

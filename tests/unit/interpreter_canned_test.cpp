@@ -109,37 +109,15 @@ TEST(InterpreterCanned, G89DwellsAndFeedsOutToClearance) {
 TEST(InterpreterCanned, G83PecksOutToRAndBackDown) {
   // R 1, Q 0.8, bottom -2: pecks at 0.2, -0.6, -1.4, then -2; back down to
   // 0.254 mm above the previous depth.
-  const auto m = run_lines({"G0 Z3 F100", "G99 G83 X0 Y0 Z-2 R1 Q0.8"});
-  expect_moves(m, 2,
-               {{R, {0, 0, 3}},
-                {R, {0, 0, 1}},
-                {F, {0, 0, 0.2}},
-                {R, {0, 0, 1}},
-                {R, {0, 0, 0.454}},
-                {F, {0, 0, -0.6}},
-                {R, {0, 0, 1}},
-                {R, {0, 0, -0.346}},
-                {F, {0, 0, -1.4}},
-                {R, {0, 0, 1}},
-                {R, {0, 0, -1.146}},
-                {F, {0, 0, -2}},
-                {R, {0, 0, 1}}});
+  std::vector<Expected> pecks = {{R, {0, 0, 3}},     {R, {0, 0, 1}},      {F, {0, 0, 0.2}},
+                                 {R, {0, 0, 1}},     {R, {0, 0, 0.454}},  {F, {0, 0, -0.6}},
+                                 {R, {0, 0, 1}},     {R, {0, 0, -0.346}}, {F, {0, 0, -1.4}},
+                                 {R, {0, 0, 1}},     {R, {0, 0, -1.146}}, {F, {0, 0, -2}},
+                                 {R, {0, 0, 1}}};
+  expect_moves(run_lines({"G0 Z3 F100", "G99 G83 X0 Y0 Z-2 R1 Q0.8"}), 2, pecks);
   // G98: the pecks still retract to R; only the last retract goes to the initial level.
-  const auto g98 = run_lines({"G0 Z3 F100", "G98 G83 X0 Y0 Z-2 R1 Q0.8"});
-  expect_moves(g98, 2,
-               {{R, {0, 0, 3}},
-                {R, {0, 0, 1}},
-                {F, {0, 0, 0.2}},
-                {R, {0, 0, 1}},
-                {R, {0, 0, 0.454}},
-                {F, {0, 0, -0.6}},
-                {R, {0, 0, 1}},
-                {R, {0, 0, -0.346}},
-                {F, {0, 0, -1.4}},
-                {R, {0, 0, 1}},
-                {R, {0, 0, -1.146}},
-                {F, {0, 0, -2}},
-                {R, {0, 0, 3}}});
+  pecks.back() = {R, {0, 0, 3}};
+  expect_moves(run_lines({"G0 Z3 F100", "G98 G83 X0 Y0 Z-2 R1 Q0.8"}), 2, pecks);
 }
 
 TEST(InterpreterCanned, G73BacksOffOnly) {
