@@ -3,7 +3,6 @@
 #include <cmath>
 #include <optional>
 
-
 namespace abbe::compensate::detail {
 namespace {
 
@@ -22,8 +21,7 @@ void CycleCorrector::correct(const CycleBlock& c, CycleHost& host, BlockEditor& 
   const double level = c.incremental ? initial_level_delta_ : 0.0;
   const gcode::Word* l = c.incremental ? find_word(c.block, 'L') : nullptr;
   if (l && l->value > 1.0) {
-    repeated(c, host, editor, pieces, cmd, static_cast<int>(std::lround(l->value)), level,
-             summary);
+    repeated(c, host, editor, pieces, cmd, static_cast<int>(std::lround(l->value)), level, summary);
   } else {
     // The hole bottom: the feed end farthest from where the cycle leaves the tool.
     std::optional<std::size_t> hole;
@@ -41,8 +39,8 @@ void CycleCorrector::correct(const CycleBlock& c, CycleHost& host, BlockEditor& 
       const Vector3d h = host.prog(c.motions[*hole].end);
       for (int k = 0; k < 2; ++k) {
         const int a = ax[static_cast<std::size_t>(k)];
-        cmd[a] =
-            host.set_abs(editor, kAxis[a], h[a] + d[a] / c.unit, cmd[a], cmd[a], c.incremental, true);
+        cmd[a] = host.set_abs(editor, kAxis[a], h[a] + d[a] / c.unit, cmd[a], cmd[a], c.incremental,
+                              true);
       }
       // The depth word: absolute in G90; in G91 relative to the R plane, which
       // does not move, so it moves by the correction along the drill axis.

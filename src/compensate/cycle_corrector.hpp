@@ -47,7 +47,7 @@ struct CycleBlock {
   bool incremental = false;  // G91
   double unit = 1.0;         // mm per program unit
   int decimals = 4;
-  const NumberStyle& plain;  // of the words written anew
+  const NumberStyle& plain;                             // of the words written anew
   Eigen::Vector3d tip_after = Eigen::Vector3d::Zero();  // tool tip after the block, mm
   Eigen::Vector3d delta = Eigen::Vector3d::Zero();      // correction in force before it, mm
 };
@@ -73,7 +73,7 @@ class CycleCorrector {
   // drill axis (mm); the depth word takes it out.
   bool in_series_ = false;
   double initial_level_delta_ = 0.0;
-  double depth_delta_ = 0.0;  // correction in the modal depth word, mm
+  double depth_delta_ = 0.0;    // correction in the modal depth word, mm
   double written_depth_ = 0.0;  // the modal depth word of the original (program units)
 };
 

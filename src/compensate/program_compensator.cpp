@@ -178,6 +178,10 @@ class Compensator final : public detail::CycleHost {
     // What the interpreter read: the block itself, or its RS274/NGC form
     // (numbers in program units) for a program in another dialect.
     const gcode::Block& block = interp_.block_read();
+    if (interp_.modal().motion_mode == gcode::gcode_id(87) && motions_.size() > 1)
+      throw InputError({file_, block.line, anchor_column(block), "", raw},
+                       "back boring (G87) is not compensated: the level it bores up to (K) "
+                       "would stay nominal");
     // G80 (or no cycle since) ends a series of cycles: the interpreter's modal state says so.
     if (interp_.modal().motion_mode == gcode::gcode_id(80)) cycles_.end_series();
     if (!motions_.empty()) ++s_.motion_blocks;
@@ -222,9 +226,10 @@ class Compensator final : public detail::CycleHost {
     bool feed_block = false;
     if (motions_.size() == 1) cycles_.end_series();
     if (motions_.size() > 1) {
-      const CycleBlock cycle{block,   motions_,     points_,  interp_.plane(),
-                             interp_.retract_to_r(), incremental_, unit_, decimals_,
-                             plain_,  p_after_,     delta_};
+      const CycleBlock cycle{
+          block,        motions_, points_,   interp_.plane(), interp_.retract_to_r(),
+          incremental_, unit_,    decimals_, plain_,          p_after_,
+          delta_};
       cycles_.correct(cycle, *this, editor, pieces, cmd_, s_);
     } else if (motions_[0].kind == gcode::MotionKind::rapid || g53)
       rapid(block, editor, g53);

@@ -76,6 +76,23 @@ Eigen::Vector3d expand_canned_cycle(const CannedCycle& c,
         emit(CycleStep{Kind::dwell, Eigen::Vector3d(aa, bb, c.bottom), c.dwell});
         move(Kind::traverse, aa, bb, clear);
         break;
+      case gcode_id(87): {
+        // Back boring (rs274ngc): off the axis by the shift at R, spindle
+        // stopped and oriented, down through the hole to the bottom, back on
+        // the axis, spindle on, feed up to K and back down, stop and orient,
+        // off the axis again and out to the clearance level, then over the hole.
+        const double sa = aa + c.shift.x();
+        const double sb = bb + c.shift.y();
+        move(Kind::traverse, sa, sb, c.r);
+        move(Kind::traverse, sa, sb, c.bottom);
+        move(Kind::traverse, aa, bb, c.bottom);
+        move(Kind::feed, aa, bb, c.back_bore_level);
+        move(Kind::feed, aa, bb, c.bottom);
+        move(Kind::traverse, sa, sb, c.bottom);
+        move(Kind::traverse, sa, sb, clear);
+        move(Kind::traverse, aa, bb, clear);
+        break;
+      }
       case gcode_id(89):
         move(Kind::feed, aa, bb, c.bottom);
         emit(CycleStep{Kind::dwell, Eigen::Vector3d(aa, bb, c.bottom), c.dwell});

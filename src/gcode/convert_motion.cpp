@@ -339,6 +339,20 @@ void convert_cycle(ExecState& st, const BlockPlan& b, const Emit& emit) {
     cyc.dwell = c.has('P') ? c.word('P')->value : st.cycle_p;
     st.cycle_p = cyc.dwell;
   }
+  if (motion == gcode_id(87)) {
+    // rs274ngc: I, J and K in every G87 block (they are not modal), the
+    // spindle turning; abbe takes the XY plane only.
+    if (st.plane != Plane::xy)
+      ctx.fail(motion_word, "back boring (G87) is supported in the XY plane (G17) only");
+    for (char letter : {'I', 'J', 'K'})
+      if (!c.has(letter))
+        ctx.fail(motion_word, fmt::format("{} word missing for back boring (G87)", letter));
+    if (st.spindle_direction == 0)
+      ctx.fail(motion_word, "spindle not turning in back boring cycle G87");
+    cyc.shift = Eigen::Vector2d(c.word('I')->value, c.word('J')->value);
+    const double k = c.word('K')->value;
+    cyc.back_bore_level = st.incremental ? cyc.bottom + k : k;
+  }
   if (motion == gcode_id(73) || motion == gcode_id(83)) {
     if (!continued && !c.has('Q'))
       ctx.fail(motion_word, fmt::format("peck depth (Q) missing for canned cycle {}", gname));

@@ -95,8 +95,9 @@ struct RefusedCode {
   int id;
   const char* name;
 };
-constexpr std::array<RefusedCode, 11> kRefused{{
+constexpr std::array<RefusedCode, 12> kRefused{{
     {gcode_id(12, 1), "polar coordinate interpolation"},
+    {gcode_id(87), "back boring (Fanuc's shift Q)"},
     {gcode_id(16), "polar coordinate command"},
     {gcode_id(51), "scaling"},
     {gcode_id(51, 1), "programmable mirror image"},

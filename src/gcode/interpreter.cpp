@@ -35,7 +35,8 @@ Eigen::Vector3d ExecState::tip(const Eigen::Vector3d& p) const {
 bool is_cycle(int code) {
   return code == gcode_id(73) || code == gcode_id(74) || code == gcode_id(81) ||
          code == gcode_id(82) || code == gcode_id(83) || code == gcode_id(84) ||
-         code == gcode_id(85) || code == gcode_id(86) || code == gcode_id(89);
+         code == gcode_id(85) || code == gcode_id(86) || code == gcode_id(87) ||
+         code == gcode_id(89);
 }
 
 bool uses_axis_words(int non_modal) {

@@ -44,6 +44,7 @@ GInfo g_info(int id) {
     case gcode_id(84):
     case gcode_id(85):
     case gcode_id(86):
+    case gcode_id(87):
     case gcode_id(89):
       return {GGroup::motion};
     case gcode_id(17):
@@ -130,8 +131,6 @@ GInfo g_info(int id) {
     case gcode_id(72, 1):
     case gcode_id(72, 2):
       return {std::nullopt, "lathe cycle"};
-    case gcode_id(87):
-      return {std::nullopt, "back boring cycle"};
     case gcode_id(88):
       return {std::nullopt, "boring cycle with a manual retract"};
     case gcode_id(96):

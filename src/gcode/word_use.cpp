@@ -10,9 +10,9 @@ namespace abbe::gcode::detail {
 
 const std::vector<WordUse>& word_use_table() {
   static const std::vector<WordUse> table{
-      {'I', {gcode_id(2), gcode_id(3)}, false},
-      {'J', {gcode_id(2), gcode_id(3)}, false},
-      {'K', {gcode_id(2), gcode_id(3)}, false},
+      {'I', {gcode_id(2), gcode_id(3), gcode_id(87)}, false},
+      {'J', {gcode_id(2), gcode_id(3), gcode_id(87)}, false},
+      {'K', {gcode_id(2), gcode_id(3), gcode_id(87)}, false},
       {'R', {gcode_id(2), gcode_id(3), gcode_id(10)}, true},
       {'P',
        {gcode_id(2), gcode_id(3), gcode_id(4), gcode_id(10), gcode_id(64), gcode_id(74),

@@ -85,8 +85,8 @@ struct MiddleSyntax {
   const char* time;  // what comes before the tail's time
 };
 constexpr MiddleSyntax kCsvMiddle{",", "unknown", ",", ",", ",", ","};
-constexpr MiddleSyntax kJsonMiddle{",\"tool_length\":", "null",         ",\"line\":",
-                                   ",\"kind\":\"",        "\",\"feed\":", ",\"time\":"};
+constexpr MiddleSyntax kJsonMiddle{
+    ",\"tool_length\":", "null", ",\"line\":", ",\"kind\":\"", "\",\"feed\":", ",\"time\":"};
 
 template <class Out>
 void format_middle(Out& out, PathFormat format, const path::PathPoint& pt) {

@@ -225,6 +225,21 @@ TEST(CompensateProgram, RefusesABadProgramWithTheFrontEndsMessage) {
   EXPECT_EQ(here, front);
 }
 
+TEST(CompensateProgram, RefusesBackBoringByName) {
+  // G87's K level would stay nominal: refused at the block, not half-corrected.
+  const std::string g87 =
+      "G21 G90\nG0 X-100 Y-100 Z-200 F100 S1000 M3\nG87 X-101 Y-101 Z-210 R-195 I0.5 J0.25 "
+      "K-205\nG80\nM2\n";
+  try {
+    compensate_text(g87, "g87.nc", kSample);
+    FAIL() << "G87 was compensated";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().line, 3u);
+    EXPECT_NE(std::string(e.what()).find("back boring (G87) is not compensated"),
+              std::string::npos);
+  }
+}
+
 // 2 000 blocks keep the Debug test short; a 4 000-block run is in
 // tests/cli/compensate.cmake (cli_compensate_generated), 1 M blocks in
 // docs/compensation.md.

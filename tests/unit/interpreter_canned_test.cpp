@@ -109,15 +109,65 @@ TEST(InterpreterCanned, G89DwellsAndFeedsOutToClearance) {
 TEST(InterpreterCanned, G83PecksOutToRAndBackDown) {
   // R 1, Q 0.8, bottom -2: pecks at 0.2, -0.6, -1.4, then -2; back down to
   // 0.254 mm above the previous depth.
-  std::vector<Expected> pecks = {{R, {0, 0, 3}},     {R, {0, 0, 1}},      {F, {0, 0, 0.2}},
-                                 {R, {0, 0, 1}},     {R, {0, 0, 0.454}},  {F, {0, 0, -0.6}},
-                                 {R, {0, 0, 1}},     {R, {0, 0, -0.346}}, {F, {0, 0, -1.4}},
-                                 {R, {0, 0, 1}},     {R, {0, 0, -1.146}}, {F, {0, 0, -2}},
+  std::vector<Expected> pecks = {{R, {0, 0, 3}}, {R, {0, 0, 1}},      {F, {0, 0, 0.2}},
+                                 {R, {0, 0, 1}}, {R, {0, 0, 0.454}},  {F, {0, 0, -0.6}},
+                                 {R, {0, 0, 1}}, {R, {0, 0, -0.346}}, {F, {0, 0, -1.4}},
+                                 {R, {0, 0, 1}}, {R, {0, 0, -1.146}}, {F, {0, 0, -2}},
                                  {R, {0, 0, 1}}};
   expect_moves(run_lines({"G0 Z3 F100", "G99 G83 X0 Y0 Z-2 R1 Q0.8"}), 2, pecks);
   // G98: the pecks still retract to R; only the last retract goes to the initial level.
   pecks.back() = {R, {0, 0, 3}};
   expect_moves(run_lines({"G0 Z3 F100", "G98 G83 X0 Y0 Z-2 R1 Q0.8"}), 2, pecks);
+}
+
+TEST(InterpreterCanned, G87BacksBoresThroughTheShift) {
+  // The moves rs274 (LinuxCNC 2.9) makes for the same blocks.
+  std::vector<Expected> bore = {{R, {1, 1, 5}},       {R, {1, 1, 2}},       {R, {1.5, 1.25, 2}},
+                                {R, {1.5, 1.25, -1}}, {R, {1, 1, -1}},      {F, {1, 1, -0.5}},
+                                {F, {1, 1, -1}},      {R, {1.5, 1.25, -1}}, {R, {1.5, 1.25, 2}},
+                                {R, {1, 1, 2}}};
+  const std::string start = "G0 X0 Y0 Z5 F100 S1000 M3";
+  expect_moves(run_lines({start, "G99 G87 X1 Y1 Z-1 R2 I0.5 J0.25 K-0.5"}), 2, bore);
+  // G98: out to the initial level.
+  bore[8] = {R, {1.5, 1.25, 5}};
+  bore[9] = {R, {1, 1, 5}};
+  expect_moves(run_lines({start, "G98 G87 X1 Y1 Z-1 R2 I0.5 J0.25 K-0.5"}), 2, bore);
+  // G91 with L2: K is taken from the bottom; the second hole from R.
+  const auto inc = run_lines({start, "G91 G99 G87 X1 Y1 Z-3 R-3 I0.5 J0.25 K1 L2"});
+  expect_moves(inc, 2,
+               {{R, {1, 1, 5}},
+                {R, {1, 1, 2}},
+                {R, {1.5, 1.25, 2}},
+                {R, {1.5, 1.25, -1}},
+                {R, {1, 1, -1}},
+                {F, {1, 1, 0}},
+                {F, {1, 1, -1}},
+                {R, {1.5, 1.25, -1}},
+                {R, {1.5, 1.25, 2}},
+                {R, {1, 1, 2}},
+                {R, {2, 2, 2}},
+                {R, {2.5, 2.25, 2}},
+                {R, {2.5, 2.25, -1}},
+                {R, {2, 2, -1}},
+                {F, {2, 2, 0}},
+                {F, {2, 2, -1}},
+                {R, {2.5, 2.25, -1}},
+                {R, {2.5, 2.25, 2}},
+                {R, {2, 2, 2}}});
+  const auto error_of = [](const std::vector<std::string>& lines) -> std::string {
+    try {
+      run_lines(lines);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_NE(error_of({start, "G87 X1 Y1 Z-1 R2 I0.5 K-0.5"}).find("J word missing for back boring"),
+            std::string::npos);
+  EXPECT_NE(error_of({"G0 Z5 F100", "G87 X1 Y1 Z-1 R2 I0.5 J0 K-0.5"}).find("spindle not turning"),
+            std::string::npos);
+  EXPECT_NE(error_of({start, "G18", "G87 X1 Y1 Z-1 R2 I0.5 J0 K-0.5"}).find("XY plane (G17) only"),
+            std::string::npos);
 }
 
 TEST(InterpreterCanned, G73BacksOffOnly) {

@@ -1,5 +1,5 @@
 #pragma once
-// Canned drilling cycles (G73, G81, G82, G83, G85, G89) expanded into the
+// Canned drilling cycles (G73, G74, G81-G87, G89) expanded into the
 // moves rs274ngc (LinuxCNC 2.9) makes. Coordinates are (aa, bb, cc) in the
 // program frame, in program units (as rs274ngc computes them, so that the
 // peck loop makes the same decisions): aa, bb the plane's first and second
@@ -32,6 +32,11 @@ struct CannedCycle {
   int repeats = 1;           // L
   double dwell = 0.0;        // P, seconds (G82, G86, G89; G74/G84: 0 when not given)
   double peck = 0.0;         // Q (G73, G83), > 0
+  // G87 (back boring, XY plane): the shift (I, J) the tool moves off the
+  // hole's axis to pass through the bore, and the level K it bores up to
+  // from the bottom (absolute).
+  Eigen::Vector2d shift = Eigen::Vector2d::Zero();
+  double back_bore_level = 0.0;
   // G73/G83: how far above the previous depth the tool returns (0.010 in;
   // rs274ngc: 0.010 in inch programs, 0.010 * 25.4 in mm programs).
   double peck_clearance = 0.254;
