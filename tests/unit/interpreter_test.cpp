@@ -224,7 +224,7 @@ TEST(Interpreter, ModalConflictsAreErrors) {
 
 TEST(Interpreter, UnusedWordsAreErrors) {
   EXPECT_NE(error_of({"G0 X1 R2"}).find("R word with no"), std::string::npos);
-  EXPECT_NE(error_of({"G0 X1 I2"}).find("I word with no G2 or G3"), std::string::npos);
+  EXPECT_NE(error_of({"G0 X1 I2"}).find("I word with no G2, G3 or G87"), std::string::npos);
   EXPECT_NE(error_of({"G0 X1 P2"}).find("P word with no"), std::string::npos);
   EXPECT_NE(error_of({"G0 X1 Q2"}).find("Q word with no"), std::string::npos);
   EXPECT_NE(error_of({"G0 X1 L2"}).find("L word with no"), std::string::npos);
@@ -248,7 +248,6 @@ TEST(Interpreter, UnsupportedConstructsAreRefusedByName) {
       {"G7", "lathe diameter/radius mode (G7)"},
       {"G16", "polar coordinate mode (G16) is not supported"},
       {"G0 A10", "rotary axis A moves (from A0 to A10)"},
-      {"G87 X0 Z-1 R1", "back boring cycle (G87) is not supported"},
       {"G88 X0 Z-1 R1 P1", "boring cycle with a manual retract (G88) is not supported"},
       {"G10 L11 P1 Z0", "tool data relative to a fixture (G10 L11) is not supported"},
       {"G10 L2 P8 X0", "coordinate system beyond G59 (G10 L2 P8)"},
