@@ -68,6 +68,53 @@ AxisRecord read_record(const Reader& r, const YAML::Node& node, Axis axis,
   return rec;
 }
 
+// A standard uncertainty: finite and not negative.
+double read_u(const Reader& r, const YAML::Node& node, const std::string& field) {
+  const double u = r.number(node, field);
+  if (u < 0.0)
+    r.fail(node, field, fmt::format("a standard uncertainty must not be negative (got {})", u));
+  return u;
+}
+
+// The optional `uncertainty` key (docs/formats.md).
+CampaignUncertainty read_uncertainty(const Reader& r, const YAML::Node& node) {
+  const std::string f = "uncertainty";
+  r.check_keys(node, f, {"laser", "components", "reflector_mm", "squareness"});
+  CampaignUncertainty u;
+  u.given = true;
+  if (const YAML::Node laser = node["laser"]) {
+    r.check_keys(laser, f + ".laser", {"constant_um", "ppm"});
+    if (laser["constant_um"])
+      u.laser_constant_um = read_u(r, laser["constant_um"], f + ".laser.constant_um");
+    if (laser["ppm"]) u.laser_ppm = read_u(r, laser["ppm"], f + ".laser.ppm");
+  }
+  if (const YAML::Node comps = node["components"]) {
+    const std::string fc = f + ".components";
+    r.expect_map(comps, fc);
+    for (const auto& kv : comps) {
+      const std::string key = r.scalar_key(kv.first, fc);
+      const auto id = parse_component(key);
+      if (!id)
+        r.fail(kv.first, Reader::join(fc, key),
+               fmt::format("`{}` is not a component name (EXX … ECZ; squareness goes under "
+                           "uncertainty.squareness)",
+                           key));
+      u.component[static_cast<std::size_t>(index(id->axis) * kComponentsPerAxis + id->d)] =
+          read_u(r, kv.second, Reader::join(fc, key));
+    }
+  }
+  if (const YAML::Node refl = node["reflector_mm"])
+    u.reflector_mm = read_u(r, refl, f + ".reflector_mm");
+  if (const YAML::Node sq = node["squareness"]) {
+    r.check_keys(sq, f + ".squareness", {"EC0Y", "EB0Z", "EA0Z"});
+    const char* names[3] = {"EC0Y", "EB0Z", "EA0Z"};
+    for (std::size_t i = 0; i < 3; ++i)
+      if (sq[names[i]])
+        u.squareness_urad[i] = read_u(r, sq[names[i]], f + ".squareness." + names[i]);
+  }
+  return u;
+}
+
 }  // namespace
 
 Machine Machine::load(const std::string& yaml_path) {
@@ -86,7 +133,7 @@ Machine Machine::parse(const std::string& yaml_text, const std::string& file,
   if (!root.IsMap()) r.fail(root, "", "a machine file is a YAML mapping (see docs/formats.md)");
   r.check_keys(root, "",
                {"name", "chain", "travel", "tool_length", "tool_table", "work_offsets",
-                "home_positions", "squareness", "table", "out_of_range", "axes"});
+                "home_positions", "squareness", "table", "out_of_range", "axes", "uncertainty"});
 
   MachineSpec spec;
   spec.file = file;
@@ -152,6 +199,8 @@ Machine Machine::parse(const std::string& yaml_text, const std::string& file,
     if (sq["EB0Z"]) spec.squareness.eb0z = r.number(sq["EB0Z"], "squareness.EB0Z");
     if (sq["EA0Z"]) spec.squareness.ea0z = r.number(sq["EA0Z"], "squareness.EA0Z");
   }
+
+  if (const YAML::Node u = root["uncertainty"]) spec.uncertainty = read_uncertainty(r, u);
 
   if (const YAML::Node oor = root["out_of_range"]) {
     std::string p = r.string(oor, "out_of_range");
