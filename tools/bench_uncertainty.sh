@@ -37,7 +37,7 @@ echo "abbe: $abbe; draws: $draws; best of $repeat (CPU s)"
 printf '%-22s %-7s %7s %9s %12s %8s\n' program model points plain "uncertainty" ratio
 for p in nc-samples/thesis-toolpath-1.ngc nc-samples/thesis-toolpath-2.ngc; do
   for m in ae-arm all; do
-    points=$("$abbe" -q predict "$p" --machine "$machine" --model "$m" -o - | tail -n +2 | wc -l)
+    points=$("$abbe" -q predict "$p" --machine "$machine" --model "$m" -o - 2>/dev/null | tail -n +2 | wc -l)
     a=$(best "$abbe" -q predict "$p" --machine "$machine" --model "$m" -o "$tmp/plain.csv")
     b=$(best "$abbe" -q predict "$p" --machine "$machine" --model "$m" --uncertainty "$draws" \
       -o "$tmp/u.csv")
