@@ -115,6 +115,71 @@ CampaignUncertainty read_uncertainty(const Reader& r, const YAML::Node& node) {
   return u;
 }
 
+bool read_flag(const Reader& r, const YAML::Node& node, const std::string& field) {
+  const std::string v = r.string(node, field);
+  if (v == "true") return true;
+  if (v == "false") return false;
+  r.fail(node, field, fmt::format("\"{}\" is not true or false", v));
+}
+
+// The optional `conventions` key (docs/formats.md), checked against the table.
+ReferenceConventions read_conventions(const Reader& r, const YAML::Node& node,
+                                      const ComponentTable& table) {
+  const std::string f = "conventions";
+  r.expect_map(node, f);
+  ReferenceConventions rc;
+  for (const auto& kv : node) {
+    const std::string key = r.scalar_key(kv.first, f);
+    const std::string fk = Reader::join(f, key);
+    if (key == "squareness") {
+      const std::string v = r.string(kv.second, fk);
+      if (v != "same_reference" && v != "independent")
+        r.fail(kv.second, fk, fmt::format("\"{}\" is not same_reference or independent", v));
+      rc.squareness_same_reference = v == "same_reference";
+      continue;
+    }
+    const auto id = parse_component(key);
+    if (!id)
+      r.fail(kv.first, fk,
+             fmt::format("`{}` is not a component name (EXX … ECZ) nor `squareness`", key));
+    const bool straightness = id->linear() && id->d != index(id->axis);
+    r.check_keys(kv.second, fk,
+                 id->linear() ? std::set<std::string>{"reference_mm", "slope_removed"}
+                              : std::set<std::string>{"reference_mm", "relative"});
+    ComponentConvention c;
+    c.given = true;
+    c.reference_mm = r.number(r.required(kv.second, "reference_mm", fk), fk + ".reference_mm");
+    if (const YAML::Node sl = kv.second["slope_removed"]) {
+      c.slope_removed = read_flag(r, sl, fk + ".slope_removed");
+      if (c.slope_removed && !straightness)
+        r.fail(sl, fk + ".slope_removed",
+               fmt::format("{} is a positioning component: only straightness has a slope to "
+                           "remove (a positioning slope is a scale error, not a convention)",
+                           key));
+    }
+    if (const YAML::Node rel = kv.second["relative"])
+      c.relative = read_flag(r, rel, fk + ".relative");
+    if (!id->linear() && !c.relative)
+      r.fail(kv.second, fk + ".relative",
+             fmt::format("an angular convention is `relative: true` (absolute angles need no "
+                         "entry)"));
+    // The reference is one of the positions the component was measured at
+    // (within its measured range).
+    const ComponentSeries* s = table.find(*id, TableDirection::mean);
+    if (!s) s = table.find(*id, TableDirection::fwd);
+    const YAML::Node ref = kv.second["reference_mm"];
+    if (!s)
+      r.fail(ref, fk + ".reference_mm", fmt::format("the component table has no data for {}", key));
+    if (c.reference_mm < s->position_mm.front() - 1e-6 ||
+        c.reference_mm > s->position_mm.back() + 1e-6)
+      r.fail(ref, fk + ".reference_mm",
+             fmt::format("the reference {} mm lies outside the measured range of {} [{}, {}] mm",
+                         c.reference_mm, key, s->position_mm.front(), s->position_mm.back()));
+    rc.component[static_cast<std::size_t>(index(id->axis) * kComponentsPerAxis + id->d)] = c;
+  }
+  return rc;
+}
+
 }  // namespace
 
 Machine Machine::load(const std::string& yaml_path) {
@@ -131,9 +196,10 @@ Machine Machine::parse(const std::string& yaml_text, const std::string& file,
   const Reader r(file, yaml_text);
   const YAML::Node root = r.load(yaml_text);  // const: lookups never insert keys
   if (!root.IsMap()) r.fail(root, "", "a machine file is a YAML mapping (see docs/formats.md)");
-  r.check_keys(root, "",
-               {"name", "chain", "travel", "tool_length", "tool_table", "work_offsets",
-                "home_positions", "squareness", "table", "out_of_range", "axes", "uncertainty"});
+  r.check_keys(
+      root, "",
+      {"name", "chain", "travel", "tool_length", "tool_table", "work_offsets", "home_positions",
+       "squareness", "table", "out_of_range", "axes", "uncertainty", "conventions"});
 
   MachineSpec spec;
   spec.file = file;
@@ -237,6 +303,8 @@ Machine Machine::parse(const std::string& yaml_text, const std::string& file,
                          spec.table_file));
   }
   spec.table = ComponentTable::load(spec.table_file);
+  if (const YAML::Node conv = root["conventions"])
+    spec.conventions = read_conventions(r, conv, spec.table);
 
   // Every axis with table data needs its measurement record (the arms).
   for (Axis a : kAxes) {

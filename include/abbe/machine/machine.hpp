@@ -14,6 +14,7 @@
 #include "abbe/machine/campaign_uncertainty.hpp"
 #include "abbe/machine/component_table.hpp"
 #include "abbe/machine/kinematic_chain.hpp"
+#include "abbe/machine/reference_conventions.hpp"
 
 namespace abbe::machine {
 
@@ -62,8 +63,9 @@ struct MachineSpec {
   OutOfRangePolicy out_of_range = OutOfRangePolicy::clamp;
   std::array<AxisRecord, 3> axes;
   ComponentTable table;
-  std::string table_file;           // resolved path of the component table
-  CampaignUncertainty uncertainty;  // optional `uncertainty` key (not given: zero)
+  std::string table_file;            // resolved path of the component table
+  CampaignUncertainty uncertainty;   // optional `uncertainty` key (not given: zero)
+  ReferenceConventions conventions;  // optional `conventions` key (not given: absolute)
 };
 
 class Machine {
