@@ -7,6 +7,7 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <string_view>
 
 #include "abbe/io/csv_reader.hpp"
@@ -16,8 +17,9 @@ namespace abbe::machine {
 
 namespace {
 
-constexpr std::array<std::string_view, 5> kColumns{"axis", "component", "position_mm", "direction",
-                                                   "value"};
+// The sixth column, `uncertainty`, is optional.
+constexpr std::array<std::string_view, 6> kColumns{"axis",      "component", "position_mm",
+                                                   "direction", "value",     "uncertainty"};
 
 }  // namespace
 
@@ -51,11 +53,16 @@ ComponentTable ComponentTable::parse(const std::string& text, const std::string&
   std::istringstream in(text);
   io::CsvReader csv(in, file, io::CsvReader::Options{'#'});
   csv.read_header();
-  for (std::size_t i = 0; i < csv.header_names().size() || i < kColumns.size(); ++i)
-    if (i >= csv.header_names().size() || i >= kColumns.size() ||
-        csv.header_names()[i] != kColumns[i])
+  const std::size_t columns =
+      csv.header_names().size() == kColumns.size() && csv.header_names().back() == kColumns.back()
+          ? kColumns.size()
+          : kColumns.size() - 1;
+  table.has_uncertainty_ = columns == kColumns.size();
+  for (std::size_t i = 0; i < csv.header_names().size() || i < columns; ++i)
+    if (i >= csv.header_names().size() || i >= columns || csv.header_names()[i] != kColumns[i])
       csv.fail(i < csv.fields().size() ? csv.fields()[i].column : 1, "header",
-               "the header must be \"axis,component,position_mm,direction,value\"");
+               "the header must be \"axis,component,position_mm,direction,value\" (optionally "
+               "followed by \",uncertainty\")");
   auto error = [&](std::size_t column, std::string_view field, const std::string& msg) {
     csv.fail(column, field, msg);
   };
@@ -64,11 +71,10 @@ ComponentTable ComponentTable::parse(const std::string& text, const std::string&
     const std::size_t line_no = csv.line();
     const std::vector<io::CsvField>& fields = csv.fields();
     const std::size_t n = fields.size();
-    if (n > kColumns.size())
-      error(fields[kColumns.size()].column, "",
-            fmt::format("more than {} fields", kColumns.size()));
-    if (n != kColumns.size())
-      error(csv.line_text().size() + 1, kColumns[n], fmt::format("{} fields instead of 5", n));
+    if (n > columns) error(fields[columns].column, "", fmt::format("more than {} fields", columns));
+    if (n != columns)
+      error(csv.line_text().size() + 1, kColumns[n],
+            fmt::format("{} fields instead of {}", n, columns));
 
     auto axis = parse_axis(fields[0].text);
     if (!axis)
@@ -88,10 +94,11 @@ ComponentTable ComponentTable::parse(const std::string& text, const std::string&
       error(fields[1].column, "component",
             fmt::format("component {} belongs to axis {}, not {}", fields[1].text,
                         axis_letter(comp->axis), axis_letter(*axis)));
-    double position = 0.0, value = 0.0;
-    for (int f : {2, 4}) {
+    double position = 0.0, value = 0.0, u = 0.0;
+    for (int f : {2, 4, 5}) {
+      if (static_cast<std::size_t>(f) >= columns) break;
       const io::CsvField& fld = fields[static_cast<std::size_t>(f)];
-      double& out = f == 2 ? position : value;
+      double& out = f == 2 ? position : f == 4 ? value : u;
       const char* b = fld.text.data();
       const char* e = b + fld.text.size();
       if (b != e && *b == '+') ++b;
@@ -103,6 +110,9 @@ ComponentTable ComponentTable::parse(const std::string& text, const std::string&
         error(fld.column, kColumns[static_cast<std::size_t>(f)],
               fmt::format("{} must be finite", kColumns[static_cast<std::size_t>(f)]));
     }
+    if (u < 0.0)
+      error(fields[5].column, "uncertainty",
+            fmt::format("the standard uncertainty {} is negative", fields[5].text));
     TableDirection dir = TableDirection::mean;
     if (fields[3].text == "fwd")
       dir = TableDirection::fwd;
@@ -130,7 +140,7 @@ ComponentTable ComponentTable::parse(const std::string& text, const std::string&
 
     int& sl = table.slot_[slot(*comp, dir)];
     if (sl == 0) {
-      table.series_.push_back(ComponentSeries{*comp, dir, {}, {}, {}});
+      table.series_.push_back(ComponentSeries{*comp, dir, {}, {}, {}, {}});
       sl = static_cast<int>(table.series_.size());
     }
     ComponentSeries& s = table.series_[static_cast<std::size_t>(sl - 1)];
@@ -144,6 +154,7 @@ ComponentTable ComponentTable::parse(const std::string& text, const std::string&
     s.position_mm.push_back(position);
     s.value.push_back(value);
     s.line.push_back(line_no);
+    if (table.has_uncertainty_) s.u.push_back(u);
   }
 
   // Whole-series checks: bidirectional pairs complete, units plausible.
@@ -196,6 +207,18 @@ bool ComponentTable::axis_has_components(Axis a) const {
   for (int d = 0; d < kComponentsPerAxis; ++d)
     if (has(ComponentId{a, d})) return true;
   return false;
+}
+
+ComponentTable ComponentTable::with_values(const std::vector<std::vector<double>>& values) const {
+  if (values.size() != series_.size())
+    throw std::invalid_argument("with_values: another number of series");
+  ComponentTable t = *this;
+  for (std::size_t i = 0; i < series_.size(); ++i) {
+    if (values[i].size() != series_[i].value.size())
+      throw std::invalid_argument("with_values: another number of values");
+    t.series_[i].value = values[i];
+  }
+  return t;
 }
 
 }  // namespace abbe::machine

@@ -41,4 +41,13 @@ Machine::Machine(MachineSpec spec) : spec_(std::move(spec)) {
                  fmt::join(missing, ", "));
 }
 
+Machine Machine::with_campaign(ComponentTable table, std::array<AxisRecord, 3> axes,
+                               Squareness squareness) const {
+  MachineSpec spec = spec_;
+  spec.table = std::move(table);
+  spec.axes = axes;
+  spec.squareness = squareness;
+  return Machine(std::move(spec), Unchecked{});
+}
+
 }  // namespace abbe::machine

@@ -95,6 +95,118 @@ std::map<int, double> read_tool_map(const Reader& r, const YAML::Node& root, con
   return out;
 }
 
+// A standard uncertainty: finite and not negative.
+double read_u(const Reader& r, const YAML::Node& node, const std::string& field) {
+  const double u = r.number(node, field);
+  if (u < 0.0)
+    r.fail(node, field, fmt::format("a standard uncertainty must not be negative (got {})", u));
+  return u;
+}
+
+// The optional `uncertainty` key (docs/formats.md).
+CampaignUncertainty read_uncertainty(const Reader& r, const YAML::Node& node) {
+  const std::string f = "uncertainty";
+  r.check_keys(node, f, {"laser", "components", "reflector_mm", "squareness"});
+  CampaignUncertainty u;
+  u.given = true;
+  if (const YAML::Node laser = node["laser"]) {
+    r.check_keys(laser, f + ".laser", {"constant_um", "ppm"});
+    if (laser["constant_um"])
+      u.laser_constant_um = read_u(r, laser["constant_um"], f + ".laser.constant_um");
+    if (laser["ppm"]) u.laser_ppm = read_u(r, laser["ppm"], f + ".laser.ppm");
+  }
+  if (const YAML::Node comps = node["components"]) {
+    const std::string fc = f + ".components";
+    r.expect_map(comps, fc);
+    for (const auto& kv : comps) {
+      const std::string key = r.scalar_key(kv.first, fc);
+      const auto id = parse_component(key);
+      if (!id)
+        r.fail(kv.first, Reader::join(fc, key),
+               fmt::format("`{}` is not a component name (EXX … ECZ; squareness goes under "
+                           "uncertainty.squareness)",
+                           key));
+      u.component[static_cast<std::size_t>(index(id->axis) * kComponentsPerAxis + id->d)] =
+          read_u(r, kv.second, Reader::join(fc, key));
+    }
+  }
+  if (const YAML::Node refl = node["reflector_mm"])
+    u.reflector_mm = read_u(r, refl, f + ".reflector_mm");
+  if (const YAML::Node sq = node["squareness"]) {
+    r.check_keys(sq, f + ".squareness", {"EC0Y", "EB0Z", "EA0Z"});
+    const char* names[3] = {"EC0Y", "EB0Z", "EA0Z"};
+    for (std::size_t i = 0; i < 3; ++i)
+      if (sq[names[i]])
+        u.squareness_urad[i] = read_u(r, sq[names[i]], f + ".squareness." + names[i]);
+  }
+  return u;
+}
+
+bool read_flag(const Reader& r, const YAML::Node& node, const std::string& field) {
+  const std::string v = r.string(node, field);
+  if (v == "true") return true;
+  if (v == "false") return false;
+  r.fail(node, field, fmt::format("\"{}\" is not true or false", v));
+}
+
+// The optional `conventions` key (docs/formats.md), checked against the table.
+ReferenceConventions read_conventions(const Reader& r, const YAML::Node& node,
+                                      const ComponentTable& table) {
+  const std::string f = "conventions";
+  r.expect_map(node, f);
+  ReferenceConventions rc;
+  for (const auto& kv : node) {
+    const std::string key = r.scalar_key(kv.first, f);
+    const std::string fk = Reader::join(f, key);
+    if (key == "squareness") {
+      const std::string v = r.string(kv.second, fk);
+      if (v != "same_reference" && v != "independent")
+        r.fail(kv.second, fk, fmt::format("\"{}\" is not same_reference or independent", v));
+      rc.squareness_same_reference = v == "same_reference";
+      continue;
+    }
+    const auto id = parse_component(key);
+    if (!id)
+      r.fail(kv.first, fk,
+             fmt::format("`{}` is not a component name (EXX … ECZ) nor `squareness`", key));
+    const bool straightness = id->linear() && id->d != index(id->axis);
+    r.check_keys(kv.second, fk,
+                 id->linear() ? std::set<std::string>{"reference_mm", "slope_removed"}
+                              : std::set<std::string>{"reference_mm", "relative"});
+    ComponentConvention c;
+    c.given = true;
+    c.reference_mm = r.number(r.required(kv.second, "reference_mm", fk), fk + ".reference_mm");
+    if (const YAML::Node sl = kv.second["slope_removed"]) {
+      c.slope_removed = read_flag(r, sl, fk + ".slope_removed");
+      if (c.slope_removed && !straightness)
+        r.fail(sl, fk + ".slope_removed",
+               fmt::format("{} is a positioning component: only straightness has a slope to "
+                           "remove (a positioning slope is a scale error, not a convention)",
+                           key));
+    }
+    if (const YAML::Node rel = kv.second["relative"])
+      c.relative = read_flag(r, rel, fk + ".relative");
+    if (!id->linear() && !c.relative)
+      r.fail(kv.second, fk + ".relative",
+             fmt::format("an angular convention is `relative: true` (absolute angles need no "
+                         "entry)"));
+    // The reference is one of the positions the component was measured at
+    // (within its measured range).
+    const ComponentSeries* s = table.find(*id, TableDirection::mean);
+    if (!s) s = table.find(*id, TableDirection::fwd);
+    const YAML::Node ref = kv.second["reference_mm"];
+    if (!s)
+      r.fail(ref, fk + ".reference_mm", fmt::format("the component table has no data for {}", key));
+    if (c.reference_mm < s->position_mm.front() - 1e-6 ||
+        c.reference_mm > s->position_mm.back() + 1e-6)
+      r.fail(ref, fk + ".reference_mm",
+             fmt::format("the reference {} mm lies outside the measured range of {} [{}, {}] mm",
+                         c.reference_mm, key, s->position_mm.front(), s->position_mm.back()));
+    rc.component[static_cast<std::size_t>(index(id->axis) * kComponentsPerAxis + id->d)] = c;
+  }
+  return rc;
+}
+
 }  // namespace
 
 Machine Machine::load(const std::string& yaml_path) {
@@ -113,7 +225,8 @@ Machine Machine::parse(const std::string& yaml_text, const std::string& file,
   if (!root.IsMap()) r.fail(root, "", "a machine file is a YAML mapping (see docs/formats.md)");
   r.check_keys(root, "",
                {"name", "chain", "travel", "tool_length", "tool_table", "tool_diameters",
-                "work_offsets", "home_positions", "squareness", "table", "out_of_range", "axes"});
+                "work_offsets", "home_positions", "squareness", "table", "out_of_range", "axes",
+                "uncertainty", "conventions"});
 
   MachineSpec spec;
   spec.file = file;
@@ -164,6 +277,8 @@ Machine Machine::parse(const std::string& yaml_text, const std::string& file,
     if (sq["EA0Z"]) spec.squareness.ea0z = r.number(sq["EA0Z"], "squareness.EA0Z");
   }
 
+  if (const YAML::Node u = root["uncertainty"]) spec.uncertainty = read_uncertainty(r, u);
+
   if (const YAML::Node oor = root["out_of_range"]) {
     std::string p = r.string(oor, "out_of_range");
     if (p == "clamp")
@@ -199,6 +314,8 @@ Machine Machine::parse(const std::string& yaml_text, const std::string& file,
                          spec.table_file));
   }
   spec.table = ComponentTable::load(spec.table_file);
+  if (const YAML::Node conv = root["conventions"])
+    spec.conventions = read_conventions(r, conv, spec.table);
 
   // Every axis with table data needs its measurement record (the arms).
   for (Axis a : kAxes) {

@@ -47,6 +47,7 @@ PredictionSummary summarize(const ModelSet& models, const machine::Machine& mach
   for (std::size_t i = 0; i < models.size(); ++i)
     s.models.push_back({models.kinds()[i], models.stats()[i], models.cutting_stats()[i],
                         models.rapid_stats()[i], models.out_of_range_lookups(i)});
+  s.conventions = machine::analyse_conventions(machine);
   return s;
 }
 
@@ -67,6 +68,10 @@ std::string summary_json(const PredictionSummary& s) {
     }
     j["models"].push_back(o);
   }
+  if (s.conventions.any)
+    j["conventions"] = {{"absolute_determined", false},
+                        {"aligned_determined", s.conventions.aligned_determined},
+                        {"notes", s.conventions.notes}};
   return j.dump(2);
 }
 
@@ -83,6 +88,13 @@ std::string summary_table(const PredictionSummary& s) {
       text += stats_row(name, "rapid", m.rapid, "");
     }
     text += stats_row(name, "all", m.stats, std::to_string(m.out_of_range_lookups));
+  }
+  if (s.conventions.any) {
+    text += fmt::format(
+        "reference conventions of the tables: the absolute deviation is not determined (an "
+        "offset and a rotation are free); the part after its set-up (--align) is {}\n",
+        s.conventions.aligned_determined ? "determined" : "NOT determined");
+    for (const std::string& n : s.conventions.notes) text += "  " + n + "\n";
   }
   return text;
 }

@@ -28,15 +28,21 @@ void num3(Out& out, const Eigen::Vector3d& v, const char (&s0)[N0], const char (
 }  // namespace
 
 PredictionWriter::PredictionWriter(PathFormat format, std::vector<model::ModelKind> kinds,
-                                   ByteSink sink, bool aligned)
-    : format_(format), kinds_(std::move(kinds)), sink_(std::move(sink)), aligned_(aligned) {
+                                   ByteSink sink, bool aligned, bool uncertainty)
+    : format_(format),
+      kinds_(std::move(kinds)),
+      sink_(std::move(sink)),
+      aligned_(aligned),
+      uncertain_(uncertainty) {
   for (auto k : kinds_) {
     const model::ModelDescriptor& d = model::descriptor(k);
     second_order_.push_back(d.second_order);
     json_keys_.push_back(fmt::format(", \"{}\": {{\"px\": ", d.name));
     row_max_ += 16 * (io::kFixed6MaxChars + 8) + json_keys_.back().size();
     if (aligned_) row_max_ += 4 * (io::kFixed6MaxChars + 10);
+    if (uncertain_) row_max_ += 3 * (io::kFixed6MaxChars + 10);
   }
+  u_um_.assign(kinds_.size(), Eigen::Vector3d::Zero());
   pred_.resize(kinds_.size());
   aligned_um_.assign(kinds_.size(), Eigen::Vector3d::Zero());
   buf_.reserve(kChunk + row_max_);
@@ -49,6 +55,7 @@ PredictionWriter::PredictionWriter(PathFormat format, std::vector<model::ModelKi
       if (all) header += fmt::format(",px{0},py{0},pz{0},dx{0},dy{0},dz{0},d{0}", s);
       if (second_order_[i]) header += fmt::format(",dx2{0},dy2{0},dz2{0}", s);
       if (aligned_) header += fmt::format(",adx{0},ady{0},adz{0},ad{0}", s);
+      if (uncertain_) header += fmt::format(",u_dx{0},u_dy{0},u_dz{0}", s);
     }
     if (!all) header += ",line";
     put(header + "\n");
@@ -66,6 +73,14 @@ void PredictionWriter::write(const model::EvalPoint& p, std::size_t line,
                              const std::vector<double>& norms,
                              const std::vector<Eigen::Vector3d>& aligned_um) {
   aligned_um_ = aligned_um;
+  write_row(p, line, devs, norms);
+}
+
+void PredictionWriter::write_uncertain(const model::EvalPoint& p, std::size_t line,
+                                       const std::vector<model::Deviation>& devs,
+                                       const std::vector<double>& norms,
+                                       const std::vector<Eigen::Vector3d>& u_um) {
+  u_um_ = u_um;
   write_row(p, line, devs, norms);
 }
 
@@ -89,6 +104,7 @@ void PredictionWriter::write_row(const model::EvalPoint& p, std::size_t line,
     pred_[i] = p.p + units::kMmPerUm * d.e_um;
     magnitude += l1(d.e_um) + l1(d.second_order_um);
     if (aligned_) magnitude += 2.0 * l1(aligned_um_[i]);
+    if (uncertain_) magnitude += l1(u_um_[i]);
   }
   if (io::fixed6_fits(magnitude)) {
     const std::size_t old_size = buf_.size();
@@ -136,6 +152,7 @@ void PredictionWriter::row(Out& out, const model::EvalPoint& p,
         out.ch(',');
         out.num(aligned_um_[i].norm());
       }
+      if (uncertain_) num3(out, u_um_[i], ",", ",", ",");
     }
     if (!all) {
       out.ch(',');
@@ -161,6 +178,7 @@ void PredictionWriter::row(Out& out, const model::EvalPoint& p,
         out.text(", \"ad\": ");
         out.num(aligned_um_[i].norm());
       }
+      if (uncertain_) num3(out, u_um_[i], ", \"u_dx\": ", ", \"u_dy\": ", ", \"u_dz\": ");
       out.ch('}');
     }
     out.ch('}');

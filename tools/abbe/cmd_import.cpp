@@ -4,6 +4,7 @@
 #include <string>
 
 #include "abbe/io/atomic_file.hpp"
+#include "abbe/io/laser_export.hpp"
 #include "abbe/io/measured_data.hpp"
 #include "abbe/io/plugplate.hpp"
 #include "command.hpp"
@@ -15,9 +16,19 @@ struct ImportOptions {
   std::string format;
   std::string input;
   std::string output = "-";
+  std::string table;  // laser: also the component-table rows
 };
 
+// laser: a laser-calibration export -> the ISO 230-2 runs file (and --table).
+int run_import_laser(const ImportOptions& o) {
+  const io::LaserExport data = io::load_laser_export(o.input);
+  if (!o.table.empty()) io::write_file_atomically(o.table, io::laser_table_csv(data));
+  io::write_file_atomically(o.output, io::laser_runs_csv(data));
+  return kOk;
+}
+
 int run_import(const ImportOptions& o) {
+  if (o.format == "laser") return run_import_laser(o);
   const io::MeasuredData data = io::load_plugplate(o.input);
   io::AtomicOutputFile out(o.output);
   const std::string body = io::measured_data_to_csv(data);
@@ -33,10 +44,12 @@ const CommandRegistrar registrar(
       sub.footer("Example: abbe import plugplate PLATE_REPORT.txt -o measured.csv");
       sub.add_option("format", o->format, "Report format: plugplate")
           ->required()
-          ->check(CLI::IsMember({"plugplate"}));
+          ->check(CLI::IsMember({"plugplate", "laser"}));
       sub.add_option("input", o->input, "The report file (- for stdin)")->required();
       sub.add_option("-o,--output", o->output, "Measured-data CSV (written atomically), - stdout")
           ->capture_default_str();
+      sub.add_option("--table", o->table,
+                     "laser: also write the component-table rows (mean and s/√n per target)");
       return [o] { return run_import(*o); };
     });
 

@@ -19,6 +19,7 @@
 #include "abbe/pipeline/path_writer.hpp"
 #include "abbe/pipeline/predict.hpp"
 #include "abbe/pipeline/prediction_summary.hpp"
+#include "abbe/pipeline/prediction_uncertainty.hpp"
 #include "abbe/pipeline/prediction_writer.hpp"
 #include "command.hpp"
 #include "dialect_option.hpp"
@@ -45,6 +46,8 @@ struct PredictOptions {
   std::string align = "none";  // the part's set-up (docs/models.md, "The part")
   std::string datum[3];        // --datum-primary/secondary/tertiary: source lines
   SetupOptions setup;
+  std::size_t uncertainty = 0;  // Monte Carlo draws (0: no uncertainty)
+  std::uint64_t seed = 1;       // of the draws
 };
 
 const char* const kDatumOption[3] = {"--datum-primary", "--datum-secondary", "--datum-tertiary"};
@@ -57,13 +60,15 @@ struct PointsOutput {
 };
 
 PointsOutput open_points(const PredictOptions& o, pipeline::PathFormat format,
-                         const std::vector<model::ModelKind>& models, bool aligned) {
+                         const std::vector<model::ModelKind>& models, bool aligned,
+                         bool uncertainty = false) {
   PointsOutput p;
   if (o.summary_only) return p;
   p.out = std::make_unique<io::AtomicOutputFile>(o.output);
   io::AtomicOutputFile* file = p.out.get();
   p.writer = std::make_unique<pipeline::PredictionWriter>(
-      format, models, [file](const char* d, std::size_t n) { file->write(d, n); }, aligned);
+      format, models, [file](const char* d, std::size_t n) { file->write(d, n); }, aligned,
+      uncertainty);
   return p;
 }
 
@@ -114,6 +119,32 @@ int run_predict_aligned(const PredictOptions& o, const GlobalOptions& g,
   return kOk;
 }
 
+// predict --uncertainty N: the points are written after the draws.
+int run_predict_uncertain(const PredictOptions& o, const GlobalOptions& g,
+                          const machine::Machine& machine, const pipeline::PredictOptions& po,
+                          pipeline::PathFormat format) {
+  pipeline::UncertaintyOptions uo;
+  uo.draws = o.uncertainty;
+  uo.seed = o.seed;
+  InputStream input(o.input, "the input");
+  PointsOutput points = open_points(o, format, po.models, false, true);
+  auto& writer = points.writer;
+  Progress progress("predict --uncertainty", o.uncertainty, !g.quiet, "draws");
+  const pipeline::UncertainPrediction prediction = pipeline::predict_with_uncertainty(
+      input.stream(), o.input, machine, po, uo, {},
+      [&](const model::EvalPoint& p, std::size_t line, const std::vector<model::Deviation>& devs,
+          const std::vector<double>& norms, const std::vector<Eigen::Vector3d>& u) {
+        if (writer) writer->write_uncertain(p, line, devs, norms, u);
+      },
+      [&](std::size_t done) {
+        if (progress.active()) progress.update(done);
+      });
+  progress.finish();
+  finish_outputs(o, writer.get(), points.out.get(), pipeline::summary_json(prediction),
+                 pipeline::summary_table(prediction));
+  return kOk;
+}
+
 int run_predict(const PredictOptions& o, const GlobalOptions& g) {
   const machine::Machine machine = machine::Machine::load(o.machine);
   pipeline::PredictOptions po;
@@ -129,6 +160,11 @@ int run_predict(const PredictOptions& o, const GlobalOptions& g) {
   if (!o.extend.empty())
     po.extension = std::make_shared<const diagnose::OverlayExtension>(
         diagnose::Overlay::load(o.extend), machine);
+  if (o.uncertainty > 0 && o.align != "none") {
+    fmt::print(stderr, "abbe predict: --uncertainty with --align is not implemented yet\n");
+    return kUsage;
+  }
+  if (o.uncertainty > 0) return run_predict_uncertain(o, g, machine, po, format);
   if (o.align != "none") return run_predict_aligned(o, g, machine, po, format);
   for (int k = 0; k < 3; ++k)
     if (!o.datum[k].empty()) {
@@ -209,6 +245,13 @@ const CommandRegistrar registrar(
                      "--align datums: source lines of the secondary (line) points");
       sub.add_option("--datum-tertiary", o->datum[2],
                      "--align datums: source lines of the tertiary (point) points");
+      sub.add_option("--uncertainty", o->uncertainty,
+                     "Also propagate the campaign's uncertainty (machine file `uncertainty`, table "
+                     "column `uncertainty`) by Monte Carlo with N draws: u_dx,u_dy,u_dz per point, "
+                     "U (k = 2) of the summary")
+          ->check(CLI::Range(std::size_t{2}, std::size_t{1000000}));
+      sub.add_option("--seed", o->seed, "--uncertainty: seed of the draws (same seed, same output)")
+          ->capture_default_str();
       return [o, gp] { return run_predict(*o, *gp); };
     });
 

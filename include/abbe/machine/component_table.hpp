@@ -21,6 +21,9 @@ struct ComponentSeries {
   std::vector<double> position_mm;  // axis position s_j, strictly increasing
   std::vector<double> value;        // µm (linear) or µrad (angular)
   std::vector<std::size_t> line;    // CSV line of each row (for messages)
+  // Standard uncertainty of each value (the table's optional `uncertainty`
+  // column, same unit as value); empty when the table has no such column.
+  std::vector<double> u;
 };
 
 // Unit plausibility limits (docs/formats.md "Unit check"): a linear series
@@ -48,6 +51,13 @@ class ComponentTable {
   bool has(ComponentId id) const;
   bool bidirectional(ComponentId id) const;
   bool axis_has_components(Axis a) const;
+  // True when the table has the `uncertainty` column.
+  bool has_uncertainty() const { return has_uncertainty_; }
+
+  // The same table with other values: `values[i]` replaces series()[i].value
+  // (same sizes; a Monte Carlo draw of the campaign). Throws
+  // std::invalid_argument when the sizes differ.
+  ComponentTable with_values(const std::vector<std::vector<double>>& values) const;
 
  private:
   static std::size_t slot(ComponentId id, TableDirection d) {
@@ -56,6 +66,7 @@ class ComponentTable {
   }
   std::string file_;
   std::vector<ComponentSeries> series_;
+  bool has_uncertainty_ = false;
   std::array<int, 3 * kComponentsPerAxis * 3> slot_{};  // index into series_ + 1, 0 = none
 };
 

@@ -11,8 +11,10 @@
 #include <string>
 
 #include "abbe/machine/axis.hpp"
+#include "abbe/machine/campaign_uncertainty.hpp"
 #include "abbe/machine/component_table.hpp"
 #include "abbe/machine/kinematic_chain.hpp"
+#include "abbe/machine/reference_conventions.hpp"
 
 namespace abbe::machine {
 
@@ -62,7 +64,9 @@ struct MachineSpec {
   OutOfRangePolicy out_of_range = OutOfRangePolicy::clamp;
   std::array<AxisRecord, 3> axes;
   ComponentTable table;
-  std::string table_file;  // resolved path of the component table
+  std::string table_file;            // resolved path of the component table
+  CampaignUncertainty uncertainty;   // optional `uncertainty` key (not given: zero)
+  ReferenceConventions conventions;  // optional `conventions` key (not given: absolute)
 };
 
 class Machine {
@@ -90,8 +94,17 @@ class Machine {
   OutOfRangePolicy out_of_range() const { return spec_.out_of_range; }
   const AxisRecord& record(Axis a) const { return spec_.axes[static_cast<std::size_t>(index(a))]; }
   const ComponentTable& table() const { return spec_.table; }
+  const CampaignUncertainty& uncertainty() const { return spec_.uncertainty; }
+
+  // The same machine with other values of its campaign (a Monte Carlo draw):
+  // the table must have the same series as this one's, so the constructor's
+  // checks still hold and are not repeated (nor logged again).
+  Machine with_campaign(ComponentTable table, std::array<AxisRecord, 3> axes,
+                        Squareness squareness) const;
 
  private:
+  struct Unchecked {};
+  Machine(MachineSpec spec, Unchecked) : spec_(std::move(spec)) {}
   MachineSpec spec_;
 };
 

@@ -37,6 +37,10 @@ struct PredictionSummary {
   std::size_t outside_travel_points = 0;
   std::array<std::size_t, 3> outside_travel_per_axis{0, 0, 0};
   std::string travel_text;
+  // The machine file's reference conventions (empty `notes`: absolute
+  // tables, nothing is said): what each leaves free, and whether the part
+  // after its set-up (--align) is determined.
+  machine::ConventionAnalysis conventions;
 };
 
 PredictionSummary summarize(const ModelSet& models, const machine::Machine& machine,

@@ -10,6 +10,8 @@
 // With `aligned` (abbe predict --align), each model's columns are followed by
 // the deviation after the part's alignment: adx,ady,adz,ad (JSON: the same
 // keys in the model's object).
+// With `uncertainty` (abbe predict --uncertainty N), each model's columns end
+// with the standard uncertainties u_dx,u_dy,u_dz (µm; JSON: the same keys).
 #include <fmt/format.h>
 
 #include <array>
@@ -28,7 +30,7 @@ namespace abbe::pipeline {
 class PredictionWriter {
  public:
   PredictionWriter(PathFormat format, std::vector<model::ModelKind> kinds, ByteSink sink,
-                   bool aligned = false);
+                   bool aligned = false, bool uncertainty = false);
   PredictionWriter(const PredictionWriter&) = delete;
   PredictionWriter& operator=(const PredictionWriter&) = delete;
 
@@ -39,6 +41,12 @@ class PredictionWriter {
   void write(const model::EvalPoint& point, std::size_t line,
              const std::vector<model::Deviation>& devs, const std::vector<double>& norms_um,
              const std::vector<Eigen::Vector3d>& aligned_um);
+  // One row of a prediction with uncertainty: per model the deviation, |e|
+  // and the standard uncertainties of dx, dy, dz (µm).
+  void write_uncertain(const model::EvalPoint& point, std::size_t line,
+                       const std::vector<model::Deviation>& devs,
+                       const std::vector<double>& norms_um,
+                       const std::vector<Eigen::Vector3d>& u_um);
   // Writes the trailer (JSON: `summary_json` as the "summary" member) and
   // hands on what is buffered.
   void finish(std::string_view summary_json);
@@ -62,6 +70,8 @@ class PredictionWriter {
   std::vector<Eigen::Vector3d> pred_;        // predicted tool tip per model, mm
   bool aligned_ = false;                     // adx,ady,adz,ad columns
   std::vector<Eigen::Vector3d> aligned_um_;  // of the row being written
+  bool uncertain_ = false;                   // u_dx,u_dy,u_dz columns
+  std::vector<Eigen::Vector3d> u_um_;        // of the row being written
   fmt::memory_buffer buf_;
   std::size_t points_ = 0;
   std::array<char, 24> line_text_{};
