@@ -66,6 +66,19 @@ Mat generic_basis(const Problem& pb, const Term& t) {
   return B;
 }
 
+// Σ over the observations of |g_c(point)|² (the deviation the term's
+// columns make, whatever direction is measured).
+double motion_squared(const Problem& pb, const Term& t) {
+  const int k = t.columns();
+  Eigen::Matrix<double, 3, Eigen::Dynamic> g(3, k);
+  double s = 0.0;
+  for (const Observation& ob : pb.obs) {
+    t.basis(pb.points[ob.point], g);
+    s += g.squaredNorm();
+  }
+  return s;
+}
+
 void append_orthonormal(Mat& Q, const Mat& C) {
   for (Eigen::Index c = 0; c < C.cols(); ++c) {
     Vec q = C.col(c);
@@ -162,7 +175,10 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
   std::vector<std::vector<std::string>> ambiguous;
   for (const Term& t : cs.datum) {
     const Mat C = term_columns(pb, t);
-    if (!(C.squaredNorm() > 0.0)) continue;  // invisible in these data
+    // Invisible in these data: the measured directions see (almost) none of
+    // what the term moves — e.g. the rotation of a circle measured along
+    // its radius, seen only through the rounding of the file's numbers.
+    if (!(C.squaredNorm() > 1e-6 * motion_squared(pb, t))) continue;
     const Eigen::Index before = Q.cols();
     append_orthonormal(Q, C);
     if (Q.cols() == before) continue;  // already in the span of the datum
