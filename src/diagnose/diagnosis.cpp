@@ -1,21 +1,94 @@
 #include "abbe/diagnose/diagnosis.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace abbe::diagnose {
 
-Diagnosis diagnose_problem(const Problem& pb, const DiagnoseOptions& o) {
+namespace {
+
+// The selection on the data without gross outliers (outliers.hpp): flagged
+// after the datum alone, then against each selected model until the set of
+// outliers stays the same.
+struct RobustFit {
+  Problem work;
+  SelectionResult sel;
+  std::vector<std::uint32_t> drop;
+  double threshold = 0.0;
+};
+
+RobustFit robust_fit(const Problem& pb, const DiagnoseOptions& o) {
+  RobustFit f;
+  const OutlierOptions& oo = o.outliers;
+  if (oo.enabled && pb.obs.size() >= 20) {
+    CandidateSet datum_only;
+    datum_only.datum = build_candidates(pb, o.candidates).datum;
+    SelectionOptions quiet = o.selection;
+    quiet.on_step = nullptr;
+    const SelectionResult first = select_effects(pb, datum_only, quiet);
+    f.threshold = std::max(oo.k * robust_sigma(first.residual), oo.min_threshold_um);
+    f.drop = points_beyond(pb, first.residual, f.threshold);
+  }
+  for (int pass = 0;; ++pass) {
+    f.work = without_points(pb, f.drop);
+    f.sel = select_effects(f.work, build_candidates(f.work, o.candidates), o.selection);
+    if (!oo.enabled || pb.obs.size() < 20 || pass + 1 >= oo.max_passes) break;
+    f.threshold = std::max(oo.k * robust_sigma(f.sel.residual), oo.min_threshold_um);
+    std::vector<std::uint32_t> again =
+        points_beyond(pb, residual_after(pb, f.sel.datum, f.sel.terms), f.threshold);
+    if (again == f.drop) break;
+    f.drop = std::move(again);
+  }
+  return f;
+}
+
+}  // namespace
+
+Diagnosis diagnose_problem(const Problem& full, const DiagnoseOptions& o) {
   Diagnosis d;
+  RobustFit fit = robust_fit(full, o);
+  const Problem& pb = fit.work;
+  const SelectionResult& sel = fit.sel;
+  d.outlier_threshold_um = fit.threshold;
+  d.outlier_k = o.outliers.k;
+  if (!fit.drop.empty()) {
+    const Eigen::VectorXd r = residual_after(full, sel.datum, sel.terms);
+    std::vector<double> worst(full.points.size(), 0.0);
+    for (std::size_t k = 0; k < full.obs.size(); ++k) {
+      double& w = worst[full.obs[k].point];
+      if (std::abs(r[static_cast<Eigen::Index>(k)]) > std::abs(w))
+        w = r[static_cast<Eigen::Index>(k)];
+    }
+    for (std::uint32_t p : fit.drop) {
+      Outlier out;
+      out.point = p;
+      out.line = p < full.lines.size() ? full.lines[p] : 0;
+      out.set = full.points[p].set;
+      out.s = full.points[p].s;
+      out.residual_um = worst[p];
+      d.outliers.push_back(out);
+    }
+  }
   d.model = pb.base_model;
   d.n_points = pb.points.size();
   d.n_observations = pb.obs.size();
-  d.models = pb.models;
+  d.models = full.models;
   d.baseline = residual_stats(pb, pb.y);
   d.baseline.model = pb.base_model;
   d.folds = o.selection.folds;
-  const CandidateSet cs = build_candidates(pb, o.candidates);
-  const SelectionResult sel = select_effects(pb, cs, o.selection);
+  if (!pb.points.empty()) {
+    d.domain.known = true;
+    for (int k = 0; k < 3; ++k) {
+      d.domain.lo[k] = pb.var_lo[static_cast<std::size_t>(k)];
+      d.domain.hi[k] = pb.var_hi[static_cast<std::size_t>(k)];
+    }
+    d.domain.t_lo = pb.var_lo[3];
+    d.domain.t_hi = pb.var_hi[3];
+  }
   d.effects = sel.terms;
+  d.explained_together = sel.explained_together;
+  for (SelectedTerm& st : d.effects) st.significant = value_significant(st.term);
   d.datum = sel.datum;
   d.extended = residual_stats(pb, sel.residual);
   d.extended.model = pb.base_model + "+effects";
@@ -32,6 +105,13 @@ Diagnosis diagnose_problem(const Problem& pb, const DiagnoseOptions& o) {
   d.noise_independent_um = ne.sigma_um;
   d.noise_method = ne.method;
   d.log = sel.log;
+  // On every point: a reversal spike may well have been flagged as an outlier.
+  CircleCheck cc =
+      fit.drop.empty()
+          ? check_circles(pb, sel.residual, sel.sigma_um)
+          : check_circles(full, residual_after(full, sel.datum, sel.terms), sel.sigma_um);
+  d.circles = std::move(cc.circles);
+  d.dynamic = std::move(cc.findings);
   return d;
 }
 
@@ -48,7 +128,13 @@ Overlay make_overlay(const Diagnosis& d, const Overlay* extend) {
   Overlay ov;
   ov.base_model = d.model;
   ov.machine = d.machine;
-  if (extend) ov.terms = extend->terms;
+  ov.domain = d.domain;
+  if (extend) {
+    ov.terms = extend->terms;
+    // The earlier terms were fitted on the earlier overlay's domain: the
+    // new one holds both (an earlier overlay without a domain: the data's).
+    if (extend->domain.known) ov.domain = extend->domain.merged(d.domain);
+  }
   for (const SelectedTerm& st : d.effects) ov.terms.push_back(st.term);
   return ov;
 }

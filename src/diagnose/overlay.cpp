@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -67,12 +68,43 @@ class YamlFields : public OverlayFields {
   std::string term_;
 };
 
+OverlayDomain read_domain(const Reader& rd, const YAML::Node& n) {
+  rd.expect_map(n, "domain");
+  rd.check_keys(n, "domain", {"min", "max", "time"});
+  OverlayDomain d;
+  d.known = true;
+  d.lo = rd.vec3(rd.required(n, "min", "domain"), "domain.min");
+  d.hi = rd.vec3(rd.required(n, "max", "domain"), "domain.max");
+  for (int k = 0; k < 3; ++k)
+    if (!(d.hi[k] >= d.lo[k]))
+      rd.fail(n["max"], "domain.max",
+              fmt::format("max {} is below min {} ({})", d.hi[k], d.lo[k], axis_name(k)));
+  const YAML::Node time = rd.required(n, "time", "domain");
+  const std::vector<double> t = rd.numbers(time, "domain.time", 2);
+  if (!(t[1] >= t[0])) rd.fail(time, "domain.time", "the time window ends before it starts");
+  d.t_lo = t[0];
+  d.t_hi = t[1];
+  return d;
+}
+
 }  // namespace
 
 Eigen::Vector3d Overlay::evaluate(const PointContext& pc) const {
   Eigen::Vector3d e = Eigen::Vector3d::Zero();
-  for (const Term& t : terms) e += t.evaluate(pc);
+  const bool inside = domain.contains(pc, true);
+  PointContext clamped;
+  if (!inside) clamped = domain.clamp(pc);
+  for (const Term& t : terms)
+    e += inside || effect_descriptor(t.kind).extrapolates ? t.evaluate(pc) : t.evaluate(clamped);
   return e;
+}
+
+bool Overlay::time_dependent() const {
+  return std::any_of(terms.begin(), terms.end(), [](const Term& t) {
+    return t.kind == TermKind::thermal_drift ||
+           (t.kind == TermKind::unexplained &&
+            std::find(t.vars.begin(), t.vars.end(), 3) != t.vars.end());
+  });
 }
 
 Overlay Overlay::parse(const std::string& text, const std::string& file) {
@@ -88,6 +120,8 @@ Overlay Overlay::parse(const std::string& text, const std::string& file) {
         root["model"] ? root["model"] : root, "model",
         fmt::format("unknown model \"{}\" ({})", ov.base_model, model::model_names_text(false)));
   if (root["machine"]) ov.machine = root["machine"].as<std::string>("");
+  ov.file = file;
+  if (root["domain"]) ov.domain = read_domain(rd, root["domain"]);
   const YAML::Node effects = root["effects"];
   if (!effects) return ov;
   if (!effects.IsSequence()) rd.fail(effects, "effects", "expected a list of effects");
@@ -139,6 +173,15 @@ std::string Overlay::to_yaml() const {
   y += "format: abbe-overlay-1\n";
   y += fmt::format("model: {}\n", base_model);
   y += fmt::format("machine: \"{}\"\n", machine);
+  if (domain.known) {
+    const auto v3 = [&](const Eigen::Vector3d& v) {
+      return list(std::vector<double>{v[0], v[1], v[2]});
+    };
+    y += "# fitted on: axis positions s = P + L·e_z (mm) and campaign time (s); outside,\n";
+    y += "# polynomial, smooth and time terms are held at their value on the boundary\n";
+    y += fmt::format("domain:\n  min: {}\n  max: {}\n  time: {}\n", v3(domain.lo), v3(domain.hi),
+                     list(std::vector<double>{domain.t_lo, domain.t_hi}));
+  }
   y += "effects:\n";
   if (terms.empty()) y = y.substr(0, y.size() - 1) + " []\n";
   for (const Term& t : terms) {

@@ -1,6 +1,7 @@
 // The diagnosis report: JSON with the DESIGN.md §4 keys and the human summary.
 #include <fmt/format.h>
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "abbe/diagnose/diagnosis.hpp"
@@ -16,7 +17,75 @@ std::string axis_of(const Term& t) {
   if (t.kind == TermKind::model_choice) return "";
   return t.axis >= 0 ? std::string(1, axis_name(t.axis)) : "";
 }
+const char* unit_of(const std::string& param) {
+  if (param == "ppm") return " ppm";
+  if (param == "urad") return " µrad";
+  if (param == "um" || param == "amplitude_um") return " µm";
+  if (param == "um_per_h") return " µm/h";
+  if (param == "mm") return " mm";
+  return "";
+}
+
+std::string status_of(const SelectedTerm& st) {
+  if (!st.ambiguous_with.empty()) return "ambiguous";
+  return st.significant ? "named" : "not_significant";
+}
+
 }  // namespace
+
+std::string effect_value_text(const Term& t) {
+  const auto p = t.params();
+  const auto e = t.param_stderr();
+  if (p.empty() || e.empty() || e[0].first != p[0].first) return "-";
+  return fmt::format("{:+.3g} ± {:.2g}{}", p[0].second, e[0].second, unit_of(p[0].first));
+}
+
+bool value_significant(const Term& t) {
+  const auto p = t.params();
+  const auto e = t.param_stderr();
+  if (p.empty() || e.empty() || e[0].first != p[0].first) return true;
+  return std::abs(p[0].second) > e[0].second;
+}
+
+std::string outliers_text(const Diagnosis& d, std::size_t max_listed) {
+  if (d.outliers.empty()) return "";
+  std::string s = fmt::format(
+      "outliers: {} points with a residual beyond {:.3g} µm ({:g} robust σ of the fit), left out "
+      "of the fit and the noise estimates:",
+      d.outliers.size(), d.outlier_threshold_um, d.outlier_k);
+  for (std::size_t i = 0; i < d.outliers.size() && i < max_listed; ++i) {
+    const Outlier& o = d.outliers[i];
+    s += fmt::format("{} {}{}{} ({:.3f}, {:.3f}, {:.3f}) {:+.2f} µm", i ? ";" : "",
+                     o.line ? fmt::format("line {}", o.line) : fmt::format("point {}", o.point + 1),
+                     o.set.empty() ? "" : " set ", o.set, o.s.x(), o.s.y(), o.s.z(), o.residual_um);
+  }
+  if (d.outliers.size() > max_listed)
+    s += fmt::format("; … {} more (all in the JSON report)", d.outliers.size() - max_listed);
+  return s + "\n";
+}
+
+std::string dynamic_text(const Diagnosis& d) {
+  if (d.circles.empty()) return "";
+  std::string sets;
+  for (const auto& c : d.circles) sets += (sets.empty() ? "" : ", ") + c;
+  std::string s = fmt::format(
+      "circular test ({}): servo mismatch and reversal spikes are dynamic (the drives, not the "
+      "geometry) and outside this diagnosis: reported, never named; {}\n",
+      sets, d.dynamic.empty() ? "none found" : "found:");
+  for (const DynamicFinding& f : d.dynamic) {
+    if (f.kind == "servo_mismatch")
+      s += fmt::format(
+          "  dynamic, not named: servo mismatch in {} (an ellipse at 45° that turns with the "
+          "direction of travel, ±{:.3g} µm, {:.1f} σ): unequal gains of the plane's axes\n",
+          f.set, f.amplitude_um, f.z);
+    else
+      s += fmt::format(
+          "  dynamic, not named: reversal spikes in {} ({:+.3g} µm within 10° after the "
+          "quadrant points, {:.1f} σ)\n",
+          f.set, f.amplitude_um, f.z);
+  }
+  return s;
+}
 
 std::string report_json(const Diagnosis& d) {
   using nlohmann::json;
@@ -50,10 +119,13 @@ std::string report_json(const Diagnosis& d) {
     e["params"] = params;
     e["stderr"] = err;
     e["explained_fraction"] = st.explained_fraction;
+    e["unique_fraction"] = st.unique_fraction;
+    e["shared_fraction"] = st.shared_fraction;
     e["description"] = t.description();
     e["ambiguous_with"] = st.ambiguous_with;
-    // The design cannot tell this effect from its alternatives: not a name.
-    e["status"] = st.ambiguous_with.empty() ? "named" : "ambiguous";
+    // Not a name: the design cannot tell this effect from its alternatives
+    // (ambiguous), or its uncertainty exceeds its value (not_significant).
+    e["status"] = status_of(st);
     j["effects"].push_back(e);
   }
   j["datum"] = json::array();
@@ -69,10 +141,25 @@ std::string report_json(const Diagnosis& d) {
     e["explained_fraction"] = st.explained_fraction;
     j["datum"].push_back(e);
   }
+  j["explained_together"] = d.explained_together;
   j["extended"] = {
       {"rms_um", d.extended.rms_um},        {"max_um", d.extended.max_um},
       {"holdout_rms_um", d.holdout_rms_um}, {"baseline_holdout_rms_um", d.baseline_holdout_rms_um},
       {"gain_percent", d.gain_percent},     {"folds", d.folds}};
+  j["outlier_threshold_um"] = d.outlier_threshold_um;
+  j["outliers"] = json::array();
+  for (const Outlier& out : d.outliers)
+    j["outliers"].push_back({{"line", out.line},
+                             {"set", out.set},
+                             {"x", out.s.x()},
+                             {"y", out.s.y()},
+                             {"z", out.s.z()},
+                             {"residual_um", out.residual_um}});
+  j["circles"] = d.circles;
+  j["dynamic"] = json::array();
+  for (const DynamicFinding& f : d.dynamic)
+    j["dynamic"].push_back(
+        {{"kind", f.kind}, {"set", f.set}, {"amplitude_um", f.amplitude_um}, {"z", f.z}});
   j["noise_um"] = d.noise_um;
   j["noise_independent_um"] = d.noise_independent_um;
   j["noise_method"] = d.noise_method;
@@ -96,16 +183,24 @@ std::string report_text(const Diagnosis& d) {
                        st.term.stderr_.empty() ? 0.0 : st.term.stderr_[0]);
     s += "\n";
   }
+  s += outliers_text(d, 10);
   if (d.effects.empty()) {
     s += "effects: none above the noise floor\n";
   } else {
-    s += fmt::format("effects ({}):\n", d.effects.size());
-    s += fmt::format("  {:<14} {:<4} {:<4} {:>9}  {}\n", "kind", "axis", "dir", "explained",
-                     "description");
+    s += fmt::format("effects ({}; together {:.1f} % of the residual after the datum):\n",
+                     d.effects.size(), 100.0 * d.explained_together);
+    s += fmt::format("  {:<14} {:<4} {:<4} {:>24} {:>9} {:>7} {:>7}  {}\n", "kind", "axis", "dir",
+                     "value ± u", "explained", "unique", "shared", "description");
     for (const SelectedTerm& st : d.effects) {
       const Term& t = st.term;
-      s += fmt::format("  {:<14} {:<4} {:<4} {:>8.1f}%  {}\n", kind_id(t.kind), axis_of(t),
-                       direction_of(t), 100.0 * st.explained_fraction, t.description());
+      s += fmt::format("  {:<14} {:<4} {:<4} {:>24} {:>8.1f}% {:>6.1f}% {:>6.1f}%  {}\n",
+                       kind_id(t.kind), axis_of(t), direction_of(t), effect_value_text(t),
+                       100.0 * st.explained_fraction, 100.0 * st.unique_fraction,
+                       100.0 * st.shared_fraction, t.description());
+      if (!st.significant)
+        s += fmt::format(
+            "  {:<14} NOT SIGNIFICANT (not a name: its standard uncertainty exceeds its value)\n",
+            "");
       if (!st.ambiguous_with.empty()) {
         std::string a;
         for (const auto& x : st.ambiguous_with) a += (a.empty() ? "" : "; ") + x;
@@ -119,6 +214,7 @@ std::string report_text(const Diagnosis& d) {
       "%); noise σ ≈ {:.3f} µm\n",
       d.baseline.rms_um, d.extended.rms_um, d.folds, d.baseline_holdout_rms_um, d.holdout_rms_um,
       d.gain_percent, d.noise_um);
+  s += dynamic_text(d);
   if (d.noise_method != "none" && !d.noise_method.empty())
     s += fmt::format("noise from the data alone ({}): σ ≈ {:.3f} µm\n", d.noise_method,
                      d.noise_independent_um);

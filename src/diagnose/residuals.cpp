@@ -82,6 +82,7 @@ Problem build_problem(const machine::Machine& machine, const io::MeasuredData& d
     if (std::find(pb.sets.begin(), pb.sets.end(), row.set) == pb.sets.end())
       pb.sets.push_back(row.set);
     pb.points.push_back(std::move(pc));
+    pb.lines.push_back(row.line);
   }
   pb.y = Eigen::Map<Eigen::VectorXd>(ys.data(), static_cast<Eigen::Index>(ys.size()));
   for (std::size_t m = 0; m < n_models; ++m) {

@@ -66,6 +66,19 @@ Mat generic_basis(const Problem& pb, const Term& t) {
   return B;
 }
 
+// Σ over the observations of |g_c(point)|² (the deviation the term's
+// columns make, whatever direction is measured).
+double motion_squared(const Problem& pb, const Term& t) {
+  const int k = t.columns();
+  Eigen::Matrix<double, 3, Eigen::Dynamic> g(3, k);
+  double s = 0.0;
+  for (const Observation& ob : pb.obs) {
+    t.basis(pb.points[ob.point], g);
+    s += g.squaredNorm();
+  }
+  return s;
+}
+
 void append_orthonormal(Mat& Q, const Mat& C) {
   for (Eigen::Index c = 0; c < C.cols(); ++c) {
     Vec q = C.col(c);
@@ -162,7 +175,10 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
   std::vector<std::vector<std::string>> ambiguous;
   for (const Term& t : cs.datum) {
     const Mat C = term_columns(pb, t);
-    if (!(C.squaredNorm() > 0.0)) continue;  // invisible in these data
+    // Invisible in these data: the measured directions see (almost) none of
+    // what the term moves — e.g. the rotation of a circle measured along
+    // its radius, seen only through the rounding of the file's numbers.
+    if (!(C.squaredNorm() > 1e-6 * motion_squared(pb, t))) continue;
     const Eigen::Index before = Q.cols();
     append_orthonormal(Q, C);
     if (Q.cols() == before) continue;  // already in the span of the datum
@@ -173,6 +189,7 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     ambiguous.emplace_back();
   }
   const std::size_t n_datum = chosen.size();
+  const Mat Qd = Q;  // the datum's span
   Vec r = y - Q * (Q.transpose() * y);
   res.datum_sse = r.squaredNorm();
   double cv_prev = X.cols() > 0 ? cross_validated_sse(pb, X, y, folds, o.folds) : res.baseline_sse;
@@ -500,8 +517,22 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
   res.residual = r2;
   const double s2 = r2.squaredNorm() / std::max<double>(static_cast<double>(n - X.cols()), 1.0);
   res.sigma_um = std::sqrt(s2);
+  const Vec r_datum = y - Qd * (Qd.transpose() * y);
+  // SS a term removes on its own from `target` (after the datum for the named stage).
+  auto alone = [&](std::size_t i, const Vec& target, bool smooth) {
+    Mat C = X.middleCols(start[i], chosen[i].columns());
+    if (!smooth && Qd.cols() > 0) C -= Qd * (Qd.transpose() * C);
+    Mat G = C.transpose() * C;
+    G.diagonal().array() += 1e-12 * std::max(G.trace(), 1e-300) / static_cast<double>(G.rows());
+    const Vec b = C.transpose() * target;
+    return b.dot(G.ldlt().solve(b));
+  };
   for (const StageFit* f : {&named_fit, &smooth_fit}) {
+    const bool smooth = f == &smooth_fit;
     Eigen::Index col = 0;
+    std::vector<SelectedTerm> stage;
+    std::vector<double> overlap;
+    double unique_sum = 0.0;
     for (std::size_t i : f->terms) {
       SelectedTerm st;
       st.term = chosen[i];
@@ -516,9 +547,31 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
       const double drop = bt.dot(Vt.ldlt().solve(bt));
       const double of = i < n_datum ? res.baseline_sse : res.datum_sse;
       st.explained_fraction = of > 0.0 ? drop / of : 0.0;
+      st.unique_fraction = st.explained_fraction;
       st.ambiguous_with = ambiguous[i];
-      (i < n_datum ? res.datum : res.terms).push_back(std::move(st));
       col += k;
+      if (i < n_datum) {
+        res.datum.push_back(std::move(st));
+        continue;
+      }
+      unique_sum += drop;
+      overlap.push_back(std::max(alone(i, smooth ? r1 : r_datum, smooth) - drop, 0.0));
+      stage.push_back(std::move(st));
+    }
+    // What the stage's effects remove together; the part no single one
+    // removes alone is shared in proportion to the overlaps.
+    const double together =
+        smooth ? r1.squaredNorm() - r2.squaredNorm() : r_datum.squaredNorm() - r1.squaredNorm();
+    const double shared = together - unique_sum;
+    double overlap_sum = 0.0;
+    for (double v : overlap) overlap_sum += v;
+    for (std::size_t j = 0; j < stage.size(); ++j) {
+      const double part = overlap_sum > 0.0 ? shared * overlap[j] / overlap_sum
+                                            : shared / static_cast<double>(stage.size());
+      stage[j].shared_fraction = res.datum_sse > 0.0 ? part / res.datum_sse : 0.0;
+      stage[j].explained_fraction = stage[j].unique_fraction + stage[j].shared_fraction;
+      res.explained_together += stage[j].explained_fraction;
+      res.terms.push_back(std::move(stage[j]));
     }
   }
   std::stable_sort(res.terms.begin(), res.terms.end(),

@@ -81,21 +81,45 @@ void render_diagnose_report(HtmlPage& page, const DiagnosisForReport& r) {
   Table e;
   e.id = "diagnose-effects";
   e.caption = "Effects found, by importance";
-  e.header = {"#", "kind", "axis", "explained", "description"};
+  e.header = {"#", "kind", "axis", "value ± u", "explained", "unique", "shared", "description"};
   e.last_column_text = true;
   const char* axes = "XYZ";
   for (std::size_t i = 0; i < d.effects.size(); ++i) {
     const auto& term = d.effects[i].term;
     const bool ambiguous = !d.effects[i].ambiguous_with.empty();
-    e.rows.push_back({std::to_string(i + 1),
-                      ambiguous ? std::string("ambiguous: ") + diagnose::kind_id(term.kind)
-                                : std::string(diagnose::kind_id(term.kind)),
+    const char* status = ambiguous                   ? "ambiguous: "
+                         : !d.effects[i].significant ? "not significant: "
+                                                     : "";
+    e.rows.push_back({std::to_string(i + 1), status + std::string(diagnose::kind_id(term.kind)),
                       term.axis >= 0 && term.axis < 3 ? std::string(1, axes[term.axis]) : "-",
+                      diagnose::effect_value_text(term),
                       fmt::format("{:.1f} %", 100.0 * d.effects[i].explained_fraction),
+                      fmt::format("{:.1f} %", 100.0 * d.effects[i].unique_fraction),
+                      fmt::format("{:.1f} %", 100.0 * d.effects[i].shared_fraction),
                       term.description()});
   }
   page.add_table(e);
   if (d.effects.empty()) page.add_note("No effect stands out of the noise.");
+  if (!d.circles.empty()) page.add_paragraph(diagnose::dynamic_text(d));
+  if (!d.outliers.empty()) {
+    Table o = make_table(
+        "diagnose-outliers",
+        fmt::format("Gross outliers: {} points with a residual beyond {:.3g} µm ({:g} robust σ of "
+                    "the fit), left out of the fit and the noise estimates",
+                    d.outliers.size(), d.outlier_threshold_um, d.outlier_k),
+        {"line", "set", "x (mm)", "y (mm)", "z (mm)", "residual (µm)"});
+    constexpr std::size_t kRows = 500;
+    for (std::size_t i = 0; i < d.outliers.size() && i < kRows; ++i) {
+      const auto& p = d.outliers[i];
+      o.rows.push_back({p.line ? std::to_string(p.line) : "-", p.set.empty() ? "-" : p.set,
+                        fmt::format("{:.3f}", p.s.x()), fmt::format("{:.3f}", p.s.y()),
+                        fmt::format("{:.3f}", p.s.z()), fmt::format("{:+.2f}", p.residual_um)});
+    }
+    page.add_table(o);
+    if (d.outliers.size() > kRows)
+      page.add_note(fmt::format("{} more outliers are listed in the JSON report (--out).",
+                                d.outliers.size() - kRows));
+  }
 
   page.add_section("residuals", "Residual against each variable");
   page.add_paragraph(

@@ -87,3 +87,57 @@ if(EXISTS ${WORK}/bad-out.ngc)
 endif()
 expect_failure("missing.yaml" ${ABBE} verify ${WORK}/extended.ngc --against ${PROGRAM}
                --machine ${MACHINE} --extend ${WORK}/missing.yaml)
+
+# Overlays know their domain (issue 16): a smooth function of t fitted over
+# a 6 s window (degree 6, 6 µm at its end), applied along the program's
+# own clock (65 s) far beyond it. With the domain it is held at its end value and
+# predict warns once; without it the polynomial explodes, and the absurd
+# correction is refused (exit 1) by predict and compensate alike.
+set(timed_effects "effects:
+  - term: unexplained
+    direction: Z
+    vars: [t]
+    degree: 6
+    lo: [-2000, -2000, -2000, 0]
+    hi: [2000, 2000, 2000, 6]
+    coef: [1, 1, 1, 1, 1, 1]
+")
+file(WRITE ${WORK}/timed.yaml "format: abbe-overlay-1
+model: ae-arm
+domain:
+  min: [-2000, -2000, -2000]
+  max: [2000, 2000, 2000]
+  time: [0, 6]
+${timed_effects}")
+file(WRITE ${WORK}/timed-old.yaml "format: abbe-overlay-1\nmodel: ae-arm\n${timed_effects}")
+foreach(ext "" timed)
+  set(args ${PROGRAM} --machine ${MACHINE} --summary-only --summary-json ${WORK}/sum${ext}.json)
+  if(ext)
+    list(APPEND args --extend ${WORK}/${ext}.yaml)
+  endif()
+  execute_process(COMMAND ${ABBE} predict ${args} RESULT_VARIABLE rc ERROR_VARIABLE err
+                  OUTPUT_QUIET)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "predict ${ext}: exit ${rc}\n${err}")
+  endif()
+  file(READ ${WORK}/sum${ext}.json js)
+  string(JSON max${ext} GET "${js}" models 0 max_d_um)
+endforeach()
+if(NOT err MATCHES "timed.yaml: [0-9]+ of [0-9]+ points outside the domain")
+  message(FATAL_ERROR "predict with a time term beyond its window: no domain warning\n${err}")
+endif()
+# At most the end value (6 µm) more than the plain model, not metres.
+if(maxtimed GREATER_EQUAL 1000 OR NOT maxtimed GREATER max)
+  message(FATAL_ERROR "predict --extend timed.yaml: max ${maxtimed} µm (plain ${max} µm)")
+endif()
+expect_failure("beyond the 1000 µm an overlay may correct, refused" ${ABBE} predict ${PROGRAM}
+               --machine ${MACHINE} --summary-only --extend ${WORK}/timed-old.yaml)
+expect_failure("beyond the 1000 µm an overlay may correct, refused" ${ABBE} compensate ${PROGRAM}
+               --machine ${MACHINE} --extend ${WORK}/timed-old.yaml --extend-time 600
+               -o ${WORK}/absurd.ngc)
+if(EXISTS ${WORK}/absurd.ngc)
+  message(FATAL_ERROR "an absurd correction was written")
+endif()
+# Compensate at a time inside the window: accepted.
+run(${ABBE} compensate ${PROGRAM} --machine ${MACHINE} --extend ${WORK}/timed.yaml
+    --extend-time 3 -o ${WORK}/timed.ngc)

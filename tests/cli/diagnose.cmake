@@ -90,3 +90,31 @@ expect_failure("bad_plate:3" ${ABBE} import plugplate ${WORK}/bad_plate -o ${WOR
 if(EXISTS ${WORK}/x.csv)
   message(FATAL_ERROR "a failed import left its output")
 endif()
+
+# abbe import ballbar (ISO 230-4 readings, docs/formats.md): any column
+# order, header case; a circle in XY both ways becomes dn data that
+# diagnose reads, with the statement about dynamic effects.
+set(bb "Angle,dr,Plane,Radius,cx,cy,cz,Feed,Direction\n")
+foreach(way ccw cw)
+  foreach(a RANGE 0 350 10)
+    string(APPEND bb "${a},0.1,XY,150,-450,-200,-150,1000,${way}\n")
+  endforeach()
+endforeach()
+file(WRITE ${WORK}/bb.csv "${bb}")
+run(${ABBE} import ballbar ${WORK}/bb.csv -o ${WORK}/bb-measured.csv)
+file(STRINGS ${WORK}/bb-measured.csv lines)
+list(LENGTH lines n)
+if(NOT n EQUAL 73)
+  message(FATAL_ERROR "bb-measured.csv has ${n} lines, expected 73")
+endif()
+run(${ABBE} diagnose --machine ${P}/machine.yaml --measured ${WORK}/bb-measured.csv)
+string(FIND "${run_out}" "servo mismatch and reversal spikes are dynamic" at)
+if(at EQUAL -1)
+  message(FATAL_ERROR "diagnose of a circular test says nothing about dynamic effects:\n${run_out}")
+endif()
+file(WRITE ${WORK}/bad_bb.csv "plane,radius,cx,cy,cz,feed,direction,angle,dr\nXY,150,0,0,0,1000,up,0,1\n")
+expect_failure("bad_bb.csv:2:19 [direction]" ${ABBE} import ballbar ${WORK}/bad_bb.csv
+               -o ${WORK}/bb-x.csv)
+if(EXISTS ${WORK}/bb-x.csv)
+  message(FATAL_ERROR "a failed ballbar import left its output")
+endif()

@@ -30,6 +30,7 @@
 #include <iostream>
 #include <map>
 #include <random>
+#include <set>
 
 #include "abbe/diagnose/diagnosis.hpp"
 #include "abbe/io/measured_data.hpp"
@@ -516,19 +517,52 @@ struct Case {
   bool gain_ok = false;
   double gain = 0.0, oracle = 0.0;
   std::string found;
+  // With gross outliers: how many were put in, flagged right, flagged wrongly.
+  std::size_t injected = 0, flagged = 0, false_flags = 0;
+  double noise_um = 0.0, noise_independent_um = 0.0;
 };
 
-Case run_case(Design design, const Hidden& h, std::uint64_t seed) {
+// Gross outliers: `fraction` of the points get one measured component
+// (dn on the ballbar) 20–50 µm off, sign at random. Returns their lines.
+std::set<std::size_t> add_outliers(io::MeasuredData& data, std::uint64_t seed, double fraction) {
+  std::mt19937_64 rng(seed * 104729 + 3);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::set<std::size_t> lines;
+  const auto n =
+      static_cast<std::size_t>(std::lround(fraction * static_cast<double>(data.rows.size())));
+  while (lines.size() < n) {
+    io::MeasuredRow& r = data.rows[static_cast<std::size_t>(rng() % data.rows.size())];
+    if (!lines.insert(r.line).second) continue;
+    const double off = (u(rng) < 0.5 ? -1.0 : 1.0) * (20.0 + 30.0 * u(rng));
+    if (r.has_dn()) {
+      r.dn += off;
+      continue;
+    }
+    std::vector<std::size_t> present;
+    for (std::size_t k = 0; k < 3; ++k)
+      if (r.has(static_cast<int>(k))) present.push_back(k);
+    r.d[present[static_cast<std::size_t>(rng() % present.size())]] += off;
+  }
+  return lines;
+}
+
+Case run_case(Design design, const Hidden& h, std::uint64_t seed, double outliers = 0.0) {
   const auto& vm = noisy_vm();
   const auto samples = make_design(design);
   const bool plane = design == Design::plane;
-  const io::MeasuredData data = measure(samples, h, seed, plane);
+  io::MeasuredData data = measure(samples, h, seed, plane);
+  std::set<std::size_t> bad;
+  if (outliers > 0.0) bad = add_outliers(data, seed, outliers);
   const Problem pb = build_problem(vm.machine, data, model::ModelKind::ae_arm, nullptr);
   DiagnoseOptions opt;
   opt.selection.seed = seed;
   const Diagnosis d = diagnose_problem(pb, opt);
 
   Case c;
+  c.injected = bad.size();
+  for (const Outlier& o : d.outliers) (bad.count(o.line) ? c.flagged : c.false_flags) += 1;
+  c.noise_um = d.noise_um;
+  c.noise_independent_um = d.noise_independent_um;
   bool truth_named = false, truth_ambiguous = false, wrong = false, any = false;
   for (const SelectedTerm& st : d.effects) {
     double ss = 0.0;
@@ -542,6 +576,7 @@ Case run_case(Design design, const Hidden& h, std::uint64_t seed) {
                            std::sqrt(ss / static_cast<double>(pb.obs.size())), alt);
     if (is_datum(st.term)) continue;
     if (st.term.kind == TermKind::unexplained) continue;
+    if (!st.significant) continue;  // its uncertainty exceeds its value: not a name
     any = true;
     if (h.shape != Shape::none && consistent(st.term, h)) {
       if (!sign_right(st.term, h)) {
@@ -691,6 +726,85 @@ TEST(DiagnoseDesigns, Plane) { check(sweep(Design::plane), {0.7, 0.3, 0.15, 0.75
 TEST(DiagnoseDesigns, Toolpath) { check(sweep(Design::toolpath), {0.8, 0.1, 0.05, 0.9, 0.9}); }
 TEST(DiagnoseDesigns, Ballbar) { check(sweep(Design::ballbar), {0.8, 0.1, 0.05, 0.9, 0.9}); }
 TEST(DiagnoseDesigns, Diagonals) { check(sweep(Design::diagonals), {0.0, 0.05, 0.1, 0.9, 0.0}); }
+
+// Gross outliers (issue 16): 2 % of the grid's points 20–50 µm off in one
+// component, on top of a hidden effect of 1–2 µm (2–4× the noise) or of
+// null data. The outliers are flagged and left out: the effect is still
+// named where the design resolves it, no effect is made of the outliers (no
+// wrong name; null data stay clean), and the noise estimates stay within a
+// factor 1.5 of the true 0.5 µm.
+TEST(DiagnoseDesigns, GridWithOutliers) {
+  const int n = std::max(8, seeds() / 2);
+  const Box b = box();
+  const double L = noisy_vm().generated.truth.tool_length;
+  Rates r;
+  std::size_t injected = 0, flagged = 0, false_flags = 0;
+  int noise_ok = 0, independent_ok = 0;
+  for (int i = 0; i < n; ++i) {
+    std::mt19937_64 rng(static_cast<std::uint64_t>(9000 + 37 * i));
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const auto seed = static_cast<std::uint64_t>(500 + i);
+    Hidden h;
+    if (i % 4 != 3) {
+      do {
+        h = draw(rng, b, L);
+      } while (!identifiable(Design::grid, h));
+      h.a = h.sign * (2.0 + 2.0 * u(rng)) * kNoise;
+      h.text = fmt::format("{} axis {} dir {} {:+.2f} µm", shape_name(h.shape), "XYZ"[h.axis],
+                           "XYZ"[h.dir], h.a);
+    }
+    const Case c = run_case(Design::grid, h, seed, 0.02);
+    injected += c.injected;
+    flagged += c.flagged;
+    false_flags += c.false_flags;
+    const bool nok = c.noise_um < 1.5 * kNoise && c.noise_um > kNoise / 1.5;
+    const bool iok = c.noise_independent_um < 1.5 * kNoise && c.noise_independent_um > kNoise / 1.5;
+    noise_ok += nok ? 1 : 0;
+    independent_ok += iok ? 1 : 0;
+    std::string tag;
+    if (h.shape == Shape::none) {
+      ++r.n_null;
+      r.null_clean += c.verdict == Verdict::none ? 1 : 0;
+      tag = c.verdict == Verdict::none ? "null ok" : "null NAMED";
+    } else if (c.oracle >= kResolvable) {
+      ++r.n_id;
+      r.id_right += c.verdict == Verdict::right ? 1 : 0;
+      r.id_wrong += c.verdict == Verdict::wrong ? 1 : 0;
+      tag = c.verdict == Verdict::right   ? "right"
+            : c.verdict == Verdict::wrong ? "WRONG"
+                                          : "missed";
+    } else {
+      ++r.n_un;
+      r.un_wrong += c.verdict == Verdict::wrong ? 1 : 0;
+      tag = c.verdict == Verdict::wrong ? "below resolution, WRONG NAME" : "below resolution";
+    }
+    std::cerr << fmt::format(
+        "outliers | seed {:3d} | {:<45} | {:<12} | flagged {}/{} +{} false | noise {:.3f} "
+        "(data alone {:.3f}) |{}\n",
+        i, h.text, tag, c.flagged, c.injected, c.false_flags, c.noise_um, c.noise_independent_um,
+        c.found);
+  }
+  std::cerr << fmt::format(
+      "RATES | grid with 2 % outliers, hidden 1-2 µm | named right {}/{} , wrong {} (+{} below "
+      "resolution) | null clean {}/{} | outliers flagged {}/{} , false flags {} | noise within "
+      "x1.5: fit {}/{} , data alone {}/{}\n",
+      r.id_right, r.n_id, r.id_wrong, r.un_wrong, r.null_clean, r.n_null, flagged, injected,
+      false_flags, noise_ok, n, independent_ok, n);
+  EXPECT_EQ(r.id_wrong + r.un_wrong, 0);  // no effect made of outliers
+  EXPECT_EQ(r.null_clean, r.n_null);
+  // 11/13 with 20 seeds, 38/49 with 100 — the same without the outliers
+  // (effects of 2–4× the noise are at the edge of this design).
+  EXPECT_GE(r.n_id ? static_cast<double>(r.id_right) / r.n_id : 1.0, 0.7);
+  EXPECT_GE(static_cast<double>(flagged), 0.95 * static_cast<double>(injected));
+  EXPECT_LE(static_cast<double>(false_flags), 0.002 * 960.0 * n);
+  // The noise after the fit (the significance floor's σ̂) is within the
+  // factor in every case. The estimate from the data alone scatters
+  // 0.32–1.0 µm on this grid with or without the outliers (measured: the
+  // same 20 cases without outliers give the same values and the same
+  // names), so it is held to most cases only.
+  EXPECT_EQ(noise_ok, n);
+  EXPECT_GE(independent_ok, (3 * n) / 4);
+}
 
 }  // namespace
 }  // namespace abbe::diagnose

@@ -112,6 +112,7 @@ int run_compensate(CompensateCliOptions o, const GlobalOptions& g) {
   const compensate::CompensateSummary s = compensate::compensate_program(
       program, o.input, config, model, o.c, [&](const char* d, std::size_t n) { out.write(d, n); });
   progress.finish();
+  warn_overlay_domain(model.extension());
 
   std::string text = fmt::format(
       "{}: {} lines, {} blocks changed, {} pieces inserted, {} points, max correction {:.4f} µm, "

@@ -15,6 +15,7 @@
 #include "abbe/machine/machine.hpp"
 #include "abbe/model/model_kind.hpp"
 #include "command.hpp"
+#include "model_option.hpp"
 
 namespace abbe::cli {
 namespace {
@@ -64,6 +65,7 @@ int run_linuxcnc(const ExportOptions& o) {
   jo.inch = o.units == "inch";
   if (!o.step.empty() && !(jo.step > 0.0)) bad_option("--step", "the step must be > 0 mm");
   std::fputs(compensate::export_linuxcnc(machine, jo, o.output).c_str(), stdout);
+  warn_overlay_domain(jo.extension.get());
   return kOk;
 }
 
@@ -84,6 +86,7 @@ int run_grid(const ExportOptions& o) {
   for (std::size_t n : go.count)
     if (!o.count.empty() && n < 2) bad_option("--count", "at least 2 nodes per axis");
   const std::string summary = compensate::export_grid(machine, go, o.output);
+  warn_overlay_domain(go.extension.get(), go.models.size());
   std::fputs(summary.c_str(), o.output == "-" ? stderr : stdout);
   return kOk;
 }

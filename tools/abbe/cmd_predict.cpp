@@ -24,6 +24,7 @@
 #include "command.hpp"
 #include "dialect_option.hpp"
 #include "input_stream.hpp"
+#include "model_option.hpp"
 #include "progress.hpp"
 #include "setup_options.hpp"
 
@@ -114,6 +115,7 @@ int run_predict_aligned(const PredictOptions& o, const GlobalOptions& g,
         if (writer) writer->write(p, line, devs, norms, aligned);
       });
   progress.finish();
+  warn_overlay_domain(po.extension.get(), po.models.size());
   finish_outputs(o, writer.get(), points.out.get(), pipeline::summary_json(prediction),
                  pipeline::summary_table(prediction));
   return kOk;
@@ -190,6 +192,7 @@ int run_predict(const PredictOptions& o, const GlobalOptions& g) {
         if (pos >= 0) progress.update(static_cast<std::uint64_t>(pos));
       });
   progress.finish();
+  warn_overlay_domain(po.extension.get(), po.models.size());
   finish_outputs(o, writer.get(), points.out.get(), pipeline::summary_json(summary),
                  pipeline::summary_table(summary));
   if (!summary.travel_text.empty())
@@ -233,7 +236,9 @@ const CommandRegistrar registrar(
       sub.add_flag("--summary-only", o->summary_only, "Write no points, only the summary");
       sub.add_option("--summary-json", o->summary_json, "Also write the summary as JSON to FILE");
       sub.add_option("--extend", o->extend,
-                     "Add the effects of an overlay written by `abbe diagnose --overlay`");
+                     std::string("Add the effects of an overlay written by `abbe diagnose "
+                                 "--overlay`") +
+                         kOverlayDomainHelp);
       sub.add_option("--align", o->align,
                      "Also report the deviation after the part's set-up: best-fit (least squares "
                      "over the cutting points) or datums (3-2-1, --datum-*)")

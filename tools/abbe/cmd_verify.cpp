@@ -97,6 +97,7 @@ int run_verify(const VerifyCliOptions& o, const GlobalOptions& g) {
   const compensate::VerifyStats s =
       compensate::verify_program(comp, o.input, orig, o.against, config, model, vo);
   progress.finish();
+  warn_overlay_domain(model.extension());
   const double max = std::max(s.max_um, s.backward_max_um);
   const std::vector<std::string> failures = compensate::verify_failures(s, o.tol_um);
   std::string why;

@@ -13,9 +13,10 @@ void add_model_options(CLI::App& sub, ModelOptions& o, const char* extend_help) 
   sub.add_option("--model", o.model, "Error model: " + model::model_names_text(false))
       ->check(CLI::IsMember(model::model_names(false)))
       ->capture_default_str();
-  sub.add_option("--extend", o.extend, extend_help);
+  sub.add_option("--extend", o.extend, std::string(extend_help) + kOverlayDomainHelp);
   sub.add_option("--extend-time", o.extend_time,
-                 "Campaign time (s) at which time-dependent overlay terms are evaluated")
+                 "Campaign time (s) at which time-dependent overlay terms are evaluated (held "
+                 "inside the overlay's time window)")
       ->capture_default_str();
 }
 
@@ -36,6 +37,13 @@ model::ErrorModel make_model(const ModelOptions& o, const machine::Machine& mach
     spdlog::info("{}: time-dependent terms evaluated at campaign time {} s (--extend-time)",
                  o.extend, o.extend_time);
   return extended;
+}
+
+void warn_overlay_domain(const model::ErrorExtension* ext, std::size_t per_point) {
+  const auto* overlay = dynamic_cast<const diagnose::OverlayExtension*>(ext);
+  if (!overlay) return;
+  const std::string w = overlay->domain_warning(per_point);
+  if (!w.empty()) spdlog::warn("{}", w);
 }
 
 }  // namespace abbe::cli

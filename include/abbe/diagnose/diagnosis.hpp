@@ -7,7 +7,9 @@
 #include <vector>
 
 #include "abbe/diagnose/candidates.hpp"
+#include "abbe/diagnose/dynamic.hpp"
 #include "abbe/diagnose/noise.hpp"
+#include "abbe/diagnose/outliers.hpp"
 #include "abbe/diagnose/overlay.hpp"
 #include "abbe/diagnose/residuals.hpp"
 #include "abbe/diagnose/selection.hpp"
@@ -21,6 +23,7 @@ struct DiagnoseOptions {
   model::ModelKind model = model::ModelKind::ae_arm;
   SelectionOptions selection;
   CandidateOptions candidates;
+  OutlierOptions outliers;
   const Overlay* extend = nullptr;  // an earlier overlay added to the model's prediction
 };
 
@@ -28,12 +31,18 @@ struct Diagnosis {
   std::string machine;
   std::string measured_file;
   std::string model;
-  std::size_t n_points = 0;
+  std::size_t n_points = 0;  // fitted: the measured points without the outliers
   std::size_t n_observations = 0;
+  // Gross outliers (outliers.hpp): left out of everything below except `models`.
+  std::vector<Outlier> outliers;
+  double outlier_threshold_um = 0.0;  // k robust σ of the final fit's residual
+  double outlier_k = 0.0;
   std::vector<ResidualStats> models;     // htm, ae-arm, dual (without any overlay)
   ResidualStats baseline;                // the diagnosed model (with --extend if given)
   std::vector<SelectedTerm> effects;     // ordered by importance
+  double explained_together = 0.0;       // share of the residual (after the datum) they remove
   std::vector<SelectedTerm> datum;       // what the datum (offsets, plate rotations) absorbed
+  OverlayDomain domain;                  // box and time window of the data (the overlay's)
   ResidualStats extended;                // after the selected effects, in-sample
   double holdout_rms_um = 0.0;           // extended model, held-out folds
   double baseline_holdout_rms_um = 0.0;  // the model with the datum fitted, held-out folds
@@ -43,6 +52,10 @@ struct Diagnosis {
   // neighbour differences; 0 when the data allow neither.
   double noise_independent_um = 0.0;
   std::string noise_method;
+  // Circular tests (dn along the radius of a circle): the sets, and the
+  // dynamic signatures found in the residual (dynamic.hpp; never named).
+  std::vector<std::string> circles;
+  std::vector<DynamicFinding> dynamic;
   int folds = 0;
   std::vector<std::string> log;
 };
@@ -56,6 +69,15 @@ Diagnosis diagnose_problem(const Problem& problem, const DiagnoseOptions& option
 std::string report_json(const Diagnosis& d);
 // The human summary: models, effects, gain.
 std::string report_text(const Diagnosis& d);
+// The effect's value (its first parameter) with its standard uncertainty,
+// e.g. "+12.3 ± 0.41 ppm"; "-" for a term without one (unexplained).
+std::string effect_value_text(const Term& t);
+// |value| > its standard uncertainty (true for a term without one).
+bool value_significant(const Term& t);
+// The circular-test lines of the summary ("" without circles).
+std::string dynamic_text(const Diagnosis& d);
+// The outliers line of the summary ("" when none), listing at most `max_listed`.
+std::string outliers_text(const Diagnosis& d, std::size_t max_listed);
 // The selected effects as an overlay (extended model).
 Overlay make_overlay(const Diagnosis& d, const Overlay* extend);
 

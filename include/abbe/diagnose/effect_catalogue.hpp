@@ -51,6 +51,11 @@ struct EffectDescriptor {
   bool writes_axis = true;
   bool reads_direction = true;
   bool axis_is_direction = false;
+  // Outside the domain an overlay was fitted on (overlay_domain.hpp): true
+  // for kinds evaluated there as written (linear geometric terms, bounded
+  // ones); false (the default: polynomial, smooth and time terms) clamps
+  // the term's arguments to the domain instead of extrapolating.
+  bool extrapolates = false;
 
   int (*columns)(const Term& t) = nullptr;  // null: one column
   // g_c(point) for every column c (out is zeroed before).

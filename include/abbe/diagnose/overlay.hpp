@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "abbe/diagnose/overlay_domain.hpp"
 #include "abbe/diagnose/term.hpp"
 
 namespace abbe::diagnose {
@@ -16,9 +17,17 @@ class Overlay {
   std::string base_model = "ae-arm";  // the model the overlay was fitted on top of
   std::string machine;                // the machine name it was fitted for (informative)
   std::vector<Term> terms;
+  // The box and time window the terms were fitted on (`domain:`; unknown in
+  // overlays written before it was recorded).
+  OverlayDomain domain;
+  std::string file;  // where it was read from (messages); empty when built in memory
 
-  // Extra deviation of the tool tip, µm (the sum of every term).
+  // Extra deviation of the tool tip, µm (the sum of every term). A term whose
+  // kind does not extrapolate is evaluated at the point clamped into the
+  // domain (overlay_domain.hpp); inside the domain nothing is clamped.
   Eigen::Vector3d evaluate(const PointContext& pc) const;
+  // True if a term depends on the time t.
+  bool time_dependent() const;
 
   // Throws abbe::InputError naming the file, line and field.
   static Overlay parse(const std::string& yaml_text, const std::string& file);

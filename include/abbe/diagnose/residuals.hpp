@@ -34,6 +34,7 @@ struct Problem {
   std::string base_model;   // the model whose residual is diagnosed
   std::string other_model;  // the model model_choice compares with
   std::vector<PointContext> points;
+  std::vector<std::size_t> lines;  // source line of each point (0: unknown)
   std::vector<Observation> obs;
   Eigen::VectorXd y;              // residual per observation, µm
   std::vector<std::string> sets;  // distinct `set` labels, in order of appearance

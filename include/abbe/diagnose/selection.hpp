@@ -43,8 +43,19 @@ struct SelectionOptions {
 };
 
 struct SelectedTerm {
-  Term term;                        // with coef and stderr_ from the final joint fit
-  double explained_fraction = 0.0;  // share of the baseline residual SS only this term removes
+  Term term;  // with coef and stderr_ from the final joint fit
+  // Share of the residual SS (after the datum) the term explains: its unique
+  // part (what only it removes, given the others) plus its part of what the
+  // effects explain only together (shared, split in proportion to each
+  // term's overlap: what it removes alone minus its unique part). The
+  // effects' explained_fraction add up to what they explain together.
+  // Datum terms: their unique share of the raw residual.
+  double explained_fraction = 0.0;
+  double unique_fraction = 0.0;
+  double shared_fraction = 0.0;
+  // False when the standard uncertainty of the effect's value (its first
+  // parameter) is not below the value: not a name (diagnosis.cpp).
+  bool significant = true;
   std::vector<std::string> ambiguous_with;
 };
 
@@ -55,13 +66,14 @@ struct SelectionResult {
   // residual. The effects' explained_fraction is their share of what is
   // left after the datum.
   std::vector<SelectedTerm> datum;
-  Eigen::VectorXd residual;      // after the final fit, per observation
-  double sigma_um = 0.0;         // noise estimate per observation after the fit
-  double cv_sse = 0.0;           // held-out SSE of the selected model
-  double baseline_sse = 0.0;     // SSE of the residual without extension
-  double datum_sse = 0.0;        // in-sample SSE after the datum alone
-  double datum_cv_sse = 0.0;     // held-out SSE of the datum alone (the gain's baseline)
-  std::vector<std::string> log;  // one line per step
+  Eigen::VectorXd residual;         // after the final fit, per observation
+  double sigma_um = 0.0;            // noise estimate per observation after the fit
+  double cv_sse = 0.0;              // held-out SSE of the selected model
+  double baseline_sse = 0.0;        // SSE of the residual without extension
+  double datum_sse = 0.0;           // in-sample SSE after the datum alone
+  double datum_cv_sse = 0.0;        // held-out SSE of the datum alone (the gain's baseline)
+  double explained_together = 0.0;  // share of datum_sse the effects remove together
+  std::vector<std::string> log;     // one line per step
 };
 
 SelectionResult select_effects(const Problem& problem, const CandidateSet& candidates,

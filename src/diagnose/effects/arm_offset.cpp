@@ -11,6 +11,7 @@ namespace abbe::diagnose::effects {
 
 EffectDescriptor arm_offset() {
   EffectDescriptor d = make_descriptor(TermKind::arm_offset, "arm_offset", "arm_offset");
+  d.extrapolates = true;  // ε_j from the tables (their own out-of-range policy)
   d.basis = [](const Term& t, const PointContext& pc, BasisOut out) {
     // ε_j × Δ with Δ = e_k (mm): µrad·mm = 1e-3 µm
     out.col(0) = units::kUmPerUradMm * pc.eps_urad[static_cast<std::size_t>(t.axis)].cross(

@@ -11,6 +11,7 @@ namespace abbe::diagnose::effects {
 
 EffectDescriptor cyclic() {
   EffectDescriptor d = make_descriptor(TermKind::cyclic, "cyclic", "cyclic");
+  d.extrapolates = true;  // bounded: the same wave beyond the domain
   d.columns = [](const Term&) { return 2; };
   d.basis = [](const Term& t, const PointContext& pc, BasisOut out) {
     const double a = units::kTwoPi * pc.s[t.axis] / t.period_mm;

@@ -8,6 +8,7 @@ namespace abbe::diagnose::effects {
 
 EffectDescriptor model_choice() {
   EffectDescriptor d = make_descriptor(TermKind::model_choice, "model_choice", "model_choice");
+  d.extrapolates = true;  // a share of the other model, wherever it is
   d.reads_axis = d.writes_axis = d.reads_direction = false;
   d.basis = [](const Term&, const PointContext& pc, BasisOut out) {
     out.col(0) = pc.model_delta_um;

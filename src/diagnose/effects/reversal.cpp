@@ -7,6 +7,7 @@ namespace abbe::diagnose::effects {
 
 EffectDescriptor reversal() {
   EffectDescriptor d = make_descriptor(TermKind::reversal, "reversal", "reversal");
+  d.extrapolates = true;  // bounded: ± half the reversal
   d.basis = [](const Term& t, const PointContext& pc, BasisOut out) {
     out(t.direction, 0) = 0.5 * static_cast<double>(pc.dir[static_cast<std::size_t>(t.axis)]);
   };

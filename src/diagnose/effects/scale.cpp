@@ -8,6 +8,7 @@ namespace abbe::diagnose::effects {
 
 EffectDescriptor scale() {
   EffectDescriptor d = make_descriptor(TermKind::scale, "scale", "scale");
+  d.extrapolates = true;  // linear in the position, as a scale error is
   d.basis = [](const Term& t, const PointContext& pc, BasisOut out) {
     out(t.direction, 0) = units::kMmPerUm * pc.s[t.axis];  // coefficient in µm/m (ppm)
   };

@@ -17,6 +17,7 @@ void write_set(const Term& t, std::string& y) { y += fmt::format("    set: \"{}\
 
 EffectDescriptor setup_offset() {
   EffectDescriptor d = make_descriptor(TermKind::setup_offset, "setup", "setup_offset");
+  d.extrapolates = true;  // a constant
   d.reads_axis = false;
   d.axis_is_direction = true;
   d.basis = [](const Term& t, const PointContext& pc, BasisOut out) {
@@ -37,6 +38,7 @@ EffectDescriptor setup_offset() {
 
 EffectDescriptor setup_rotation() {
   EffectDescriptor d = make_descriptor(TermKind::setup_rotation, "setup", "setup_rotation");
+  d.extrapolates = true;  // a rigid rotation
   d.reads_direction = false;
   d.basis = [](const Term& t, const PointContext& pc, BasisOut out) {
     // A small rotation (µrad) about the axis through the centre: ω × (P − C), µm.

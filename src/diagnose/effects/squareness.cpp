@@ -8,6 +8,7 @@ namespace abbe::diagnose::effects {
 
 EffectDescriptor squareness() {
   EffectDescriptor d = make_descriptor(TermKind::squareness, "squareness", "squareness");
+  d.extrapolates = true;  // linear in the position, as a squareness is
   d.basis = [](const Term& t, const PointContext& pc, BasisOut out) {
     out(t.direction, 0) = units::kMmPerUm * pc.s[t.axis];  // coefficient in µrad
   };
