@@ -1,3 +1,4 @@
+#include "abbe/io/input_file.hpp"
 #include "abbe/io/ballbar.hpp"
 
 #include <fmt/format.h>
@@ -173,12 +174,8 @@ MeasuredData read_ballbar(std::istream& in, const std::string& file) {
 }
 
 MeasuredData load_ballbar(const std::string& path) {
-  if (path == "-") return read_ballbar(std::cin, "-");
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw InputError({path, 0, 0, "", ""},
-                     std::string("cannot open the ballbar file: ") + std::strerror(errno));
-  return read_ballbar(in, path);
+  return read_input(path, "ballbar file",
+                    [](std::istream& in, const std::string& name) { return read_ballbar(in, name); });
 }
 
 }  // namespace abbe::io

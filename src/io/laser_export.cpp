@@ -1,3 +1,4 @@
+#include "abbe/io/input_file.hpp"
 #include "abbe/io/laser_export.hpp"
 
 #include <fmt/format.h>
@@ -269,10 +270,8 @@ LaserExport read_laser_export(std::istream& in, const std::string& file) {
 }
 
 LaserExport load_laser_export(const std::string& path) {
-  if (path == "-") return read_laser_export(std::cin, "-");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError({path, 0, 0, "", ""}, "cannot open the laser export");
-  return read_laser_export(in, path);
+  return read_input(path, "laser export",
+                    [](std::istream& in, const std::string& name) { return read_laser_export(in, name); });
 }
 
 std::string laser_runs_csv(const LaserExport& data) {

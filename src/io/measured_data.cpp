@@ -1,3 +1,4 @@
+#include "abbe/io/input_file.hpp"
 #include "abbe/io/measured_data.hpp"
 
 #include <fmt/format.h>
@@ -101,12 +102,8 @@ MeasuredData read_measured_data(std::istream& in, const std::string& file) {
 }
 
 MeasuredData load_measured_data(const std::string& path) {
-  if (path == "-") return read_measured_data(std::cin, "-");
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw InputError({path, 0, 0, "", ""},
-                     std::string("cannot open the measured data: ") + std::strerror(errno));
-  return read_measured_data(in, path);
+  return read_input(path, "measured data",
+                    [](std::istream& in, const std::string& name) { return read_measured_data(in, name); });
 }
 
 std::string measured_data_to_csv(const MeasuredData& data) {

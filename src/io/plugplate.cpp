@@ -1,3 +1,4 @@
+#include "abbe/io/input_file.hpp"
 #include "abbe/io/plugplate.hpp"
 
 #include <fmt/format.h>
@@ -97,12 +98,8 @@ MeasuredData read_plugplate(std::istream& in, const std::string& file) {
 }
 
 MeasuredData load_plugplate(const std::string& path) {
-  if (path == "-") return read_plugplate(std::cin, "-");
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw InputError({path, 0, 0, "", ""},
-                     std::string("cannot open the plug-plate report: ") + std::strerror(errno));
-  return read_plugplate(in, path);
+  return read_input(path, "plug-plate report",
+                    [](std::istream& in, const std::string& name) { return read_plugplate(in, name); });
 }
 
 }  // namespace abbe::io

@@ -19,7 +19,7 @@ set_tests_properties(interop_rs274 PROPERTIES LABELS interop SKIP_RETURN_CODE 77
 add_test(NAME interpret_summary
          COMMAND abbe interpret ${CMAKE_CURRENT_SOURCE_DIR}/interop/ncfiles/cycles.ngc)
 set_tests_properties(interpret_summary PROPERTIES LABELS cli
-  PASS_REGULAR_EXPRESSION "^lines=37 motions=173 rapid=[0-9]+ linear=[0-9]+ arc=0 dwell=[0-9]+")
+  PASS_REGULAR_EXPRESSION "^lines=45 motions=212 rapid=[0-9]+ linear=[0-9]+ arc=0 dwell=[0-9]+")
 add_test(NAME interpret_refuses_bad_input
          COMMAND sh -c "\"$1\" interpret \"$2\"; echo exit=$?" sh $<TARGET_FILE:abbe>
                  ${CMAKE_CURRENT_SOURCE_DIR}/data/bad/cutter-comp-g41.nc)

@@ -4,6 +4,7 @@
 
 #include "abbe/io/input_error.hpp"
 #include "abbe/machine/machine.hpp"
+#include "minimal_machine_text.hpp"
 
 namespace abbe::machine {
 namespace {
@@ -31,28 +32,7 @@ TEST(MachineLoad, SampleMachine) {
   EXPECT_EQ(m.table().series().size(), 21u);  // 3 axes × (5 mean + fwd + rev)
 }
 
-const std::string kGood = R"(name: t
-chain: "w X' b Y Z t"
-travel:
-  x: [-990, 0]
-  y: [-500, 0]
-  z: [-460, 0]
-tool_length: 130.0
-table: sample-errors.csv
-axes:
-  X:
-    measured_at: {x: -500.0, y: -256.0, z: -280.0, tool_length: 130.0}
-    points:
-      all: [-800.0, -256.0, -478.0]
-  Y:
-    measured_at: {x: -500.0, y: -250.0, z: -280.0, tool_length: 130.0}
-    points:
-      all: [-500.0, -250.0, -300.0]
-  Z:
-    measured_at: {x: -500.0, y: -250.0, z: -300.0, tool_length: 130.0}
-    points:
-      all: [-500.0, -250.0, -250.0]
-)";
+const std::string& kGood = abbe::testing::kMinimalMachine;
 
 std::string replace(std::string text, const std::string& from, const std::string& to) {
   auto pos = text.find(from);

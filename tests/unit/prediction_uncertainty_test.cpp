@@ -15,6 +15,7 @@
 #include "abbe/machine/machine.hpp"
 #include "abbe/pipeline/predict.hpp"
 #include "model_test_machines.hpp"
+#include "minimal_machine_text.hpp"
 
 namespace abbe::pipeline {
 namespace {
@@ -258,28 +259,7 @@ TEST(PredictionUncertainty, SummaryStatesTheCoverageFactor) {
 
 // Bad uncertainty values are refused with the file, line and field.
 const std::string kDir = std::string(ABBE_TEST_DATA_DIR) + "/machines";
-const std::string kMachine = R"(name: t
-chain: "w X' b Y Z t"
-travel:
-  x: [-990, 0]
-  y: [-500, 0]
-  z: [-460, 0]
-tool_length: 130.0
-table: sample-errors.csv
-axes:
-  X:
-    measured_at: {x: -500.0, y: -256.0, z: -280.0, tool_length: 130.0}
-    points:
-      all: [-800.0, -256.0, -478.0]
-  Y:
-    measured_at: {x: -500.0, y: -250.0, z: -280.0, tool_length: 130.0}
-    points:
-      all: [-500.0, -250.0, -300.0]
-  Z:
-    measured_at: {x: -500.0, y: -250.0, z: -300.0, tool_length: 130.0}
-    points:
-      all: [-500.0, -250.0, -250.0]
-)";
+const std::string& kMachine = abbe::testing::kMinimalMachine;
 
 struct BadU {
   std::string key;  // appended to kMachine

@@ -1,0 +1,35 @@
+#pragma once
+// The smallest complete machine file the machine-file tests edit: the
+// sample's chain, travels and records, the table of tests/data/machines
+// (parse it with kMachinesDir as the base folder). Tests that count lines
+// in their messages rely on it being 22 lines long.
+#include <string>
+
+namespace abbe::testing {
+
+inline const std::string kMachinesDir = std::string(ABBE_TEST_DATA_DIR) + "/machines";
+
+inline const std::string kMinimalMachine = R"(name: t
+chain: "w X' b Y Z t"
+travel:
+  x: [-990, 0]
+  y: [-500, 0]
+  z: [-460, 0]
+tool_length: 130.0
+table: sample-errors.csv
+axes:
+  X:
+    measured_at: {x: -500.0, y: -256.0, z: -280.0, tool_length: 130.0}
+    points:
+      all: [-800.0, -256.0, -478.0]
+  Y:
+    measured_at: {x: -500.0, y: -250.0, z: -280.0, tool_length: 130.0}
+    points:
+      all: [-500.0, -250.0, -300.0]
+  Z:
+    measured_at: {x: -500.0, y: -250.0, z: -300.0, tool_length: 130.0}
+    points:
+      all: [-500.0, -250.0, -250.0]
+)";
+
+}  // namespace abbe::testing
