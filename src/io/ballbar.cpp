@@ -1,4 +1,3 @@
-#include "abbe/io/input_file.hpp"
 #include "abbe/io/ballbar.hpp"
 
 #include <fmt/format.h>
@@ -17,6 +16,7 @@
 
 #include "abbe/io/csv_reader.hpp"
 #include "abbe/io/input_error.hpp"
+#include "abbe/io/input_file.hpp"
 
 namespace abbe::io {
 namespace {
@@ -174,8 +174,7 @@ MeasuredData read_ballbar(std::istream& in, const std::string& file) {
 }
 
 MeasuredData load_ballbar(const std::string& path) {
-  return read_input(path, "ballbar file",
-                    [](std::istream& in, const std::string& name) { return read_ballbar(in, name); });
+  return read_input(path, "ballbar file", read_ballbar);
 }
 
 }  // namespace abbe::io

@@ -1,4 +1,3 @@
-#include "abbe/io/input_file.hpp"
 #include "abbe/io/laser_export.hpp"
 
 #include <fmt/format.h>
@@ -15,6 +14,7 @@
 
 #include "abbe/io/csv_reader.hpp"
 #include "abbe/io/input_error.hpp"
+#include "abbe/io/input_file.hpp"
 #include "abbe/io/units.hpp"
 
 namespace abbe::io {
@@ -270,8 +270,7 @@ LaserExport read_laser_export(std::istream& in, const std::string& file) {
 }
 
 LaserExport load_laser_export(const std::string& path) {
-  return read_input(path, "laser export",
-                    [](std::istream& in, const std::string& name) { return read_laser_export(in, name); });
+  return read_input(path, "laser export", read_laser_export);
 }
 
 std::string laser_runs_csv(const LaserExport& data) {

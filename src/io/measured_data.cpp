@@ -1,4 +1,3 @@
-#include "abbe/io/input_file.hpp"
 #include "abbe/io/measured_data.hpp"
 
 #include <fmt/format.h>
@@ -15,6 +14,7 @@
 
 #include "abbe/io/csv_reader.hpp"
 #include "abbe/io/input_error.hpp"
+#include "abbe/io/input_file.hpp"
 
 namespace abbe::io {
 namespace {
@@ -102,8 +102,7 @@ MeasuredData read_measured_data(std::istream& in, const std::string& file) {
 }
 
 MeasuredData load_measured_data(const std::string& path) {
-  return read_input(path, "measured data",
-                    [](std::istream& in, const std::string& name) { return read_measured_data(in, name); });
+  return read_input(path, "measured data", read_measured_data);
 }
 
 std::string measured_data_to_csv(const MeasuredData& data) {

@@ -1,4 +1,3 @@
-#include "abbe/io/input_file.hpp"
 #include "abbe/io/plugplate.hpp"
 
 #include <fmt/format.h>
@@ -13,6 +12,7 @@
 #include <vector>
 
 #include "abbe/io/input_error.hpp"
+#include "abbe/io/input_file.hpp"
 
 namespace abbe::io {
 
@@ -98,8 +98,7 @@ MeasuredData read_plugplate(std::istream& in, const std::string& file) {
 }
 
 MeasuredData load_plugplate(const std::string& path) {
-  return read_input(path, "plug-plate report",
-                    [](std::istream& in, const std::string& name) { return read_plugplate(in, name); });
+  return read_input(path, "plug-plate report", read_plugplate);
 }
 
 }  // namespace abbe::io

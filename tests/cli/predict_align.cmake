@@ -55,19 +55,10 @@ file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
 file(WRITE ${WORK}/out.csv "previous contents\n")
 
+include(${CMAKE_CURRENT_LIST_DIR}/lib/refusal_helpers.cmake)
 function(expect code what pattern)
-  execute_process(COMMAND ${ABBE} predict ${ARGN} --machine ${MACHINE} -o ${WORK}/out.csv
-                  RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_VARIABLE out)
-  if(NOT rc EQUAL ${code})
-    message(FATAL_ERROR "${what}: expected exit code ${code}, got '${rc}'\n${err}")
-  endif()
-  if(NOT err MATCHES "${pattern}")
-    message(FATAL_ERROR "${what}: the error does not match '${pattern}':\n${err}")
-  endif()
-  file(READ ${WORK}/out.csv contents)
-  if(NOT contents STREQUAL "previous contents\n")
-    message(FATAL_ERROR "${what}: the output was changed")
-  endif()
+  refused_untouched(${code} "${what}" "${pattern}" ${WORK}/out.csv
+                    ${ABBE} predict ${ARGN} --machine ${MACHINE} -o ${WORK}/out.csv)
 endfunction()
 
 expect(1 "bad line set" "<command line>:3 \\[--datum-primary\\]: error: expected a line number"

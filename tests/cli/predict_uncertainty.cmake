@@ -79,19 +79,10 @@ endforeach()
 # Errors: nothing to propagate (exit 1, naming the machine file and the
 # field), too few draws and --align (usage, exit 2); the output is untouched.
 file(WRITE ${WORK}/out.csv "previous contents\n")
+include(${CMAKE_CURRENT_LIST_DIR}/lib/refusal_helpers.cmake)
 function(expect code what pattern)
-  execute_process(COMMAND ${ABBE} predict ${program} ${ARGN} -o ${WORK}/out.csv
-                  RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_VARIABLE out)
-  if(NOT rc EQUAL ${code})
-    message(FATAL_ERROR "${what}: expected exit code ${code}, got '${rc}'\n${err}")
-  endif()
-  if(NOT err MATCHES "${pattern}")
-    message(FATAL_ERROR "${what}: the error does not match '${pattern}':\n${err}")
-  endif()
-  file(READ ${WORK}/out.csv contents)
-  if(NOT contents STREQUAL "previous contents\n")
-    message(FATAL_ERROR "${what}: the output was changed")
-  endif()
+  refused_untouched(${code} "${what}" "${pattern}" ${WORK}/out.csv
+                    ${ABBE} predict ${program} ${ARGN} -o ${WORK}/out.csv)
 endfunction()
 expect(1 "no uncertainty in the machine file"
        "machine.yaml \\[uncertainty\\]: error: --uncertainty: nothing to propagate"

@@ -9,7 +9,7 @@
 namespace abbe::machine {
 namespace {
 
-const std::string kDir = std::string(ABBE_TEST_DATA_DIR) + "/machines";
+const std::string& kDir = abbe::testing::kMachinesDir;
 
 TEST(MachineLoad, SampleMachine) {
   Machine m = Machine::load(kDir + "/sample.yaml");
@@ -67,16 +67,7 @@ class MachineRejects : public ::testing::TestWithParam<Bad> {};
 
 TEST_P(MachineRejects, NamesFileLineAndField) {
   const Bad& b = GetParam();
-  std::string text = replace(kGood, b.from, b.to);
-  try {
-    Machine::parse(text, "m.yaml", kDir);
-    FAIL() << "accepted:\n" << text;
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.where().file, "m.yaml");
-    EXPECT_EQ(e.where().line, b.line) << e.what();
-    EXPECT_EQ(e.where().field, b.field) << e.what();
-    EXPECT_NE(e.message().find(b.says), std::string::npos) << e.what();
-  }
+  abbe::testing::expect_machine_rejected(replace(kGood, b.from, b.to), b.line, b.field, b.says);
 }
 
 INSTANTIATE_TEST_SUITE_P(

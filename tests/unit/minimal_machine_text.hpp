@@ -1,9 +1,16 @@
 #pragma once
 // The smallest complete machine file the machine-file tests edit: the
 // sample's chain, travels and records, the table of tests/data/machines
-// (parse it with kMachinesDir as the base folder). Tests that count lines
+// (parse it with kMachinesDir as the base folder), and the check that an
+// edited file is refused with its line and field. Tests that count lines
 // in their messages rely on it being 22 lines long.
+#include <gtest/gtest.h>
+
+#include <cstddef>
 #include <string>
+
+#include "abbe/io/input_error.hpp"
+#include "abbe/machine/machine.hpp"
 
 namespace abbe::testing {
 
@@ -31,5 +38,20 @@ axes:
     points:
       all: [-500.0, -250.0, -250.0]
 )";
+
+// `text` (read as "m.yaml" in kMachinesDir) must be refused naming the
+// line, the field and a message that contains `says`.
+inline void expect_machine_rejected(const std::string& text, std::size_t line,
+                                    const std::string& field, const std::string& says) {
+  try {
+    machine::Machine::parse(text, "m.yaml", kMachinesDir);
+    ADD_FAILURE() << "accepted:\n" << text;
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().file, "m.yaml");
+    EXPECT_EQ(e.where().line, line) << e.what();
+    EXPECT_EQ(e.where().field, field) << e.what();
+    EXPECT_NE(e.message().find(says), std::string::npos) << e.what();
+  }
+}
 
 }  // namespace abbe::testing
