@@ -33,7 +33,7 @@ PlaneAxes named_axes(Plane plane) {
 
 // A feed move needs a feed rate: an F word in its block in G93 (rs274ngc),
 // a spindle speed in G95.
-void check_feed(const ExecState& st, const BlockPlan& b, const char* gname) {
+void check_feed_rules(const ExecState& st, const BlockPlan& b, const char* gname) {
   if (st.feed_mode == FeedMode::inverse_time) {
     if (!b.codes.has('F'))
       b.ctx.fail(b.motion_word,
@@ -49,6 +49,12 @@ void check_feed(const ExecState& st, const BlockPlan& b, const char* gname) {
   if (st.feed_mode == FeedMode::units_per_rev && st.spindle == 0.0)
     b.ctx.fail(b.motion_word,
                fmt::format("{} in feed per revolution mode (G95) with spindle speed 0", gname));
+}
+
+// The usual case (units per minute, a feed rate set) without a call.
+inline void check_feed(const ExecState& st, const BlockPlan& b, const char* gname) {
+  if (st.feed_mode != FeedMode::units_per_minute || st.feed_mm == 0.0)
+    check_feed_rules(st, b, gname);
 }
 
 // Polar words (rs274ngc): @ the radius, ^ the angle in degrees, about the
@@ -91,12 +97,10 @@ void polar_end(const ExecState& st, const BlockPlan& b, bool g53, Eigen::Vector3
 
 }  // namespace
 
-void convert_motion(ExecState& st, const BlockPlan& b, const Emit& emit) {
+Eigen::Vector3d motion_end(ExecState& st, const BlockPlan& b) {
   const int motion = b.motion;
-  if (motion == -1) return;
   const BlockCodes& c = b.codes;
   const bool g53 = b.non_modal == gcode_id(53);
-  if (!is_cycle(motion)) st.cycle_initial_level_set = false;
   if (g53) {
     const Word* at = c.group(GGroup::non_modal)->word;
     if (motion != gcode_id(0) && motion != gcode_id(1))
@@ -116,7 +120,14 @@ void convert_motion(ExecState& st, const BlockPlan& b, const Emit& emit) {
       end[a] = st.incremental ? st.pos[a] + w->value : w->value;
     }
   }
+  return end;
+}
 
+void convert_motion(ExecState& st, const BlockPlan& b, const Emit& emit) {
+  const int motion = b.motion;
+  if (motion == -1) return;
+  if (!is_cycle(motion)) st.cycle_initial_level_set = false;
+  const Eigen::Vector3d end = motion_end(st, b);
   if (motion == gcode_id(0) || motion == gcode_id(1)) {
     convert_straight(st, b, end, emit);
   } else if (motion == gcode_id(2) || motion == gcode_id(3)) {
@@ -129,16 +140,24 @@ void convert_motion(ExecState& st, const BlockPlan& b, const Emit& emit) {
   if (motion >= gcode_id(0) && motion <= gcode_id(3)) st.fanuc_group01 = motion;
 }
 
-void convert_straight(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& end,
-                      const Emit& emit) {
+Motion straight_motion(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& end) {
   const bool rapid = b.motion == gcode_id(0);
   if (!rapid) check_feed(st, b, "G1");
   Motion m;
   m.kind = rapid ? MotionKind::rapid : MotionKind::linear;
   m.start = st.tip(st.pos);
   m.end = st.tip(end);
-  m.feed = rapid ? 0.0 : st.feed_rate_mm((m.end - m.start).norm());
+  // The length matters only to inverse-time feed (no square root otherwise).
+  m.feed = rapid                                    ? 0.0
+           : st.feed_mode == FeedMode::inverse_time ? st.feed_rate_mm((m.end - m.start).norm())
+                                                    : st.feed_rate_mm(0.0);
   st.motion_mode = b.motion;
+  return m;
+}
+
+void convert_straight(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& end,
+                      const Emit& emit) {
+  Motion m = straight_motion(st, b, end);
   if (st.comp.offsetting()) {  // the tool centre path (cutter_comp.cpp)
     st.stamp(m);
     comp_straight(st, b, end, m);

@@ -21,24 +21,6 @@ namespace detail {
 
 constexpr char kAxisLetters[6] = {'X', 'Y', 'Z', 'A', 'B', 'C'};
 
-Eigen::Vector3d ExecState::tip(const Eigen::Vector3d& p) const {
-  Eigen::Vector3d s;
-  if (inch) {
-    s = (p + g5x() + g92 + Eigen::Vector3d(0, 0, tlo)) * units::kMmPerInch;
-  } else {
-    s = p + work_offsets[static_cast<std::size_t>(coord_index)] + g92 + Eigen::Vector3d(0, 0, tlo);
-  }
-  s.z() -= active_length_mm();
-  return s;
-}
-
-bool is_cycle(int code) {
-  return code == gcode_id(73) || code == gcode_id(74) || code == gcode_id(81) ||
-         code == gcode_id(82) || code == gcode_id(83) || code == gcode_id(84) ||
-         code == gcode_id(85) || code == gcode_id(86) || code == gcode_id(87) ||
-         code == gcode_id(89);
-}
-
 bool uses_axis_words(int non_modal) {
   return non_modal == gcode_id(92) || non_modal == gcode_id(10) || non_modal == gcode_id(28) ||
          non_modal == gcode_id(30) || non_modal == gcode_id(52);
@@ -69,13 +51,16 @@ BlockPlan plan_block(const ModalState& st, const BlockCodes& c, const BlockConte
       tool_length && (tool_length->code == gcode_id(43, 1) || tool_length->code == gcode_id(43, 2));
   const int axis_user = g43_1 && !uses_axis_words(b.non_modal) ? tool_length->code : b.non_modal;
   const bool g92_axes = uses_axis_words(b.non_modal) || g43_1;
-  const Word* first_axis = nullptr;
-  for (char a : kAxisLetters)
-    if (!first_axis && c.has(a)) first_axis = c.word(a);
+  // The first axis word (X Y Z A B C), where axis-word errors point.
+  const auto first_axis = [&c]() -> const Word* {
+    for (char a : kAxisLetters)
+      if (c.has(a)) return c.word(a);
+    return nullptr;
+  };
 
   if ((b.non_modal == gcode_id(28, 1) || b.non_modal == gcode_id(30, 1)) && c.has_axis_word())
-    ctx.fail(first_axis, fmt::format("{} takes no axis words (it stores the current position)",
-                                     gcode_name(b.non_modal)));
+    ctx.fail(first_axis(), fmt::format("{} takes no axis words (it stores the current position)",
+                                       gcode_name(b.non_modal)));
 
   if (g43_1 && uses_axis_words(b.non_modal) && c.has_axis_word())
     ctx.fail(tool_length->word,
@@ -93,12 +78,12 @@ BlockPlan plan_block(const ModalState& st, const BlockCodes& c, const BlockConte
                            gcode_name(b.motion), gcode_name(axis_user)));
   } else if (c.has_axis_word() && !g92_axes) {
     if (st.motion_mode == gcode_id(80))
-      ctx.fail(first_axis, "axis words without a motion code (no motion mode is active)");
+      ctx.fail(first_axis(), "axis words without a motion code (no motion mode is active)");
     b.motion = st.motion_mode;
-    b.motion_word = first_axis;
+    b.motion_word = first_axis();
   }
   if (b.motion == gcode_id(80) && c.has_axis_word() && !g92_axes)
-    ctx.fail(first_axis, "axis words with G80 (canned cycle cancel)");
+    ctx.fail(first_axis(), "axis words with G80 (canned cycle cancel)");
   if (b.non_modal == gcode_id(92) && !c.has_axis_word())
     ctx.fail(non_modal->word, "G92 without axis words");
   if (b.non_modal == gcode_id(52) && !c.has_axis_word())
@@ -120,6 +105,32 @@ BlockPlan plan_block(const ModalState& st, const BlockCodes& c, const BlockConte
   check_word_use(c, ctx,
                  {b.motion, b.non_modal, path ? path->code : -1,
                   tool_length ? tool_length->code : -1, comp ? comp->code : -1});
+  return b;
+}
+
+bool is_plain_block(const ExecState& st, const BlockCodes& c) {
+  constexpr std::uint32_t kMotionGroup = 1U << static_cast<unsigned>(GGroup::motion);
+  constexpr auto bit = [](char letter) { return 1U << BlockCodes::letter_index(letter); };
+  constexpr std::uint32_t kPlainLetters =
+      bit('X') | bit('Y') | bit('Z') | bit('F') | bit('S') | bit('T');
+  if ((c.g_mask & ~kMotionGroup) != 0 || c.m_mask != 0 || (c.letter_mask & ~kPlainLetters) != 0 ||
+      st.comp.side != 0)
+    return false;
+  const CodeWord* code = c.group(GGroup::motion);
+  const int motion = code ? code->code : c.has_axis_word() ? st.motion_mode : -1;
+  return motion == -1 || motion == gcode_id(0) || motion == gcode_id(1);
+}
+
+BlockPlan plan_plain_block(const ModalState& st, const BlockCodes& c, const BlockContext& ctx) {
+  BlockPlan b{c, ctx};
+  if (const CodeWord* code = c.group(GGroup::motion)) {
+    b.motion = code->code;
+    b.motion_word = code->word;
+  } else if (c.has_axis_word()) {
+    b.motion = st.motion_mode;
+    for (char a : {'X', 'Y', 'Z'})
+      if (!b.motion_word) b.motion_word = c.word(a);
+  }
   return b;
 }
 
@@ -146,16 +157,35 @@ void check_rotary_words(ExecState& st, const BlockPlan& b) {
   }
 }
 
-double ExecState::feed_rate_mm(double length_mm) const {
-  switch (feed_mode) {
-    case FeedMode::inverse_time:
-      return length_mm * feed_mm;  // the move takes 1/F minutes
-    case FeedMode::units_per_rev:
-      return feed_mm * std::abs(spindle);
-    case FeedMode::units_per_minute:
-      break;
+// The word a refused motion is reported at: the first axis, centre or radius word.
+const Word* motion_anchor(const Block& block) {
+  for (const auto& w : block.words)
+    if (std::string_view("XYZIJKR@^").find(w.letter) != std::string_view::npos) return &w;
+  return block.words.empty() ? nullptr : &block.words.front();
+}
+
+void stamp_motion(const ExecState& st, Motion& m, std::size_t line, std::uint32_t sub) {
+  m.line = line;
+  m.sub = sub;
+  m.tool_length = st.g43 && st.tool_length_unknown ? std::numeric_limits<double>::quiet_NaN()
+                                                   : st.active_length_mm();
+  m.spindle = st.spindle;
+  m.tool = st.selected_tool;
+}
+
+void deliver_motion(Motion& m, const Block& block, const BlockContext& ctx,
+                    const MotionSink& sink) {
+  double far = std::max(m.start.cwiseAbs().maxCoeff(), m.end.cwiseAbs().maxCoeff());
+  if (m.kind == MotionKind::arc) far = std::max(far, m.center.cwiseAbs().maxCoeff());
+  if (!(far <= kMaxCoordinateMm))
+    ctx.fail(motion_anchor(block), fmt::format("the motion reaches a coordinate of {:g} mm, "
+                                               "beyond the bound of ±{:g} mm",
+                                               far, kMaxCoordinateMm));
+  try {
+    sink(m);
+  } catch (const MotionRefused& e) {
+    ctx.fail(motion_anchor(block), e.what());
   }
-  return feed_mm;
 }
 
 }  // namespace detail
@@ -295,44 +325,37 @@ void Interpreter::execute_evaluated(const Block& written, std::string_view raw_l
   const BlockCodes codes = classify_block(block, ctx);
   // check
   st.read_non_modal = -1;
-  const detail::BlockPlan b = detail::plan_block(st, codes, ctx);
+  const bool plain = detail::is_plain_block(st, codes);
+  const detail::BlockPlan b =
+      plain ? detail::plan_plain_block(st, codes, ctx) : detail::plan_block(st, codes, ctx);
   st.read_non_modal = b.non_modal;
-  detail::check_rotary_words(st, b);
-  detail::check_comp_block(st, b);
+  if (!plain) {
+    if (codes.has_rotary_word()) detail::check_rotary_words(st, b);
+    detail::check_comp_block(st, b);
+  }
+
+  // The plain straight block (most of a CAM program) goes from its end
+  // point to the sink directly; what it skips acts only on codes, words or
+  // compensation states it cannot have.
+  if (plain && (b.motion == gcode_id(0) || b.motion == gcode_id(1)) && st.comp.queue.empty() &&
+      !st.comp.exit_pending) {
+    if (codes.has('F') || codes.has('S') || codes.has('T')) detail::convert_feed_speed_tool(st, b);
+    st.cycle_initial_level_set = false;
+    const Eigen::Vector3d end = detail::motion_end(st, b);
+    Motion m = detail::straight_motion(st, b, end);
+    st.fanuc_group01 = b.motion;
+    st.pos = end;
+    detail::stamp_motion(st, m, block.line, 0);
+    detail::deliver_motion(m, block, ctx, sink);
+    return;
+  }
 
   std::uint32_t sub = 0;
-  // The word a refused motion is reported at: the first axis, centre or radius word.
-  const auto anchor = [&]() -> const Word* {
-    for (const auto& w : block.words)
-      if (std::string_view("XYZIJKR@^").find(w.letter) != std::string_view::npos) return &w;
-    return block.words.empty() ? nullptr : &block.words.front();
-  };
-  // A finished motion to the sink (also the motions cutter radius
-  // compensation held back from earlier blocks: they keep their line).
-  auto deliver = [&](Motion& m) {
-    const double far = std::max({m.start.cwiseAbs().maxCoeff(), m.end.cwiseAbs().maxCoeff(),
-                                 m.center.cwiseAbs().maxCoeff()});
-    if (!(far <= kMaxCoordinateMm))
-      ctx.fail(anchor(), fmt::format("the motion reaches a coordinate of {:g} mm, beyond the "
-                                     "bound of ±{:g} mm",
-                                     far, kMaxCoordinateMm));
-    try {
-      sink(m);
-    } catch (const MotionRefused& e) {
-      ctx.fail(anchor(), e.what());
-    }
-  };
+  auto deliver = [&](Motion& m) { detail::deliver_motion(m, block, ctx, sink); };
   st.deliver = detail::make_hook(deliver);
-  auto stamp = [&](Motion& m) {
-    m.line = block.line;
-    m.sub = sub++;
-    m.tool_length = st.g43 && st.tool_length_unknown ? std::numeric_limits<double>::quiet_NaN()
-                                                     : st.active_length_mm();
-    m.spindle = st.spindle;
-    m.tool = st.selected_tool;
-  };
+  auto stamp = [&](Motion& m) { detail::stamp_motion(st, m, block.line, sub++); };
   st.stamp = detail::make_hook(stamp);
-  const detail::Emit emit = [&](Motion& m) {
+  auto emit_motion = [&](Motion& m) {
     stamp(m);
     if (!st.comp.queue.empty()) {  // after the motions compensation holds back
       detail::comp_enqueue_dwell(st, m);
@@ -345,24 +368,34 @@ void Interpreter::execute_evaluated(const Block& written, std::string_view raw_l
     }
     deliver(m);
   };
+  const detail::Emit emit = detail::make_hook(emit_motion);
 
-  // convert, in rs274ngc's order of execution
-  detail::convert_feed_mode(st, b);
-  detail::convert_feed_speed_tool(st, b);
-  detail::convert_modal_save(st, b);
-  detail::convert_dwell(st, b, emit);
-  detail::convert_plane(st, b);
-  detail::convert_units(st, b);
-  detail::convert_cutter_comp(st, b);
-  detail::convert_tool_length(st, b);
-  detail::convert_coord_system(st, b);
-  detail::convert_path_control(st, b);
-  detail::convert_distance_modes(st, b);
-  detail::convert_setup(st, b);
-  detail::convert_home(st, b, emit);
-  detail::convert_axis_offsets(st, b);
+  // convert, in rs274ngc's order of execution. Every step before the motion
+  // acts only on a code of its group (G or M); a block whose only G code is
+  // a motion code and that has no M code (most of a CAM program) needs only
+  // its F, S, T words and the motion.
+  constexpr std::uint32_t kMotionGroup = 1U << static_cast<unsigned>(GGroup::motion);
+  const bool modes = (codes.g_mask & ~kMotionGroup) != 0 || codes.m_mask != 0;
+  if (modes) {
+    detail::convert_feed_mode(st, b);
+    detail::convert_feed_speed_tool(st, b);
+    detail::convert_modal_save(st, b);
+    detail::convert_dwell(st, b, emit);
+    detail::convert_plane(st, b);
+    detail::convert_units(st, b);
+    detail::convert_cutter_comp(st, b);
+    detail::convert_tool_length(st, b);
+    detail::convert_coord_system(st, b);
+    detail::convert_path_control(st, b);
+    detail::convert_distance_modes(st, b);
+    detail::convert_setup(st, b);
+    detail::convert_home(st, b, emit);
+    detail::convert_axis_offsets(st, b);
+  } else if (codes.has('F') || codes.has('S') || codes.has('T')) {
+    detail::convert_feed_speed_tool(st, b);
+  }
   detail::convert_motion(st, b, emit);
-  detail::convert_stop(st, b);
+  if (modes) detail::convert_stop(st, b);
 }
 
 }  // namespace abbe::gcode

@@ -4,7 +4,7 @@
 // motion the block makes; every word has a code that uses it, word_use.hpp)
 // → convert_* in the documented order of execution (interpreter.hpp).
 #include <Eigen/Core>
-#include <functional>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -115,10 +115,31 @@ struct ExecState : ModalState {
     return p + g5x() + g92 + Eigen::Vector3d(0, 0, tlo);
   }
   // The feed rate of a feed move of `length_mm` (mm/min) in the feed mode.
-  double feed_rate_mm(double length_mm) const;
+  double feed_rate_mm(double length_mm) const {
+    switch (feed_mode) {
+      case FeedMode::inverse_time:
+        return length_mm * feed_mm;  // the move takes 1/F minutes
+      case FeedMode::units_per_rev:
+        return feed_mm * std::abs(spindle);
+      case FeedMode::units_per_minute:
+        break;
+    }
+    return feed_mm;
+  }
   // Tool tip P (machine, mm) of a program-frame point. In mm the unit
   // factors are 1 and are left out (the same doubles, no divisions).
-  Eigen::Vector3d tip(const Eigen::Vector3d& p) const;
+  // Inline: it runs for both ends of every motion.
+  Eigen::Vector3d tip(const Eigen::Vector3d& p) const {
+    Eigen::Vector3d s;
+    if (inch) {
+      s = (p + g5x() + g92 + Eigen::Vector3d(0, 0, tlo)) * units::kMmPerInch;
+    } else {
+      s = p + work_offsets[static_cast<std::size_t>(coord_index)] + g92 +
+          Eigen::Vector3d(0, 0, tlo);
+    }
+    s.z() -= active_length_mm();
+    return s;
+  }
   // The spindle nose (machine, mm) of a program-frame point, and back.
   Eigen::Vector3d nose_mm(const Eigen::Vector3d& p) const {
     return tip(p) + Eigen::Vector3d(0, 0, active_length_mm());
@@ -138,9 +159,14 @@ struct BlockPlan {
 };
 
 // Hands one motion of the block on (numbers it, adds tool and spindle).
-using Emit = std::function<void(Motion&)>;
+using Emit = MotionHook;
 
-bool is_cycle(int code);
+// G73 G74 G81-G87 G89 (inline: asked for every motion).
+inline bool is_cycle(int code) {
+  if (code < gcode_id(73) || code > gcode_id(89)) return false;
+  return code == gcode_id(73) || code == gcode_id(74) ||
+         (code >= gcode_id(81) && code <= gcode_id(87) && code % 10 == 0) || code == gcode_id(89);
+}
 // Non-modal codes that take the block's axis words (G10 G28 G30 G52 G92).
 bool uses_axis_words(int non_modal);
 bool is_integer(double v);
@@ -148,6 +174,12 @@ const char* plane_name(Plane plane);
 
 // check: the motion of the block and the word-use rules.
 BlockPlan plan_block(const ModalState& st, const BlockCodes& codes, const BlockContext& ctx);
+// A plain block (most of a CAM program): at most a G0 or G1 code, no M
+// code, only X Y Z F S T words, cutter compensation off. Nothing that
+// plan_block, check_rotary_words or check_comp_block refuse can occur in
+// it, so plan_plain_block only finds its motion (as plan_block does).
+bool is_plain_block(const ExecState& st, const BlockCodes& codes);
+BlockPlan plan_plain_block(const ModalState& st, const BlockCodes& codes, const BlockContext& ctx);
 // check: rotary words A, B, C that do not move (warned once), or an error.
 void check_rotary_words(ExecState& st, const BlockPlan& b);
 
@@ -186,6 +218,20 @@ void comp_arc(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& end,
               const Eigen::Vector2d& centre, const Motion& m);
 void comp_flush(ExecState& st);
 void comp_enqueue_dwell(ExecState& st, const Motion& m);
+
+// The end point of the block's motion in the program frame (rs274ngc's
+// find_ends: axis words, G90/G91, G53, polar words).
+Eigen::Vector3d motion_end(ExecState& st, const BlockPlan& b);
+// The G0/G1 motion from the current point to `end` (feed checked; sets the
+// motion mode; the position is left to the caller).
+Motion straight_motion(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& end);
+// Numbers motion `sub` of the block at `line` and adds the tool and spindle
+// data in force.
+void stamp_motion(const ExecState& st, Motion& m, std::size_t line, std::uint32_t sub);
+// Hands a finished motion to the sink: a coordinate beyond the bound, or a
+// sink's MotionRefused, is an InputError at the block's first axis, centre
+// or radius word.
+void deliver_motion(Motion& m, const Block& block, const BlockContext& ctx, const MotionSink& sink);
 
 // The motion kinds of convert_motion (end: the end point in the program frame).
 void convert_straight(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& end,
