@@ -2,10 +2,8 @@
 # anywhere, -o - with the summary on stderr, - as input, exit code 4 for a
 # failed check, an example in every --help, CSV as spreadsheets save it.
 if(NOT CMAKE_SCRIPT_MODE_FILE)
-  add_test(NAME cli_convention
-           COMMAND ${CMAKE_COMMAND} -DABBE=$<TARGET_FILE:abbe> -DSRC=${PROJECT_SOURCE_DIR}
-                   -DWORK=${CMAKE_CURRENT_BINARY_DIR}/cli_convention -P ${CMAKE_CURRENT_LIST_FILE})
-  set_tests_properties(cli_convention PROPERTIES LABELS cli TIMEOUT 600)
+  include(${CMAKE_CURRENT_LIST_DIR}/lib/script_test.cmake)
+  add_script_test(cli_convention cli_convention cli TIMEOUT 600)
   return()
 endif()
 
