@@ -14,3 +14,11 @@ function(refused_untouched code what pattern output)
     message(FATAL_ERROR "${what}: the output was changed")
   endif()
 endfunction()
+
+# start_with_previous_output(OUTPUT): an empty WORK holding OUTPUT with the
+# "previous contents\n" that refused_untouched looks for.
+function(start_with_previous_output output)
+  file(REMOVE_RECURSE ${WORK})
+  file(MAKE_DIRECTORY ${WORK})
+  file(WRITE ${output} "previous contents\n")
+endfunction()
