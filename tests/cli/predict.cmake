@@ -39,10 +39,7 @@ start_with_previous_output(${WORK}/out.csv)
 function(expect_failure what pattern)
   refused_untouched(1 "${what}" "${pattern}" ${WORK}/out.csv
                     ${ABBE} predict ${ARGN} -o ${WORK}/out.csv)
-  file(GLOB leftovers ${WORK}/out.csv.tmp*)
-  if(leftovers)
-    message(FATAL_ERROR "${what}: temporary file left: ${leftovers}")
-  endif()
+  expect_no_temporary_files("${what}" ${WORK}/out.csv)
 endfunction()
 
 # out_of_range: error names the point's file and line, the axis and the range.

@@ -22,3 +22,12 @@ function(start_with_previous_output output)
   file(MAKE_DIRECTORY ${WORK})
   file(WRITE ${output} "previous contents\n")
 endfunction()
+
+# expect_no_temporary_files(WHAT OUTPUT): no temporary file of the atomic
+# writer (OUTPUT.tmp…) is left beside OUTPUT.
+function(expect_no_temporary_files what output)
+  file(GLOB leftovers ${output}.tmp*)
+  if(leftovers)
+    message(FATAL_ERROR "${what}: temporary files left behind: ${leftovers}")
+  endif()
+endfunction()
