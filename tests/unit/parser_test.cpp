@@ -11,6 +11,7 @@
 #include <string>
 
 #include "abbe/io/input_error.hpp"
+#include "text_block_reader.hpp"
 
 namespace {
 
@@ -19,6 +20,7 @@ using abbe::gcode::Block;
 using abbe::gcode::BlockReader;
 using abbe::gcode::parse_line;
 using abbe::gcode::Word;
+using abbe::gcode::testing::TextBlockReader;
 
 Block parse(std::string_view line) { return parse_line(line, 7, "t.nc"); }
 
@@ -448,29 +450,26 @@ TEST(BlockReader, Utf8ByteOrderMarkIsSkippedOnlyAtTheStart) {
 }
 
 TEST(BlockReader, ReusedBlockIsCompletelyOverwritten) {
-  std::istringstream in("/N5 G1 X1 (a) (b) *12\nO7\nG0\n");
-  BlockReader reader(in, "p.nc");
-  Block b;
-  ASSERT_TRUE(reader.next(b));
+  TextBlockReader r("/N5 G1 X1 (a) (b) *12\nO7\nG0\n", "p.nc");
+  const Block& b = r.block;
+  ASSERT_TRUE(r.next());
   EXPECT_TRUE(b.block_delete && b.n && b.checksum && b.comments.size() == 2);
-  ASSERT_TRUE(reader.next(b));
+  ASSERT_TRUE(r.next());
   EXPECT_TRUE(b.program_number);
   EXPECT_FALSE(b.block_delete || b.n || b.checksum || !b.comments.empty() || !b.words.empty());
-  ASSERT_TRUE(reader.next(b));
+  ASSERT_TRUE(r.next());
   EXPECT_FALSE(b.program_number);
   EXPECT_EQ(b.words.size(), 1U);
   EXPECT_EQ(b.line, 3U);
-  EXPECT_FALSE(reader.next(b));
+  EXPECT_FALSE(r.next());
 }
 
 TEST(BlockReader, ErrorNamesTheLineOfTheFile) {
-  std::istringstream in("G0 X0\nG1 X1\r\nG1 Y#\r\n");
-  BlockReader reader(in, "prog.nc");
-  Block b;
-  ASSERT_TRUE(reader.next(b));
-  ASSERT_TRUE(reader.next(b));
+  TextBlockReader r("G0 X0\nG1 X1\r\nG1 Y#\r\n", "prog.nc");
+  ASSERT_TRUE(r.next());
+  ASSERT_TRUE(r.next());
   try {
-    reader.next(b);
+    r.next();
     FAIL() << "accepted a parameter";
   } catch (const InputError& e) {
     EXPECT_EQ(e.where().line, 3U);
