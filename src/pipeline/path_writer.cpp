@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <iterator>
+#include <string_view>
 
 #include "abbe/io/input_error.hpp"
 #include "abbe/io/row_text.hpp"
@@ -106,26 +107,21 @@ void format_middle(Out& out, PathFormat format, const path::PathPoint& pt) {
   out.text(syntax.time);
 }
 
+// The JSON keys of the direction signs.
+constexpr std::array<std::string_view, 3> kJsonDirKeys{",\"vx\":", ",\"vy\":", ",\"vz\":"};
+
 template <class Out>
 void format_tail(Out& out, PathFormat format, const path::PathPoint& pt) {
+  const bool csv = format == PathFormat::csv;
   out.num(pt.time);
-  if (format == PathFormat::csv) {
-    out.ch(',');
-    sign(out, pt.dir[0]);
-    out.ch(',');
-    sign(out, pt.dir[1]);
-    out.ch(',');
-    sign(out, pt.dir[2]);
-    out.ch('\n');
-  } else {
-    out.text(",\"vx\":");
-    sign(out, pt.dir[0]);
-    out.text(",\"vy\":");
-    sign(out, pt.dir[1]);
-    out.text(",\"vz\":");
-    sign(out, pt.dir[2]);
-    out.ch('}');
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (csv)
+      out.ch(',');
+    else
+      out.text(kJsonDirKeys[i]);
+    sign(out, pt.dir[i]);
   }
+  out.ch(csv ? '\n' : '}');
 }
 
 // Longest row of the fast path: 6 numbers of at most kFixed6MaxChars bytes

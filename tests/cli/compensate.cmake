@@ -1,28 +1,16 @@
 # Command-level tests of `abbe compensate` and `abbe verify`. Included from
 # tests/CMakeLists.txt; the file-system cases run in script mode (cmake -P).
 if(NOT CMAKE_SCRIPT_MODE_FILE)
-  add_test(NAME cli_compensate
-           COMMAND ${CMAKE_COMMAND} -DABBE=$<TARGET_FILE:abbe> -DSRC=${PROJECT_SOURCE_DIR}
-                   -DWORK=${CMAKE_CURRENT_BINARY_DIR}/cli_compensate_work
-                   -P ${CMAKE_CURRENT_LIST_FILE})
-  set_tests_properties(cli_compensate PROPERTIES LABELS "cli;compensate")
+  include(${CMAKE_CURRENT_LIST_DIR}/lib/script_test.cmake)
+  add_script_test(cli_compensate cli_compensate_work "cli;compensate")
   # A generated program of 4 000 blocks (arcs in all planes, helices,
   # corners): compensated within tol at every point, forward and backward.
-  add_test(NAME cli_compensate_generated
-           COMMAND ${CMAKE_COMMAND} -DABBE=$<TARGET_FILE:abbe> -DGEN=$<TARGET_FILE:gen_program>
-                   -DSRC=${PROJECT_SOURCE_DIR}
-                   -DWORK=${CMAKE_CURRENT_BINARY_DIR}/cli_compensate_generated_work
-                   -P ${CMAKE_CURRENT_LIST_FILE})
-  set_tests_properties(cli_compensate_generated PROPERTIES LABELS "cli;compensate")
+  add_script_test(cli_compensate_generated cli_compensate_generated_work "cli;compensate"
+                  DEFINES -DGEN=$<TARGET_FILE:gen_program>)
   return()
 endif()
 
-set(MACHINE ${SRC}/machines/sample/machine.yaml)
-set(ZERO ${SRC}/tests/data/compensate/zero.yaml)
-file(REMOVE_RECURSE ${WORK})
-file(MAKE_DIRECTORY ${WORK})
-
-include(${SRC}/tests/cli/lib/exit_code_helpers.cmake)
+include(${SRC}/tests/cli/lib/compensate_script.cmake)
 
 if(GEN)
   run(0 ${GEN} --blocks 4000 --seed 11 -o ${WORK}/gen.ngc)

@@ -4,20 +4,12 @@
 # the volumetric grid CSV, all-zero tables for a zero-error machine, and bad
 # options (exit 1 for bad values, 2 for usage). Script mode.
 if(NOT CMAKE_SCRIPT_MODE_FILE)
-  add_test(NAME cli_export
-           COMMAND ${CMAKE_COMMAND} -DABBE=$<TARGET_FILE:abbe> -DSRC=${PROJECT_SOURCE_DIR}
-                   -DWORK=${CMAKE_CURRENT_BINARY_DIR}/cli_export_work
-                   -P ${CMAKE_CURRENT_LIST_FILE})
-  set_tests_properties(cli_export PROPERTIES LABELS "cli;compensate")
+  include(${CMAKE_CURRENT_LIST_DIR}/lib/script_test.cmake)
+  add_script_test(cli_export cli_export_work "cli;compensate")
   return()
 endif()
 
-set(MACHINE ${SRC}/machines/sample/machine.yaml)
-set(ZERO ${SRC}/tests/data/compensate/zero.yaml)
-file(REMOVE_RECURSE ${WORK})
-file(MAKE_DIRECTORY ${WORK})
-
-include(${SRC}/tests/cli/lib/exit_code_helpers.cmake)
+include(${SRC}/tests/cli/lib/compensate_script.cmake)
 
 # A COMP_FILE as LinuxCNC reads it: every line three numbers, nominal
 # strictly increasing, 2..256 lines; `zero`: every trim is 0.

@@ -6,27 +6,26 @@
 if(NOT CMAKE_SCRIPT_MODE_FILE)
   set(ABBE_IDENT_DATA ${CMAKE_CURRENT_SOURCE_DIR}/data/identify)
 
+  # add_paper_identify_test(NAME MEASURED PASS): `abbe identify` of
+  # MEASURED (in tests/data/identify) on paper.yaml; its output matches PASS.
+  function(add_paper_identify_test name measured pass)
+    add_test(NAME ${name}
+             COMMAND $<TARGET_FILE:abbe> identify --measured ${ABBE_IDENT_DATA}/${measured}
+                     --machine ${ABBE_IDENT_DATA}/paper.yaml)
+    set_tests_properties(${name} PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "${pass}")
+  endfunction()
+
   # Noise-free 150 × 100 × 100 mm grid at (300, 200, −200): all 12 back.
-  add_test(NAME cli_identify_paper_grid
-           COMMAND $<TARGET_FILE:abbe> identify --measured ${ABBE_IDENT_DATA}/paper-grid.csv
-                   --machine ${ABBE_IDENT_DATA}/paper.yaml)
-  set_tests_properties(cli_identify_paper_grid PROPERTIES LABELS cli
-    PASS_REGULAR_EXPRESSION
+  add_paper_identify_test(cli_identify_paper_grid paper-grid.csv
     "  a +12\\.00000 ± 0\\.00000 +um/m\n(  [a-h][0-9]? .*\n)*  h3 +9\\.00000 ± 0\\.00000 +urad/m\n  rank 12/12, condition number [0-9.]+ ")
 
   # The paper's x = 1…15, y = z = 5: the y/z parameters are not identifiable.
-  add_test(NAME cli_identify_paper_line
-           COMMAND $<TARGET_FILE:abbe> identify --measured ${ABBE_IDENT_DATA}/paper-line.csv
-                   --machine ${ABBE_IDENT_DATA}/paper.yaml)
-  set_tests_properties(cli_identify_paper_line PROPERTIES LABELS cli
-    PASS_REGULAR_EXPRESSION
+  add_paper_identify_test(cli_identify_paper_line paper-line.csv
     "  a +12\\.00000 ± 0\\.00000 +um/m\n  b .*NOT IDENTIFIABLE\n(.*\n)*  rank [0-9]+/12, condition number inf(.*\n)*  unidentifiable combination")
 
-  add_test(NAME cli_identify_workflow
-           COMMAND ${CMAKE_COMMAND} -DABBE=$<TARGET_FILE:abbe> -DSRC=${PROJECT_SOURCE_DIR}
-                   -DDATA=${ABBE_IDENT_DATA} -DWORK=${CMAKE_CURRENT_BINARY_DIR}/cli_identify
-                   -P ${CMAKE_CURRENT_LIST_FILE})
-  set_tests_properties(cli_identify_workflow PROPERTIES LABELS cli TIMEOUT 300)
+  include(${CMAKE_CURRENT_LIST_DIR}/lib/script_test.cmake)
+  add_script_test(cli_identify_workflow cli_identify cli TIMEOUT 300
+                  DEFINES -DDATA=${ABBE_IDENT_DATA})
   return()
 endif()
 

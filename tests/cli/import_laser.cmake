@@ -3,54 +3,37 @@
 # carry the uncertainty column, and a unit that does not fit the component is
 # refused with file, line, column and field (exit 1).
 if(NOT CMAKE_SCRIPT_MODE_FILE)
-  add_test(NAME cli_import_laser
-           COMMAND ${CMAKE_COMMAND} -DABBE=$<TARGET_FILE:abbe>
-                   -DDATA=${CMAKE_CURRENT_SOURCE_DIR}/data/laser
-                   -DWORK=${CMAKE_CURRENT_BINARY_DIR}/cli_import_laser_work
-                   -P ${CMAKE_CURRENT_LIST_FILE})
-  set_tests_properties(cli_import_laser PROPERTIES LABELS cli)
+  include(${CMAKE_CURRENT_LIST_DIR}/lib/script_test.cmake)
+  add_script_test(cli_import_laser cli_import_laser_work cli
+                  DEFINES -DDATA=${CMAKE_CURRENT_SOURCE_DIR}/data/laser)
   return()
 endif()
 
-file(REMOVE_RECURSE ${WORK})
-file(MAKE_DIRECTORY ${WORK})
+include(${CMAKE_CURRENT_LIST_DIR}/lib/refusal_helpers.cmake)
+include(${CMAKE_CURRENT_LIST_DIR}/lib/script_helpers.cmake)
+start_with_previous_output(${WORK}/out.csv)
 
-execute_process(COMMAND ${ABBE} import laser ${DATA}/x-positioning-um.csv -o ${WORK}/runs.csv
-                        --table ${WORK}/table.csv
-                RESULT_VARIABLE rc ERROR_VARIABLE err)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "import laser: exit ${rc}\n${err}")
-endif()
-file(READ ${WORK}/runs.csv runs)
-if(NOT runs MATCHES "^axis,component,target_mm,run,direction,deviation\nX,EXX,0,1,up,0\nX,EXX,0,1,down,-1.2\n")
-  message(FATAL_ERROR "unexpected runs file:\n${runs}")
-endif()
-file(READ ${WORK}/table.csv table)
-if(NOT table MATCHES "^axis,component,position_mm,direction,value,uncertainty\nX,EXX,0,fwd,0\\.1[0-9]*,0\\.057735026918962[0-9]*\n")
-  message(FATAL_ERROR "unexpected table:\n${table}")
-endif()
-execute_process(COMMAND ${ABBE} iso230 ${WORK}/runs.csv RESULT_VARIABLE rc OUTPUT_VARIABLE out
-                ERROR_VARIABLE err)
-if(NOT rc EQUAL 0 OR NOT out MATCHES "EXX")
-  message(FATAL_ERROR "iso230 of the imported runs: exit ${rc}\n${out}${err}")
+run(${ABBE} import laser ${DATA}/x-positioning-um.csv -o ${WORK}/runs.csv
+    --table ${WORK}/table.csv)
+expect_file_matches(${WORK}/runs.csv
+  "^axis,component,target_mm,run,direction,deviation\nX,EXX,0,1,up,0\nX,EXX,0,1,down,-1.2\n"
+  "unexpected runs file")
+expect_file_matches(${WORK}/table.csv
+  "^axis,component,position_mm,direction,value,uncertainty\nX,EXX,0,fwd,0\\.1[0-9]*,0\\.057735026918962[0-9]*\n"
+  "unexpected table")
+run(${ABBE} iso230 ${WORK}/runs.csv)
+if(NOT run_out MATCHES "EXX")
+  message(FATAL_ERROR "iso230 of the imported runs:\n${run_out}")
 endif()
 
 # Arc-seconds: µrad in the runs file (0.5″ = 2.42406840554768 µrad).
-execute_process(COMMAND ${ABBE} import laser ${DATA}/x-pitch-arcsec.csv RESULT_VARIABLE rc
-                OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(NOT rc EQUAL 0 OR NOT out MATCHES "\nX,EBX,100,1,up,2\\.424068405547")
-  message(FATAL_ERROR "import laser arcsec: exit ${rc}\n${out}${err}")
+run(${ABBE} import laser ${DATA}/x-pitch-arcsec.csv)
+if(NOT run_out MATCHES "\nX,EBX,100,1,up,2\\.424068405547")
+  message(FATAL_ERROR "import laser arcsec:\n${run_out}")
 endif()
 
 # A linear component in arc-seconds: refused, the output left as it was.
 file(WRITE ${WORK}/bad.csv "# axis: X\n# component: EXX\n# units: arcsec\ntarget,run,direction,reading\n0,1,up,1\n")
-file(WRITE ${WORK}/out.csv "previous contents\n")
-execute_process(COMMAND ${ABBE} import laser ${WORK}/bad.csv -o ${WORK}/out.csv
-                RESULT_VARIABLE rc ERROR_VARIABLE err)
-if(NOT rc EQUAL 1 OR NOT err MATCHES "bad.csv:3:10 \\[units\\]: error: EXX is linear but the unit arcsec is angular")
-  message(FATAL_ERROR "arcsec for EXX: exit ${rc}\n${err}")
-endif()
-file(READ ${WORK}/out.csv contents)
-if(NOT contents STREQUAL "previous contents\n")
-  message(FATAL_ERROR "the output was changed by a refused import")
-endif()
+refused_untouched(1 "arcsec for EXX"
+                  "bad.csv:3:10 \\[units\\]: error: EXX is linear but the unit arcsec is angular"
+                  ${WORK}/out.csv ${ABBE} import laser ${WORK}/bad.csv -o ${WORK}/out.csv)

@@ -29,20 +29,16 @@ if(NOT CMAKE_SCRIPT_MODE_FILE)
 
   # A missing or bad program: exit code 1, an error naming file and line, the existing
   # output untouched and no temporary file left; a good run replaces it.
-  add_test(NAME cli_path_bad_program_atomic_output
-           COMMAND ${CMAKE_COMMAND} -DABBE=$<TARGET_FILE:abbe>
-                   -DSAMPLE=${ABBE_PATH_SAMPLES}/thesis-toolpath-1.ngc
-                   -DWORK=${CMAKE_CURRENT_BINARY_DIR}/cli_path_work
-                   -P ${CMAKE_CURRENT_LIST_FILE})
-  set_tests_properties(cli_path_bad_program_atomic_output PROPERTIES LABELS cli)
+  include(${CMAKE_CURRENT_LIST_DIR}/lib/script_test.cmake)
+  add_script_test(cli_path_bad_program_atomic_output cli_path_work cli
+                  DEFINES -DSAMPLE=${ABBE_PATH_SAMPLES}/thesis-toolpath-1.ngc)
   return()
 endif()
 
 # ---- script mode ----
-file(REMOVE_RECURSE ${WORK})
-file(MAKE_DIRECTORY ${WORK})
+include(${CMAKE_CURRENT_LIST_DIR}/lib/refusal_helpers.cmake)
+start_with_previous_output(${WORK}/out.csv)
 file(WRITE ${WORK}/bad.ngc "G21 G90\nG1 X10 Y10 F100\nG1 X20 Y&5\n")
-file(WRITE ${WORK}/out.csv "previous contents\n")
 
 execute_process(COMMAND ${ABBE} path ${WORK}/no-such-program.ngc -o ${WORK}/out.csv
                 RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_VARIABLE out)
@@ -50,22 +46,10 @@ if(NOT rc EQUAL 1 OR NOT err MATCHES "no-such-program\\.ngc")
   message(FATAL_ERROR "missing program: expected exit code 1 and the file named, got '${rc}'\n${err}")
 endif()
 
-execute_process(COMMAND ${ABBE} path ${WORK}/bad.ngc -o ${WORK}/out.csv
-                RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_VARIABLE out)
-if(NOT rc EQUAL 1)
-  message(FATAL_ERROR "bad program: expected exit code 1, got '${rc}'\n${err}")
-endif()
-if(NOT err MATCHES "bad\\.ngc:3")
-  message(FATAL_ERROR "bad program: the error does not name bad.ngc line 3:\n${err}")
-endif()
-file(READ ${WORK}/out.csv kept)
-if(NOT kept STREQUAL "previous contents\n")
-  message(FATAL_ERROR "bad program: the existing output was changed")
-endif()
-file(GLOB leftovers ${WORK}/out.csv.tmp.*)
-if(leftovers)
-  message(FATAL_ERROR "bad program: temporary files left behind: ${leftovers}")
-endif()
+# bad.ngc line 3 named, the existing output untouched.
+refused_untouched(1 "bad program" "bad\\.ngc:3" ${WORK}/out.csv
+                  ${ABBE} path ${WORK}/bad.ngc -o ${WORK}/out.csv)
+expect_no_temporary_files("bad program" ${WORK}/out.csv)
 
 execute_process(COMMAND ${ABBE} path ${SAMPLE} --tool 1=200 -o ${WORK}/out.csv RESULT_VARIABLE rc
                 ERROR_VARIABLE err)
@@ -78,8 +62,5 @@ list(GET rows 0 header)
 if(NOT header STREQUAL "x,y,z,tool_length,line,kind,feed,time,vx,vy,vz" OR n LESS 200)
   message(FATAL_ERROR "good program: unexpected output (${n} rows, header '${header}')")
 endif()
-file(GLOB leftovers ${WORK}/out.csv.tmp.*)
-if(leftovers)
-  message(FATAL_ERROR "good program: temporary files left behind: ${leftovers}")
-endif()
+expect_no_temporary_files("good program" ${WORK}/out.csv)
 file(REMOVE_RECURSE ${WORK})

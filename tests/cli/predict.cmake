@@ -27,28 +27,19 @@ if(NOT CMAKE_SCRIPT_MODE_FILE)
   set_tests_properties(cli_predict_json PROPERTIES LABELS cli
     PASS_REGULAR_EXPRESSION "\\{\"points\": \\[\n\\{\"x\": -300, .*\"dual\": \\{\"px\": .*\"summary\": \\{")
 
-  add_test(NAME cli_predict_errors
-           COMMAND ${CMAKE_COMMAND} -DABBE=$<TARGET_FILE:abbe> -DMACHINES=${ABBE_MACHINES}
-                   -DWORK=${CMAKE_CURRENT_BINARY_DIR}/cli_predict_work
-                   -P ${CMAKE_CURRENT_LIST_FILE})
-  set_tests_properties(cli_predict_errors PROPERTIES LABELS cli)
+  include(${CMAKE_CURRENT_LIST_DIR}/lib/script_test.cmake)
+  add_script_test(cli_predict_errors cli_predict_work cli DEFINES -DMACHINES=${ABBE_MACHINES})
   return()
 endif()
 
 # ---- script mode: bad input gives exit code 1, names file and line, and
 # leaves an existing output untouched ----
-file(REMOVE_RECURSE ${WORK})
-file(MAKE_DIRECTORY ${WORK})
-file(WRITE ${WORK}/out.csv "previous contents\n")
-
 include(${CMAKE_CURRENT_LIST_DIR}/lib/refusal_helpers.cmake)
+start_with_previous_output(${WORK}/out.csv)
 function(expect_failure what pattern)
   refused_untouched(1 "${what}" "${pattern}" ${WORK}/out.csv
                     ${ABBE} predict ${ARGN} -o ${WORK}/out.csv)
-  file(GLOB leftovers ${WORK}/out.csv.tmp*)
-  if(leftovers)
-    message(FATAL_ERROR "${what}: temporary file left: ${leftovers}")
-  endif()
+  expect_no_temporary_files("${what}" ${WORK}/out.csv)
 endfunction()
 
 # out_of_range: error names the point's file and line, the axis and the range.

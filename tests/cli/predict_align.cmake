@@ -41,21 +41,16 @@ if(NOT CMAKE_SCRIPT_MODE_FILE)
     PASS_REGULAR_EXPRESSION
     "\"dual\": \\{\"px\": [^}]*\"dx2\": [^}]*\"adx\": [^}]*\"ad\": [^}]*\\}.*\"alignment\": \\{.*\"method\": \"best-fit\",.*\"part_points\": 60")
 
-  add_test(NAME cli_predict_align_errors
-           COMMAND ${CMAKE_COMMAND} -DABBE=$<TARGET_FILE:abbe>
-                   -DMACHINE=${CMAKE_CURRENT_SOURCE_DIR}/data/machines/sample.yaml
-                   -DDATA=${ABBE_ALIGN_DATA} -DWORK=${CMAKE_CURRENT_BINARY_DIR}/cli_predict_align_work
-                   -P ${CMAKE_CURRENT_LIST_FILE})
-  set_tests_properties(cli_predict_align_errors PROPERTIES LABELS cli)
+  include(${CMAKE_CURRENT_LIST_DIR}/lib/script_test.cmake)
+  add_script_test(cli_predict_align_errors cli_predict_align_work cli
+                  DEFINES -DMACHINE=${CMAKE_CURRENT_SOURCE_DIR}/data/machines/sample.yaml
+                          -DDATA=${ABBE_ALIGN_DATA})
   return()
 endif()
 
 # ---- script mode: exit codes and messages; an existing output is left as it was ----
-file(REMOVE_RECURSE ${WORK})
-file(MAKE_DIRECTORY ${WORK})
-file(WRITE ${WORK}/out.csv "previous contents\n")
-
 include(${CMAKE_CURRENT_LIST_DIR}/lib/refusal_helpers.cmake)
+start_with_previous_output(${WORK}/out.csv)
 function(expect code what pattern)
   refused_untouched(${code} "${what}" "${pattern}" ${WORK}/out.csv
                     ${ABBE} predict ${ARGN} --machine ${MACHINE} -o ${WORK}/out.csv)

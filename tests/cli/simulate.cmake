@@ -1,10 +1,8 @@
 # Command-level tests of `abbe simulate` (label cli), run with `cmake -P`:
 # machine → files, campaign, measure (grid, program, effects), errors.
 if(NOT CMAKE_SCRIPT_MODE_FILE)
-  add_test(NAME cli_simulate
-           COMMAND ${CMAKE_COMMAND} -DABBE=$<TARGET_FILE:abbe> -DSRC=${PROJECT_SOURCE_DIR}
-                   -DWORK=${CMAKE_CURRENT_BINARY_DIR}/cli_simulate -P ${CMAKE_CURRENT_LIST_FILE})
-  set_tests_properties(cli_simulate PROPERTIES LABELS cli TIMEOUT 300)
+  include(${CMAKE_CURRENT_LIST_DIR}/lib/script_test.cmake)
+  add_script_test(cli_simulate cli_simulate cli TIMEOUT 300)
   return()
 endif()
 

@@ -137,24 +137,39 @@ if "$compare" "$work/smoke.out" 0 "$work/smoke-off.abbe" "$work/smoke.err" 0 >/d
   fail "canon_compare accepts a wrong or missing motion"
 fi
 
+# add_found DIR FIND-TESTS…: the files below DIR that pass FIND-TESTS, sorted,
+# onto files.
+add_found() {
+  local dir=$1 f
+  shift
+  while IFS= read -r f; do files+=("$f"); done < <(find "$dir" -type f "$@" | sort)
+}
+# add_written DIR WHAT COMMAND…: COMMAND… DIR writes programs into a fresh
+# DIR; its .ngc files onto files.
+add_written() {
+  local dir=$1 what=$2
+  shift 2
+  rm -rf "$dir" && mkdir -p "$dir"
+  "$@" "$dir" || fail "$what failed"
+  add_found "$dir" -name '*.ngc'
+}
+
 files=()
-while IFS= read -r f; do files+=("$f"); done < <(find "$ncfiles" -name '*.ngc' -type f | sort)
+add_found "$ncfiles" -name '*.ngc'
 if [ -d "$src/nc-samples" ]; then
-  while IFS= read -r f; do files+=("$f"); done < <(find "$src/nc-samples" -type f | sort)
+  add_found "$src/nc-samples"
 fi
 own_dir="$src/tests/interop/ncfiles"
-while IFS= read -r f; do files+=("$f"); done < <(find "$own_dir" -type f -name '*.ngc' | sort)
+add_found "$own_dir" -name '*.ngc'
 # Real programs written by CAM software for 3-axis mills and routers
 # (tests/data/cam-corpus/README.md names the source of each), plain tool table.
 cam_dir="$src/tests/data/cam-corpus"
 if [ -d "$cam_dir" ]; then
-  while IFS= read -r f; do files+=("$f"); done < <(find "$cam_dir" -type f ! -name README.md | sort)
+  add_found "$cam_dir" ! -name README.md
 fi
 random_dir="$work/random"
 if [ -n "$random_programs" ]; then
-  rm -rf "$random_dir" && mkdir -p "$random_dir"
-  "$random_programs" "${ABBE_INTEROP_RANDOM:-100}" "$random_dir" || fail "random_programs failed"
-  while IFS= read -r f; do files+=("$f"); done < <(find "$random_dir" -type f -name '*.ngc' | sort)
+  add_written "$random_dir" random_programs "$random_programs" "${ABBE_INTEROP_RANDOM:-100}"
 fi
 generated_dir="$work/generated"
 if [ -n "$gen_program" ]; then
@@ -166,9 +181,7 @@ fi
 
 flow_dir="$work/flow"
 if [ -n "$gen_flow" ]; then
-  rm -rf "$flow_dir" && mkdir -p "$flow_dir"
-  "$gen_flow" "${ABBE_INTEROP_FLOW:-50}" "$flow_dir" || fail "gen_flow_programs failed"
-  while IFS= read -r f; do files+=("$f"); done < <(find "$flow_dir" -type f -name '*.ngc' | sort)
+  add_written "$flow_dir" gen_flow_programs "$gen_flow" "${ABBE_INTEROP_FLOW:-50}"
 fi
 
 out="$work/out"

@@ -12,12 +12,14 @@
 
 #include "abbe/gcode/parser.hpp"
 #include "abbe/io/input_error.hpp"
+#include "text_block_reader.hpp"
 
 namespace {
 
 using abbe::InputError;
 using abbe::gcode::Block;
 using abbe::gcode::BlockReader;
+using abbe::gcode::testing::TextBlockReader;
 
 constexpr std::size_t kChunk = std::size_t{1} << 20;
 
@@ -124,12 +126,10 @@ TEST(BlockReaderChunks, RandomTextsGiveTheGetlineLines) {
 }
 
 TEST(BlockReaderChunks, EmptyInputHasNoLines) {
-  std::istringstream in("");
-  BlockReader reader(in, "e.nc");
-  Block block;
-  EXPECT_FALSE(reader.next(block));
-  EXPECT_FALSE(reader.next(block));
-  EXPECT_EQ(reader.line_number(), 0U);
+  TextBlockReader r("", "e.nc");
+  EXPECT_FALSE(r.next());
+  EXPECT_FALSE(r.next());
+  EXPECT_EQ(r.reader.line_number(), 0U);
 }
 
 // A stream buffer that delivers `text` 4 KiB at a time (like a pipe) and

@@ -74,6 +74,22 @@ std::string generated(int blocks, unsigned seed) {
   return program;
 }
 
+// The default options with one field set.
+template <class T>
+CompensateOptions options_with(T CompensateOptions::*field, T value) {
+  CompensateOptions o;
+  o.*field = value;
+  return o;
+}
+
+// How many feed motions of a program are shorter than `mm` (to 1e-9 mm).
+std::size_t feed_moves_shorter_than(const std::string& text, double mm) {
+  std::size_t n = 0;
+  for (double l : feed_lengths(text))
+    if (l < mm - 1e-9) ++n;
+  return n;
+}
+
 double shortest(const std::vector<double>& v) {
   double s = 1e300;
   for (double x : v) s = std::min(s, x);
@@ -85,15 +101,11 @@ double shortest(const std::vector<double>& v) {
 // larger ones keep their micro move (reported as shorter than the minimum).
 TEST(CompensateMinSegment, EveryReversalIsTakenOnceWhicheverWay) {
   const std::string program = generated(1500, 5);
-  CompensateOptions exact;
-  exact.min_segment = 0.0;
-  const Compensated micro = compensate(program, exact);
+  const Compensated micro = compensate(program, options_with(&CompensateOptions::min_segment, 0.0));
   ASSERT_GT(micro.summary.takeup_moves, 100u);
   EXPECT_EQ(micro.summary.takeups_spread, 0u);
 
-  CompensateOptions spread;
-  spread.spread_takeups = true;
-  const Compensated s = compensate(program, spread);
+  const Compensated s = compensate(program, options_with(&CompensateOptions::spread_takeups, true));
   // The same reversals, each either spread or given a micro move.
   EXPECT_EQ(s.summary.takeups_spread + s.summary.takeup_moves, micro.summary.takeup_moves);
   EXPECT_GT(s.summary.takeups_spread, 0u);
@@ -120,9 +132,7 @@ TEST(CompensateMinSegment, EveryReversalIsTakenOnceWhicheverWay) {
 // move is shorter than the minimum, and verify still passes at that tol.
 TEST(CompensateMinSegment, JumpsWithinTolNeedNoMicroMove) {
   const std::string program = generated(800, 9);
-  CompensateOptions o;
-  o.tol_um = 20.0;
-  const Compensated r = compensate(program, o);
+  const Compensated r = compensate(program, options_with(&CompensateOptions::tol_um, 20.0));
   EXPECT_GT(r.summary.takeups_spread, 0u);
   EXPECT_EQ(r.summary.short_takeup_moves, 0u);
   EXPECT_GE(shortest(feed_lengths(r.text)), 0.01 - 1e-9);
@@ -134,18 +144,12 @@ TEST(CompensateMinSegment, JumpsWithinTolNeedNoMicroMove) {
 // it was not.
 TEST(CompensateMinSegment, LargerMinimumStillWithinTol) {
   const std::string program = generated(800, 13);
-  CompensateOptions o;
-  o.min_segment = 0.2;
-  const Compensated r = compensate(program, o);
+  const Compensated r = compensate(program, options_with(&CompensateOptions::min_segment, 0.2));
   expect_verified(r.text, program, 1.0);
   EXPECT_GE(r.summary.min_segment_mm, 0.2);
   // Every piece shorter than 0.2 mm is accounted for: a kept piece or a take-up move.
-  std::size_t short_moves = 0;
-  for (double l : feed_lengths(r.text))
-    if (l < 0.2 - 1e-9) ++short_moves;
-  std::size_t short_in = 0;
-  for (double l : feed_lengths(program))
-    if (l < 0.2 - 1e-9) ++short_in;
+  const std::size_t short_moves = feed_moves_shorter_than(r.text, 0.2);
+  const std::size_t short_in = feed_moves_shorter_than(program, 0.2);
   EXPECT_LE(short_moves, short_in + r.summary.short_takeup_moves + r.summary.short_pieces_kept +
                              r.summary.takeup_moves);
 }

@@ -51,6 +51,25 @@ std::vector<model::EvalPoint> sample_points(const machine::Machine& m) {
   return out;
 }
 
+// The deviation the models predict at p (µm), and what is left of it once
+// each joint's table has added its correction at that joint's position.
+struct TableResidual {
+  Eigen::Vector3d before;
+  Eigen::Vector3d after;
+};
+TableResidual residual_after_tables(pipeline::ModelSet& models, const model::EvalPoint& p,
+                                    const std::array<JointTable, 3>& tables) {
+  models.evaluate(p, "sample", 0);
+  TableResidual r;
+  r.before = models.deviations()[0].e_um;
+  const Eigen::Vector3d s = p.p + Eigen::Vector3d(0.0, 0.0, p.tool_length);
+  r.after = r.before;
+  for (std::size_t j = 0; j < 3; ++j)
+    r.after[static_cast<Eigen::Index>(j)] +=
+        tables[j].correction_um(s[static_cast<Eigen::Index>(j)], p.dir[j]);
+  return r;
+}
+
 bool inside_travel(const machine::Machine& m, const model::EvalPoint& p) {
   const Eigen::Vector3d s = p.p + Eigen::Vector3d(0.0, 0.0, p.tool_length);
   for (Axis a : machine::kAxes)
@@ -195,16 +214,10 @@ TEST(ControllerTables, ExxOnlyTableCorrectsTheSamples) {
   std::size_t n = 0;
   double largest = 0.0;
   for (const model::EvalPoint& p : sample_points(m)) {
-    models.evaluate(p, "sample", 0);
-    const Eigen::Vector3d e = models.deviations()[0].e_um;
-    const Eigen::Vector3d s = p.p + Eigen::Vector3d(0.0, 0.0, p.tool_length);
-    Eigen::Vector3d residual = e;
-    for (std::size_t j = 0; j < 3; ++j)
-      residual[static_cast<Eigen::Index>(j)] +=
-          tables[j].correction_um(s[static_cast<Eigen::Index>(j)], p.dir[j]);
+    const TableResidual r = residual_after_tables(models, p, tables);
     if (p.dir[0] == 0) continue;  // at rest LinuxCNC keeps the last trim: not a table value
-    largest = std::max(largest, e.norm());
-    EXPECT_LT(residual.norm(), 1e-9) << p.p.transpose();
+    largest = std::max(largest, r.before.norm());
+    EXPECT_LT(r.after.norm(), 1e-9) << p.p.transpose();
     ++n;
   }
   EXPECT_GT(n, 1000u);
@@ -273,15 +286,9 @@ TEST(ControllerTables, SampleMachineJointTablesWithinInterpolationError) {
     std::size_t n = 0;
     for (const model::EvalPoint& p : points) {
       if (!inside_travel(m, p)) continue;
-      models.evaluate(p, "sample", 0);
-      const Eigen::Vector3d e = models.deviations()[0].e_um;
-      const Eigen::Vector3d s = p.p + Eigen::Vector3d(0.0, 0.0, p.tool_length);
-      Eigen::Vector3d r = e;
-      for (std::size_t j = 0; j < 3; ++j)
-        r[static_cast<Eigen::Index>(j)] +=
-            tables[j].correction_um(s[static_cast<Eigen::Index>(j)], p.dir[j]);
-      before += e.squaredNorm();
-      after += r.squaredNorm();
+      const TableResidual r = residual_after_tables(models, p, tables);
+      before += r.before.squaredNorm();
+      after += r.after.squaredNorm();
       ++n;
     }
     ASSERT_GT(n, 0u);

@@ -9,6 +9,7 @@
 #include "abbe/identify/parameter_identification.hpp"
 #include "abbe/machine/machine.hpp"
 #include "abbe/model/error_model.hpp"
+#include "identify_phantom.hpp"
 
 namespace abbe::identify {
 namespace {
@@ -22,6 +23,14 @@ ParamVector random_params(std::mt19937& rng) {
   ParamVector p;
   for (int i = 0; i < kParamCount; ++i) p[i] = u(rng);
   return p;
+}
+
+// The tool tip at `p` with tool length `tool_length`.
+model::EvalPoint at(const Eigen::Vector3d& p, double tool_length) {
+  model::EvalPoint e;
+  e.p = p;
+  e.tool_length = tool_length;
+  return e;
 }
 
 // A tool tip anywhere in the test machine's travel, tool length 100 mm.
@@ -130,16 +139,10 @@ TEST(IdentifyDesign, ChainMatchesDualErrorModelOnTabulatedParameters) {
 TEST(IdentifyDesign, PaperLineIsRankDeficientAndSaysWhich) {
   const machine::Machine m = load("paper.yaml");
   const ChainExpansion chain(m);
-  ParamVector p;
-  p << 12.0, -8.0, 5.0, 30.0, -20.0, 15.0, -25.0, 18.0, -12.0, 22.0, -16.0, 9.0;
+  const ParamVector p = testing::paper_parameters();
   std::vector<Observation> obs;
-  for (int x = 1; x <= 15; ++x) {
-    Observation o;
-    o.point.p = {double(x), 5.0, 5.0};
-    o.point.tool_length = 0.0;
-    o.d_um = chain.deviation_um(o.point, p) + chain.squareness_um(o.point.p);
-    obs.push_back(o);
-  }
+  for (int x = 1; x <= 15; ++x)
+    obs.push_back(testing::exact_observation(chain, at({double(x), 5.0, 5.0}, 0.0), p));
   const auto r = identify_linear(chain, obs);
   for (const MonomialFit& f : r.per_component) {
     EXPECT_EQ(f.fit.rows, 15);
@@ -162,18 +165,12 @@ TEST(IdentifyDesign, PaperLineIsRankDeficientAndSaysWhich) {
 TEST(IdentifyDesign, RollOfZWithoutArmIsReportedUnidentifiable) {
   const machine::Machine m = load("paper-on-axis.yaml");
   const ChainExpansion chain(m);
-  ParamVector p;
-  p << 12.0, -8.0, 5.0, 30.0, -20.0, 15.0, -25.0, 18.0, -12.0, 22.0, -16.0, 9.0;
+  const ParamVector p = testing::paper_parameters();
   std::vector<Observation> obs;
   for (double z = -200; z <= -100; z += 25)
     for (double y = 200; y <= 300; y += 25)
-      for (double x = 300; x <= 450; x += 25) {
-        Observation o;
-        o.point.p = {x, y, z};
-        o.point.tool_length = 100.0;
-        o.d_um = chain.deviation_um(o.point, p) + chain.squareness_um(o.point.p);
-        obs.push_back(o);
-      }
+      for (double x = 300; x <= 450; x += 25)
+        obs.push_back(testing::exact_observation(chain, at({x, y, z}, 100.0), p));
   const auto r = identify_linear(chain, obs);
   EXPECT_EQ(r.final_fit.rank, kParamCount - 1);
   for (int i = 0; i < kParamCount; ++i)

@@ -8,6 +8,7 @@
 
 #include "abbe/identify/parameter_identification.hpp"
 #include "abbe/machine/machine.hpp"
+#include "identify_phantom.hpp"
 
 namespace abbe::identify {
 namespace {
@@ -16,12 +17,7 @@ machine::Machine load(const std::string& name) {
   return machine::Machine::load(std::string(ABBE_TEST_DATA_DIR) + "/identify/" + name);
 }
 
-// a, b, c (µm/m), f1..h3 (µrad/m): sizes of a real machine.
-ParamVector truth() {
-  ParamVector p;
-  p << 12.0, -8.0, 5.0, 30.0, -20.0, 15.0, -25.0, 18.0, -12.0, 22.0, -16.0, 9.0;
-  return p;
-}
+ParamVector truth() { return testing::paper_parameters(); }
 
 // The paper's measuring space: 150 × 100 × 100 mm at (300, 200, −200).
 std::vector<model::EvalPoint> paper_grid(double step, double shift = 0.0) {
@@ -44,9 +40,7 @@ std::vector<Observation> phantom(const ChainExpansion& chain,
   std::normal_distribution<double> n(0.0, noise_um);
   std::vector<Observation> obs;
   for (const auto& e : pts) {
-    Observation o;
-    o.point = e;
-    o.d_um = chain.deviation_um(e, p) + chain.squareness_um(e.p);
+    Observation o = testing::exact_observation(chain, e, p);
     if (noise_um > 0.0)
       for (int k = 0; k < 3; ++k) o.d_um[k] += n(rng);
     obs.push_back(o);

@@ -4,28 +4,15 @@
 
 #include <cmath>
 
-#include "abbe/io/input_error.hpp"
+#include "interpreter_checks.hpp"
 #include "test_blocks.hpp"
 
 namespace abbe::gcode {
 namespace {
 
+using testing::error_of;
+using testing::expect_near;
 using testing::run_lines;
-
-void expect_near(const Eigen::Vector3d& actual, const Eigen::Vector3d& expected,
-                 double tol = 1e-9) {
-  EXPECT_NEAR((actual - expected).norm(), 0.0, tol)
-      << "actual " << actual.transpose() << " expected " << expected.transpose();
-}
-
-std::string error_of(const std::vector<std::string>& lines) {
-  try {
-    run_lines(lines);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
 
 TEST(InterpreterArc, G3IncrementalCentreQuarterCircle) {
   const auto m = run_lines({"G0 X10 Y0 Z0", "G3 X0 Y10 I-10 J0 F100"});

@@ -3,12 +3,13 @@
 // from the rs274ngc rules (initial level, R plane, clearance).
 #include <gtest/gtest.h>
 
-#include "abbe/io/input_error.hpp"
+#include "interpreter_checks.hpp"
 #include "test_blocks.hpp"
 
 namespace abbe::gcode {
 namespace {
 
+using testing::error_of;
 using testing::run_lines;
 
 struct Expected {
@@ -44,15 +45,6 @@ void expect_moves(const std::vector<Motion>& all, std::size_t line,
     }
     previous = m[i].end;
   }
-}
-
-std::string error_of(const std::vector<std::string>& lines) {
-  try {
-    run_lines(lines);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
 }
 
 TEST(InterpreterCanned, G81RetractG98AndG99) {
@@ -154,14 +146,6 @@ TEST(InterpreterCanned, G87BacksBoresThroughTheShift) {
                 {R, {2.5, 2.25, -1}},
                 {R, {2.5, 2.25, 2}},
                 {R, {2, 2, 2}}});
-  const auto error_of = [](const std::vector<std::string>& lines) -> std::string {
-    try {
-      run_lines(lines);
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    return "";
-  };
   EXPECT_NE(error_of({start, "G87 X1 Y1 Z-1 R2 I0.5 K-0.5"}).find("J word missing for back boring"),
             std::string::npos);
   EXPECT_NE(error_of({"G0 Z5 F100", "G87 X1 Y1 Z-1 R2 I0.5 J0 K-0.5"}).find("spindle not turning"),

@@ -63,6 +63,16 @@ struct Bad {
   std::string says;
 };
 
+// A key added after tool_length (line 7 of kGood): refused at line 8.
+Bad with_key(const std::string& key, const std::string& field, const std::string& says) {
+  return Bad{"tool_length: 130.0", "tool_length: 130.0\n" + key, 8, field, says};
+}
+
+// The `all` line of axis X's measurement points (line 13) replaced.
+Bad x_points_line(const std::string& line, const std::string& field, const std::string& says) {
+  return Bad{"      all: [-800.0, -256.0, -478.0]", line, 13, field, says};
+}
+
 class MachineRejects : public ::testing::TestWithParam<Bad> {};
 
 TEST_P(MachineRejects, NamesFileLineAndField) {
@@ -84,32 +94,23 @@ INSTANTIATE_TEST_SUITE_P(
         Bad{"  z: [-460, 0]\n", "", 4, "travel.z", "missing key `z`"},
         Bad{"tool_length: 130.0", "tool_length: .nan", 7, "tool_length", "finite"},
         Bad{"tool_length: 130.0", "tool_length: -5", 7, "tool_length", "negative"},
-        Bad{"tool_length: 130.0", "tool_length: 130.0\ntool_table: {T1: 5}", 8, "tool_table.T1",
-            "H number"},
-        Bad{"tool_length: 130.0", "tool_length: 130.0\ntool_diameters: {D2: 5}", 8,
-            "tool_diameters.D2", "not a tool number"},
-        Bad{"tool_length: 130.0", "tool_length: 130.0\ntool_diameters: {2: -5}", 8,
-            "tool_diameters.2", "the tool diameter must not be negative"},
-        Bad{"tool_length: 130.0", "tool_length: 130.0\ntool_diameters: {-1: 5}", 8,
-            "tool_diameters.-1", "must not be negative"},
-        Bad{"tool_length: 130.0", "tool_length: 130.0\ntool_diameters: [5]", 8, "tool_diameters",
-            "mapping"},
-        Bad{"tool_length: 130.0", "tool_length: 130.0\nwork_offsets: {G60: [0, 0, 0]}", 8,
-            "work_offsets.G60", "unknown key"},
-        Bad{"tool_length: 130.0", "tool_length: 130.0\nsquareness: {EC0X: 1}", 8, "squareness.EC0X",
-            "unknown key"},
-        Bad{"tool_length: 130.0", "tool_length: 130.0\nout_of_range: wrap", 8, "out_of_range",
-            "not one of"},
+        with_key("tool_table: {T1: 5}", "tool_table.T1", "H number"),
+        with_key("tool_diameters: {D2: 5}", "tool_diameters.D2", "not a tool number"),
+        with_key("tool_diameters: {2: -5}", "tool_diameters.2",
+                 "the tool diameter must not be negative"),
+        with_key("tool_diameters: {-1: 5}", "tool_diameters.-1", "must not be negative"),
+        with_key("tool_diameters: [5]", "tool_diameters", "mapping"),
+        with_key("work_offsets: {G60: [0, 0, 0]}", "work_offsets.G60", "unknown key"),
+        with_key("squareness: {EC0X: 1}", "squareness.EC0X", "unknown key"),
+        with_key("out_of_range: wrap", "out_of_range", "not one of"),
         Bad{"table: sample-errors.csv", "table: nothere.csv", 8, "table",
             "cannot open the component table"},
-        Bad{"      all: [-800.0, -256.0, -478.0]", "      EXX: [-800.0, -256.0, -478.0]", 13,
-            "axes.X.points.EYX", "no measurement point for EYX"},
-        Bad{"      all: [-800.0, -256.0, -478.0]", "      EXY: [-800.0, -256.0, -478.0]", 13,
-            "axes.X.points.EXY", "belongs to axis Y"},
-        Bad{"      all: [-800.0, -256.0, -478.0]", "      EAX: [-800.0, -256.0, -478.0]", 13,
-            "axes.X.points.EAX", "angular"},
-        Bad{"      all: [-800.0, -256.0, -478.0]", "      all: [-800.0, -256.0]", 13,
-            "axes.X.points.all", "list of 3 numbers"},
+        x_points_line("      EXX: [-800.0, -256.0, -478.0]", "axes.X.points.EYX",
+                      "no measurement point for EYX"),
+        x_points_line("      EXY: [-800.0, -256.0, -478.0]", "axes.X.points.EXY",
+                      "belongs to axis Y"),
+        x_points_line("      EAX: [-800.0, -256.0, -478.0]", "axes.X.points.EAX", "angular"),
+        x_points_line("      all: [-800.0, -256.0]", "axes.X.points.all", "list of 3 numbers"),
         Bad{"{x: -500.0, y: -256.0, z: -280.0, tool_length: 130.0}",
             "{x: -500.0, y: -256.0, z: -280.0}", 11, "axes.X.measured_at.tool_length",
             "missing key"},

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "abbe/io/input_error.hpp"
+#include "text_block_reader.hpp"
 
 namespace {
 
@@ -19,6 +20,7 @@ using abbe::gcode::Block;
 using abbe::gcode::BlockReader;
 using abbe::gcode::parse_line;
 using abbe::gcode::Word;
+using abbe::gcode::testing::TextBlockReader;
 
 Block parse(std::string_view line) { return parse_line(line, 7, "t.nc"); }
 
@@ -252,62 +254,90 @@ void expect_refused(const std::string& line, std::size_t column, const std::stri
   EXPECT_EQ(e.where().source_line, line.back() == '\r' ? line.substr(0, line.size() - 1) : line);
 }
 
-TEST(ParserRefuses, Parameters) {
-  expect_refused("G1 #1", 4, "bad parameter setting (#n = value or #<name> = value)");
-  expect_refused("G1 X#", 5, "bad parameter in word 'X'");
-  expect_refused("#<name>3", 1, "bad parameter setting");
-  expect_refused("G1 X#<a", 5, "bad parameter in word 'X'");
+// The refusals checked by the ParserRefuses tests, each under the name of its
+// test: the line, the 1-based column and words of the message.
+struct Refusal {
+  std::string test;
+  std::string line;
+  std::size_t column;
+  std::string message;
+};
+const std::vector<Refusal> kRefusals = {
+    {"Parameters", "G1 #1", 4, "bad parameter setting (#n = value or #<name> = value)"},
+    {"Parameters", "G1 X#", 5, "bad parameter in word 'X'"},
+    {"Parameters", "#<name>3", 1, "bad parameter setting"},
+    {"Parameters", "G1 X#<a", 5, "bad parameter in word 'X'"},
+    {"Expressions", "G1 X[1+]", 5, "bad expression in word 'X'"},
+    {"Expressions", "G1 [1]", 4, "an expression ([...]) must be the value of a word"},
+    {"Expressions", "G1 X - [1", 8, "bad expression in word 'X'"},
+    {"Expressions", "G1 X[1 FOO 2]", 5, "bad expression in word 'X'"},
+    {"OWordControlFlow", "  o<drill> foo [1]", 3, "bad O-word: o<name> must be followed by sub"},
+    {"OWordControlFlow", "o100 sub X1", 10, "bad O-word line: only [...] arguments and a comment"},
+    {"OWordControlFlow", "G0 O100", 4, "an O-word must be the first word of its line"},
+    {"OWordControlFlow", "O1 G0 X1", 4, "a program number line (O...) may carry only a comment"},
+    {"OWordControlFlow", "O", 1, "word 'O' has no number"},
+    {"Comments", "G1 (abc", 4, "unclosed comment"},
+    {"Comments", "G1 X1 (a (b) c)", 10, "nested comments are not supported"},
+    {"Comments", "G1 X1 )", 7, "')' without a matching '('"},
+    {"LetterWithoutNumber", "G1 X", 4, "word 'X' has no number"},
+    {"LetterWithoutNumber", "G1 X Y1", 4, "word 'X' has no number"},
+    {"LetterWithoutNumber", "g1 y (c) 1", 4, "word 'Y' has no number"},
+    {"LetterWithoutNumber", "G1 X-", 4, "word 'X' has no number"},
+    {"BadNumbers", "G1 X1.2.3", 5, "bad number '1.2.3' in word 'X'"},
+    {"BadNumbers", "G1 X.", 5, "bad number '.' in word 'X'"},
+    {"BadNumbers", "G1 X1e5", 5, "exponents are not supported"},
+    {"BadNumbers", "G1 X1.5E-3", 5, "exponents are not supported"},
+    {"BadNumbers", "G1 X1 0", 7, "a blank inside a number is not supported"},
+    {"BadNumbers", "10", 1, "number '10' without a word letter"},
+    {"BadNumbers", "G1 (c) -2", 8, "number '-2' without a word letter"},
+    {"BadNumbers", "G1 10", 4, "a blank inside a number is not supported"},
+    {"NanInfinityAndHugeNumbers", "G1 XNAN", 5, "NaN and infinity are not numbers"},
+    {"NanInfinityAndHugeNumbers", "G1 X-inf", 6, "NaN and infinity are not numbers"},
+    {"NanInfinityAndHugeNumbers", "G1 X" + std::string(65, '9'), 5, "number is too long"},
+    {"NanInfinityAndHugeNumbers", "G1 X1" + std::string(400, '0') + ".0", 5, "number is too long"},
+    {"NanInfinityAndHugeNumbers", "O" + std::string(30, '9'), 2, "program number is too large"},
+    {"LettersAbbeDoesNotRead", "G1 U10", 4, "axis word 'U' is not supported (3-axis machine)"},
+    {"MisplacedStructure", "G1 N10 X1", 4, "a line number (N) must be the first word"},
+    {"MisplacedStructure", "N1.5 G1", 2, "bad line number"},
+    {"MisplacedStructure", "G1 / X1", 4, "block delete '/' must be the first character"},
+    {"MisplacedStructure", "% G1", 3, "only a comment may follow '%'"},
+    {"MisplacedStructure", "G1 %", 4, "'%' (tape delimiter) must stand alone"},
+    {"MisplacedStructure", "G1 X1 *12 Y2", 11, "the checksum (*nn) must be the last thing"},
+    {"MisplacedStructure", "G1 X1 *", 7, "bad checksum"},
+    {"BinaryBytesOutsideComments", std::string("G1 X1 \x01", 7), 7, "unexpected byte 0x01"},
+    {"BinaryBytesOutsideComments", std::string("G1\0X1", 5), 3, "unexpected byte 0x00"},
+    {"BinaryBytesOutsideComments", "G1 X1 \xc3\xa9", 7, "unexpected byte 0xc3"},
+    {"BinaryBytesOutsideComments", "G1\rX1", 3, "carriage return inside a line"},
+    {"BinaryBytesOutsideComments", "G1 X1 !", 7, "unexpected character '!'"},
+};
+
+// Every refusal of kRefusals listed under `test` (there is at least one).
+void expect_refusals_of(const std::string& test) {
+  std::size_t rows = 0;
+  for (const Refusal& r : kRefusals) {
+    if (r.test != test) continue;
+    expect_refused(r.line, r.column, r.message);
+    ++rows;
+  }
+  EXPECT_GT(rows, 0U) << test;
 }
 
-TEST(ParserRefuses, Expressions) {
-  expect_refused("G1 X[1+]", 5, "bad expression in word 'X'");
-  expect_refused("G1 [1]", 4, "an expression ([...]) must be the value of a word");
-  expect_refused("G1 X - [1", 8, "bad expression in word 'X'");
-  expect_refused("G1 X[1 FOO 2]", 5, "bad expression in word 'X'");
-}
+TEST(ParserRefuses, Parameters) { expect_refusals_of("Parameters"); }
 
-TEST(ParserRefuses, OWordControlFlow) {
-  expect_refused("  o<drill> foo [1]", 3, "bad O-word: o<name> must be followed by sub");
-  expect_refused("o100 sub X1", 10, "bad O-word line: only [...] arguments and a comment");
-  expect_refused("G0 O100", 4, "an O-word must be the first word of its line");
-  expect_refused("O1 G0 X1", 4, "a program number line (O...) may carry only a comment");
-  expect_refused("O", 1, "word 'O' has no number");
-}
+TEST(ParserRefuses, Expressions) { expect_refusals_of("Expressions"); }
 
-TEST(ParserRefuses, Comments) {
-  expect_refused("G1 (abc", 4, "unclosed comment");
-  expect_refused("G1 X1 (a (b) c)", 10, "nested comments are not supported");
-  expect_refused("G1 X1 )", 7, "')' without a matching '('");
-}
+TEST(ParserRefuses, OWordControlFlow) { expect_refusals_of("OWordControlFlow"); }
 
-TEST(ParserRefuses, LetterWithoutNumber) {
-  expect_refused("G1 X", 4, "word 'X' has no number");
-  expect_refused("G1 X Y1", 4, "word 'X' has no number");
-  expect_refused("g1 y (c) 1", 4, "word 'Y' has no number");
-  expect_refused("G1 X-", 4, "word 'X' has no number");
-}
+TEST(ParserRefuses, Comments) { expect_refusals_of("Comments"); }
 
-TEST(ParserRefuses, BadNumbers) {
-  expect_refused("G1 X1.2.3", 5, "bad number '1.2.3' in word 'X'");
-  expect_refused("G1 X.", 5, "bad number '.' in word 'X'");
-  expect_refused("G1 X1e5", 5, "exponents are not supported");
-  expect_refused("G1 X1.5E-3", 5, "exponents are not supported");
-  expect_refused("G1 X1 0", 7, "a blank inside a number is not supported");
-  expect_refused("10", 1, "number '10' without a word letter");
-  expect_refused("G1 (c) -2", 8, "number '-2' without a word letter");
-  expect_refused("G1 10", 4, "a blank inside a number is not supported");
-}
+TEST(ParserRefuses, LetterWithoutNumber) { expect_refusals_of("LetterWithoutNumber"); }
 
-TEST(ParserRefuses, NanInfinityAndHugeNumbers) {
-  expect_refused("G1 XNAN", 5, "NaN and infinity are not numbers");
-  expect_refused("G1 X-inf", 6, "NaN and infinity are not numbers");
-  expect_refused("G1 X" + std::string(65, '9'), 5, "number is too long");
-  expect_refused("G1 X1" + std::string(400, '0') + ".0", 5, "number is too long");
-  expect_refused("O" + std::string(30, '9'), 2, "program number is too large");
-}
+TEST(ParserRefuses, BadNumbers) { expect_refusals_of("BadNumbers"); }
+
+TEST(ParserRefuses, NanInfinityAndHugeNumbers) { expect_refusals_of("NanInfinityAndHugeNumbers"); }
 
 TEST(ParserRefuses, LettersAbbeDoesNotRead) {
-  expect_refused("G1 U10", 4, "axis word 'U' is not supported (3-axis machine)");
+  expect_refusals_of("LettersAbbeDoesNotRead");
   // A B C (rotary axes) are read: the interpreter accepts a rotary word
   // that never moves and refuses one that does (interpreter_test.cpp).
   for (const char* axis : {"U", "V", "W", "u"}) {
@@ -334,22 +364,10 @@ TEST(Parser, OWordLineWithSeveralComments) {
   EXPECT_EQ(b.o.args.size(), 2u);
 }
 
-TEST(ParserRefuses, MisplacedStructure) {
-  expect_refused("G1 N10 X1", 4, "a line number (N) must be the first word");
-  expect_refused("N1.5 G1", 2, "bad line number");
-  expect_refused("G1 / X1", 4, "block delete '/' must be the first character");
-  expect_refused("% G1", 3, "only a comment may follow '%'");
-  expect_refused("G1 %", 4, "'%' (tape delimiter) must stand alone");
-  expect_refused("G1 X1 *12 Y2", 11, "the checksum (*nn) must be the last thing");
-  expect_refused("G1 X1 *", 7, "bad checksum");
-}
+TEST(ParserRefuses, MisplacedStructure) { expect_refusals_of("MisplacedStructure"); }
 
 TEST(ParserRefuses, BinaryBytesOutsideComments) {
-  expect_refused(std::string("G1 X1 \x01", 7), 7, "unexpected byte 0x01");
-  expect_refused(std::string("G1\0X1", 5), 3, "unexpected byte 0x00");
-  expect_refused("G1 X1 \xc3\xa9", 7, "unexpected byte 0xc3");
-  expect_refused("G1\rX1", 3, "carriage return inside a line");
-  expect_refused("G1 X1 !", 7, "unexpected character '!'");
+  expect_refusals_of("BinaryBytesOutsideComments");
   // Inside a comment every byte but parentheses is fine.
   EXPECT_EQ(parse(std::string("(\x01\x7f\xff\0)", 6)).comments.size(), 1U);
 }
@@ -432,29 +450,26 @@ TEST(BlockReader, Utf8ByteOrderMarkIsSkippedOnlyAtTheStart) {
 }
 
 TEST(BlockReader, ReusedBlockIsCompletelyOverwritten) {
-  std::istringstream in("/N5 G1 X1 (a) (b) *12\nO7\nG0\n");
-  BlockReader reader(in, "p.nc");
-  Block b;
-  ASSERT_TRUE(reader.next(b));
+  TextBlockReader r("/N5 G1 X1 (a) (b) *12\nO7\nG0\n", "p.nc");
+  const Block& b = r.block;
+  ASSERT_TRUE(r.next());
   EXPECT_TRUE(b.block_delete && b.n && b.checksum && b.comments.size() == 2);
-  ASSERT_TRUE(reader.next(b));
+  ASSERT_TRUE(r.next());
   EXPECT_TRUE(b.program_number);
   EXPECT_FALSE(b.block_delete || b.n || b.checksum || !b.comments.empty() || !b.words.empty());
-  ASSERT_TRUE(reader.next(b));
+  ASSERT_TRUE(r.next());
   EXPECT_FALSE(b.program_number);
   EXPECT_EQ(b.words.size(), 1U);
   EXPECT_EQ(b.line, 3U);
-  EXPECT_FALSE(reader.next(b));
+  EXPECT_FALSE(r.next());
 }
 
 TEST(BlockReader, ErrorNamesTheLineOfTheFile) {
-  std::istringstream in("G0 X0\nG1 X1\r\nG1 Y#\r\n");
-  BlockReader reader(in, "prog.nc");
-  Block b;
-  ASSERT_TRUE(reader.next(b));
-  ASSERT_TRUE(reader.next(b));
+  TextBlockReader r("G0 X0\nG1 X1\r\nG1 Y#\r\n", "prog.nc");
+  ASSERT_TRUE(r.next());
+  ASSERT_TRUE(r.next());
   try {
-    reader.next(b);
+    r.next();
     FAIL() << "accepted a parameter";
   } catch (const InputError& e) {
     EXPECT_EQ(e.where().line, 3U);

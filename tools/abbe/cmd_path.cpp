@@ -24,6 +24,7 @@
 #include "dialect_option.hpp"
 #include "input_stream.hpp"
 #include "interpreter_options.hpp"
+#include "output_options.hpp"
 #include "progress.hpp"
 #include "setup_options.hpp"
 
@@ -114,11 +115,8 @@ const CommandRegistrar registrar(
           "--machine machines/sample/machine.yaml -o path.csv");
       sub.add_option("program", o->program, "NC program (RS274/LinuxCNC G-code), - for stdin")
           ->required();
-      sub.add_option("-o,--output", o->output, "Output file (written atomically), - for stdout")
-          ->capture_default_str();
-      sub.add_option("--format", o->format, "csv or json")
-          ->check(CLI::IsMember({"csv", "json"}))
-          ->capture_default_str();
+      add_output_option(sub, o->output, "Output file")->capture_default_str();
+      add_format_option(sub, o->format, {"csv", "json"});
       sub.add_option("--step", o->step, "Largest distance between points, mm")
           ->check(CLI::PositiveNumber)
           ->capture_default_str();

@@ -25,6 +25,7 @@
 #include "dialect_option.hpp"
 #include "input_stream.hpp"
 #include "model_option.hpp"
+#include "output_options.hpp"
 #include "progress.hpp"
 #include "setup_options.hpp"
 
@@ -219,11 +220,8 @@ const CommandRegistrar registrar(
       sub.add_option("--model", o->model, "Error model: " + model::model_names_text(true))
           ->check(CLI::IsMember(model::model_names(true)))
           ->capture_default_str();
-      sub.add_option("-o,--output", o->output, "Output file (written atomically), - for stdout")
-          ->capture_default_str();
-      sub.add_option("--format", o->format, "csv or json")
-          ->check(CLI::IsMember({"csv", "json"}))
-          ->capture_default_str();
+      add_output_option(sub, o->output, "Output file")->capture_default_str();
+      add_format_option(sub, o->format, {"csv", "json"});
       sub.add_option("--step", o->step, "Largest distance between points along the path, mm")
           ->check(CLI::PositiveNumber)
           ->capture_default_str();

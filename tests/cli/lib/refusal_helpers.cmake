@@ -14,3 +14,20 @@ function(refused_untouched code what pattern output)
     message(FATAL_ERROR "${what}: the output was changed")
   endif()
 endfunction()
+
+# start_with_previous_output(OUTPUT): an empty WORK holding OUTPUT with the
+# "previous contents\n" that refused_untouched looks for.
+function(start_with_previous_output output)
+  file(REMOVE_RECURSE ${WORK})
+  file(MAKE_DIRECTORY ${WORK})
+  file(WRITE ${output} "previous contents\n")
+endfunction()
+
+# expect_no_temporary_files(WHAT OUTPUT): no temporary file of the atomic
+# writer (OUTPUT.tmp…) is left beside OUTPUT.
+function(expect_no_temporary_files what output)
+  file(GLOB leftovers ${output}.tmp*)
+  if(leftovers)
+    message(FATAL_ERROR "${what}: temporary files left behind: ${leftovers}")
+  endif()
+endfunction()

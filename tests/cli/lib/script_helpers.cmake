@@ -20,3 +20,12 @@ function(expect_failure expected_message)
     message(FATAL_ERROR "${ARGN}: message lacks '${expected_message}':\n${err}")
   endif()
 endfunction()
+
+# expect_file_matches(FILE PATTERN WHAT): the text of FILE matches the
+# regular expression PATTERN (WHAT and the text are shown if not).
+function(expect_file_matches file pattern what)
+  file(READ ${file} text)
+  if(NOT text MATCHES "${pattern}")
+    message(FATAL_ERROR "${what}:\n${text}")
+  endif()
+endfunction()
