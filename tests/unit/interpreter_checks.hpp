@@ -19,9 +19,10 @@ inline void expect_near(const Eigen::Vector3d& actual, const Eigen::Vector3d& ex
 }
 
 // The error text the interpreter gives for `lines`, "" when it accepts them.
-inline std::string error_of(const std::vector<std::string>& lines) {
+inline std::string error_of(const std::vector<std::string>& lines,
+                            const InterpreterConfig& config = {}) {
   try {
-    run_lines(lines);
+    run_lines(lines, config);
   } catch (const InputError& e) {
     return e.what();
   }

@@ -6,28 +6,16 @@
 #include <cmath>
 
 #include "abbe/io/input_error.hpp"
+#include "interpreter_checks.hpp"
 #include "test_blocks.hpp"
 
 namespace abbe::gcode {
 namespace {
 
+using testing::error_of;
+using testing::expect_near;
 using testing::make_block;
 using testing::run_lines;
-
-void expect_near(const Eigen::Vector3d& actual, const Eigen::Vector3d& expected,
-                 double tol = 1e-9) {
-  EXPECT_NEAR((actual - expected).norm(), 0.0, tol)
-      << "actual " << actual.transpose() << " expected " << expected.transpose();
-}
-
-std::string error_of(const std::vector<std::string>& lines, const InterpreterConfig& config = {}) {
-  try {
-    run_lines(lines, config);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
 
 TEST(Interpreter, RapidAndFeedWithModalMotion) {
   const auto m = run_lines({"G0 X1 Y2 Z3", "G1 X4 F200", "Y5", "Z6 F300"});
