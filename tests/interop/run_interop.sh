@@ -111,10 +111,16 @@ for k in 0 1 2 3 4 5; do
   own_args+=(--work-offset "G5$((4 + k))=$(awk -v x="$ox" -v y="$oy" -v z="$oz" 'BEGIN{printf "%.6f,%.6f,%.6f", x*25.4, y*25.4, z*25.4}')")
 done
 
+# rs274 keeps its tool table in a memory-mapped file, $HOME/.tool.mmap: two
+# rs274 processes with one HOME (two interop runs of two build trees at
+# once) corrupt each other's table (bus errors, tool lengths of 0). Each
+# run gets a HOME of its own.
+rs274_home="$work/rs274-home"
+mkdir -p "$rs274_home"
 run_rs274() {  # file out table var_template -> exit code
   local var="$work/rs274.var"
   if [ -n "${4:-}" ]; then cp "$4" "$var"; else : >"$var"; fi
-  (cd "$(dirname "$1")" && timeout 60 "$rs274" -t "$3" -v "$var" -g "$1" >"$2" 2>&1)
+  (cd "$(dirname "$1")" && HOME="$rs274_home" timeout 60 "$rs274" -t "$3" -v "$var" -g "$1" >"$2" 2>&1)
 }
 
 # rs274 must start at all (its runtime libraries, e.g. libboost-python).
