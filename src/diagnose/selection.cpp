@@ -505,6 +505,38 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     Mat Xn(n, X.cols() + C.cols());
     Xn << X, C;
     double cv = cross_validated_sse(pb, Xn, y, folds, o.folds);
+    // A smooth function's flexibility: the degree with the least held-out SSE.
+    if (pick.kind == TermKind::unexplained) {
+      const int fixed_degree = pick.degree;
+      for (int degree : pick.vars.size() == 1 ? o.single_degrees : o.pair_degrees) {
+        if (degree == fixed_degree) continue;
+        Term t = pick;
+        t.degree = degree;
+        const Mat Ct = term_columns(pb, t);
+        if (static_cast<double>(X.cols() + Ct.cols()) > 0.5 * static_cast<double>(n)) continue;
+        Mat Xt(n, X.cols() + Ct.cols());
+        Xt << X, Ct;
+        const double cvt = cross_validated_sse(pb, Xt, y, folds, o.folds);
+        if (cvt < cv) {
+          cv = cvt;
+          pick = t;
+          C = Ct;
+          Xn = std::move(Xt);
+        }
+      }
+      if (pick.degree != fixed_degree) {
+        const Vec b = C.transpose() * r;
+        Mat G = C.transpose() * C;
+        if (Q.cols() > 0) {
+          const Mat QtC = Q.transpose() * C;
+          G.noalias() -= QtC.transpose() * QtC;
+        }
+        G.diagonal().array() += 1e-12 * std::max(G.trace(), 1e-300) / static_cast<double>(G.rows());
+        d_pick = b.dot(G.ldlt().solve(b));
+        res.log.push_back(fmt::format("step {}: {} degree {} (held-out SSE; candidates' {})",
+                                      step + 1, pick.label(), pick.degree, fixed_degree));
+      }
+    }
     if (!(cv < cv_prev * (1.0 - 1e-6)) && pick.kind == TermKind::unexplained && best_named) {
       res.log.push_back(fmt::format("step {}: {} rejected: held-out SSE {:.6g} ≥ {:.6g}", step + 1,
                                     pick.label(), cv, cv_prev));

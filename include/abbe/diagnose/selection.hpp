@@ -52,6 +52,11 @@ struct SelectionOptions {
   // this many significant named candidates (greedy) compete with it on the
   // same criterion (1: no combinations).
   int combinations = 3;
+  // The flexibility of a smooth `unexplained` function that wins a step is
+  // chosen by the held-out SSE among these Legendre degrees (one variable;
+  // per variable of a pair); empty: the candidates' fixed degree.
+  std::vector<int> single_degrees{2, 3, 4, 6, 8, 10, 12};
+  std::vector<int> pair_degrees{2, 3, 4, 5, 6};
   // Optional: called at the start of each selection step (0-based), e.g. for
   // a progress bar.
   std::function<void(int step)> on_step;
