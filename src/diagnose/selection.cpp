@@ -79,6 +79,11 @@ double motion_squared(const Problem& pb, const Term& t) {
   return s;
 }
 
+// |cos| of the angle between two fitted contributions.
+double abs_correlation(const Vec& a, const Vec& b) {
+  return std::abs(a.dot(b)) / std::max(a.norm() * b.norm(), 1e-300);
+}
+
 void append_orthonormal(Mat& Q, const Mat& C) {
   for (Eigen::Index c = 0; c < C.cols(); ++c) {
     Vec q = C.col(c);
@@ -341,12 +346,48 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     for (const Cached& c : scanned) consider(c);
     std::sort(scores.begin(), scores.end(),
               [](const Score& a, const Score& b) { return a.d > b.d; });
+    // Parsimony: an information criterion that charges every column ln(n)
+    // residual variances and a searched period or time constant
+    // `searched_cost` columns more (a one-column squareness beats a cyclic
+    // term that fits the same line only by fitting the noise).
+    auto cost = [&](const Term& t) {
+      const bool searched = t.kind == TermKind::cyclic || t.kind == TermKind::thermal_drift;
+      return t.columns() + (searched ? o.searched_cost : 0.0);
+    };
+    const double ln_n = std::log(static_cast<double>(n));
+    double s2_ic = rr / dof_base;
+    for (const Score& s : scores)
+      s2_ic = std::min(s2_ic,
+                       std::max(rr - s.d, 1e-300) / std::max(dof_base - s.c->term.columns(), 1.0));
+    auto ic_gain = [&](double d, double c) { return d - s2_ic * ln_n * c; };
+    // The fitted contribution of a candidate (orthogonal to the selected span).
+    auto contribution = [&](const Cached& c) {
+      Vec beta;
+      delta_rss(c.C, c.CtC, c.QtC, r, &beta);
+      Vec f = c.C * beta;
+      if (Q.cols() > 0) f -= Q * (c.QtC * beta);
+      return f;
+    };
     const Score* best_named = nullptr;
     for (const Score& s : scores)
       if (s.d > s.thr) {
         best_named = &s;
         break;
       }
+    // Only explanations of the same structure compete on the criterion: a
+    // cheaper candidate whose fitted contribution correlates with the
+    // largest one's above `competing_corr` and has the better criterion
+    // takes its place.
+    if (o.parsimony_ic && best_named) {
+      const Score* first = best_named;
+      const Vec f0 = contribution(*first->c);
+      for (const Score& s : scores) {
+        if (&s == first || !(s.d > s.thr) || cost(s.c->term) >= cost(first->c->term)) continue;
+        if (!(ic_gain(s.d, cost(s.c->term)) > ic_gain(best_named->d, cost(best_named->c->term))))
+          continue;
+        if (abs_correlation(f0, contribution(*s.c)) > o.competing_corr) best_named = &s;
+      }
+    }
 
     // Best smooth function (approximate: not orthogonalised against Q, so it
     // never overstates what it explains).
@@ -376,35 +417,73 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
       }
     }
 
+    // Before the smooth function is taken: do two or three named kinds
+    // together explain the structure as well, at a lower cost? Greedy from
+    // the best named candidate, each partner significant in what it adds.
+    bool combination_wins = false;
+    if (best_named && have_generic && best_named->d < o.name_ratio * g_best_d &&
+        o.combinations > 1) {
+      std::vector<const Score*> combo{best_named};
+      Mat Cc = best_named->c->C, QtCc = best_named->c->QtC;
+      double d_combo = best_named->d, cost_combo = cost(best_named->c->term);
+      for (int m = 1; m < o.combinations; ++m) {
+        const Score* add = nullptr;
+        double d_add = d_combo;
+        int tried = 0;
+        for (const Score& s : scores) {
+          if (++tried > 40) break;  // the 40 largest: a partner explains something alone
+          if (!(s.d > s.thr) || std::find(combo.begin(), combo.end(), &s) != combo.end()) continue;
+          const Eigen::Index k0 = Cc.cols(), k1 = s.c->C.cols();
+          Mat Cj(n, k0 + k1), QtCj(QtCc.rows(), k0 + k1), CtCj(k0 + k1, k0 + k1);
+          Cj << Cc, s.c->C;
+          QtCj << QtCc, s.c->QtC;
+          CtCj = Cj.transpose() * Cj;
+          const double dj = delta_rss(Cj, CtCj, QtCj, r);
+          if (dj - d_combo > s.thr && dj > d_add) {
+            add = &s;
+            d_add = dj;
+          }
+        }
+        if (!add) break;
+        combo.push_back(add);
+        Mat Cn(n, Cc.cols() + add->c->C.cols()), Qn(QtCc.rows(), Cc.cols() + add->c->C.cols());
+        Cn << Cc, add->c->C;
+        Qn << QtCc, add->c->QtC;
+        Cc = std::move(Cn);
+        QtCc = std::move(Qn);
+        d_combo = d_add;
+        cost_combo += cost(add->c->term);
+      }
+      if (combo.size() > 1 && d_combo >= o.name_ratio * g_best_d &&
+          ic_gain(d_combo, cost_combo) >= ic_gain(g_best_d, g_best.columns())) {
+        combination_wins = true;
+        std::string names;
+        for (const Score* c : combo) names += (names.empty() ? "" : " + ") + c->c->term.label();
+        res.log.push_back(fmt::format(
+            "step {}: {} (ΔRSS {:.6g}) explain what {} explains (ΔRSS {:.6g}) at lower cost",
+            step + 1, names, d_combo, g_best.label(), g_best_d));
+      }
+    }
+
     Term pick;
     Mat C;
     double d_pick = 0.0;
     std::vector<std::string> amb;
-    if (best_named && (!have_generic || best_named->d >= o.name_ratio * g_best_d)) {
+    if (best_named &&
+        (!have_generic || combination_wins || best_named->d >= o.name_ratio * g_best_d)) {
       pick = best_named->c->term;
       C = best_named->c->C;
       d_pick = best_named->d;
       // Ambiguity: near-equal candidates whose fitted contributions coincide.
-      Vec beta_b;
-      delta_rss(best_named->c->C, best_named->c->CtC, best_named->c->QtC, r, &beta_b);
-      Vec fb = best_named->c->C * beta_b;
-      if (Q.cols() > 0) fb -= Q * (best_named->c->QtC * beta_b);
-      // Parsimony: an alternative that costs more (columns, plus one for a
-      // period or time constant found by search) and explains no more is
+      const Vec fb = contribution(*best_named->c);
+      // Parsimony: an alternative that costs more (columns, plus the cost of
+      // a period or time constant found by search) and explains no more is
       // not a rival explanation of the same structure.
-      auto cost = [&](const Term& t) {
-        const bool searched = t.kind == TermKind::cyclic || t.kind == TermKind::thermal_drift;
-        return t.columns() + (searched ? 1 : 0);
-      };
       for (const Score& s : scores) {
         if (&s == best_named || s.d < 0.9 * best_named->d) continue;
         if (cost(s.c->term) > cost(best_named->c->term)) continue;
-        Vec beta;
-        delta_rss(s.c->C, s.c->CtC, s.c->QtC, r, &beta);
-        Vec fc = s.c->C * beta;
-        if (Q.cols() > 0) fc -= Q * (s.c->QtC * beta);
-        const double corr = std::abs(fb.dot(fc)) / std::max(fb.norm() * fc.norm(), 1e-300);
-        if (corr > o.ambiguous_corr) amb.push_back(s.c->term.label());
+        if (abs_correlation(fb, contribution(*s.c)) > o.ambiguous_corr)
+          amb.push_back(s.c->term.label());
       }
       for (double period : best_named->c->aliases) {
         Term alias = pick;
@@ -426,6 +505,38 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     Mat Xn(n, X.cols() + C.cols());
     Xn << X, C;
     double cv = cross_validated_sse(pb, Xn, y, folds, o.folds);
+    // A smooth function's flexibility: the degree with the least held-out SSE.
+    if (pick.kind == TermKind::unexplained) {
+      const int fixed_degree = pick.degree;
+      for (int degree : pick.vars.size() == 1 ? o.single_degrees : o.pair_degrees) {
+        if (degree == fixed_degree) continue;
+        Term t = pick;
+        t.degree = degree;
+        const Mat Ct = term_columns(pb, t);
+        if (static_cast<double>(X.cols() + Ct.cols()) > 0.5 * static_cast<double>(n)) continue;
+        Mat Xt(n, X.cols() + Ct.cols());
+        Xt << X, Ct;
+        const double cvt = cross_validated_sse(pb, Xt, y, folds, o.folds);
+        if (cvt < cv) {
+          cv = cvt;
+          pick = t;
+          C = Ct;
+          Xn = std::move(Xt);
+        }
+      }
+      if (pick.degree != fixed_degree) {
+        const Vec b = C.transpose() * r;
+        Mat G = C.transpose() * C;
+        if (Q.cols() > 0) {
+          const Mat QtC = Q.transpose() * C;
+          G.noalias() -= QtC.transpose() * QtC;
+        }
+        G.diagonal().array() += 1e-12 * std::max(G.trace(), 1e-300) / static_cast<double>(G.rows());
+        d_pick = b.dot(G.ldlt().solve(b));
+        res.log.push_back(fmt::format("step {}: {} degree {} (held-out SSE; candidates' {})",
+                                      step + 1, pick.label(), pick.degree, fixed_degree));
+      }
+    }
     if (!(cv < cv_prev * (1.0 - 1e-6)) && pick.kind == TermKind::unexplained && best_named) {
       res.log.push_back(fmt::format("step {}: {} rejected: held-out SSE {:.6g} ≥ {:.6g}", step + 1,
                                     pick.label(), cv, cv_prev));

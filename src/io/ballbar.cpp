@@ -68,17 +68,9 @@ MeasuredData read_ballbar(std::istream& in, const std::string& file) {
   data.has_dn = true;
   CsvReader csv(in, file, CsvReader::Options{'#'});
   csv.read_header();
-  std::array<int, kNames.size()> col;
-  col.fill(-1);
-  for (std::size_t k = 0; k < kNames.size(); ++k)
-    if (const auto c = csv.column(kNames[k])) col[k] = static_cast<int>(*c);
-  for (int k = 0; k < kRequired; ++k)
-    if (col[static_cast<std::size_t>(k)] < 0)
-      csv.fail(
-          1, "header",
-          fmt::format("the header has no `{}` column (a ballbar file needs plane, radius, cx, "
-                      "cy, cz, feed, direction, angle, dr; found: {})",
-                      kNames[static_cast<std::size_t>(k)], fmt::join(csv.header_names(), ", ")));
+  const auto col = csv.columns(kNames, static_cast<std::size_t>(kRequired),
+                               "a ballbar file needs plane, radius, cx, cy, cz, feed, direction, "
+                               "angle, dr");
 
   std::optional<Circle> last;
   double last_angle = 0.0, clock = 0.0;

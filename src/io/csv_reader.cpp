@@ -1,6 +1,7 @@
 #include "abbe/io/csv_reader.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <array>
 #include <charconv>
@@ -182,6 +183,19 @@ std::optional<std::size_t> CsvReader::column(std::string_view name) const {
   for (std::size_t i = 0; i < header_.size(); ++i)
     if (same_name(header_[i], name)) return i;
   return std::nullopt;
+}
+
+void CsvReader::find_columns(const std::string_view* names, std::size_t count, std::size_t required,
+                             std::string_view needs, int* out) const {
+  for (std::size_t k = 0; k < count; ++k) {
+    const auto c = column(names[k]);
+    out[k] = c ? static_cast<int>(*c) : -1;
+  }
+  for (std::size_t k = 0; k < required && k < count; ++k)
+    if (out[k] < 0)
+      fail(1, "header",
+           fmt::format("the header has no `{}` column ({}; found: {})", names[k], needs,
+                       fmt::join(header_, ", ")));
 }
 
 bool CsvReader::next() {

@@ -31,16 +31,7 @@ MeasuredData read_measured_data(std::istream& in, const std::string& file) {
   data.file = file;
   CsvReader csv(in, file, CsvReader::Options{'#'});
   csv.read_header();
-  std::array<int, kNames.size()> col;
-  col.fill(-1);
-  for (std::size_t k = 0; k < kNames.size(); ++k)
-    if (const auto c = csv.column(kNames[k])) col[k] = static_cast<int>(*c);
-  for (int k : {cx, cy, cz})
-    if (col[static_cast<std::size_t>(k)] < 0)
-      csv.fail(
-          1, "header",
-          fmt::format("the header has no `{}` column (x, y, z are required; found: {})",
-                      kNames[static_cast<std::size_t>(k)], fmt::join(csv.header_names(), ", ")));
+  const auto col = csv.columns(kNames, 3, "x, y, z are required");  // kNames starts x, y, z
   for (int k = 0; k < 3; ++k) data.has_column[static_cast<std::size_t>(k)] = col[cdx + k] >= 0;
   data.has_dn = col[cdn] >= 0;
   if (!data.has_column[0] && !data.has_column[1] && !data.has_column[2] && !data.has_dn)

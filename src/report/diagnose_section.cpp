@@ -41,6 +41,15 @@ DiagnosisForReport diagnose_for_report(const machine::Machine& machine,
   r.diagnosis.measured_file = data.file;
   const diagnose::Overlay overlay = diagnose::make_overlay(r.diagnosis, options.extend);
   r.after = diagnose::build_problem(machine, data, options.model, &overlay);
+  // The datum (offsets, plate rotations) is fitted with the effects but is
+  // not in the overlay (a new measurement has a new one): take it out, so the
+  // residual after the extension is the one the diagnosis reports.
+  for (std::size_t o = 0; o < r.after.obs.size(); ++o) {
+    const diagnose::Observation& ob = r.after.obs[o];
+    for (const diagnose::SelectedTerm& st : r.diagnosis.datum)
+      r.after.y[static_cast<Eigen::Index>(o)] -=
+          ob.u.dot(st.term.evaluate(r.after.points[ob.point]));
+  }
   return r;
 }
 

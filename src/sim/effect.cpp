@@ -1,5 +1,6 @@
 #include "abbe/sim/effect.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -143,6 +144,9 @@ Effect parse_effect(const std::string& text) {
       } else if (key == "tau" && e.kind == EffectKind::thermal_drift) {
         e.tau_s = parse_number(text, value, "tau");
         if (e.tau_s <= 0.0) fail(text, "tau must be > 0 s");
+      } else if (key == "lag" && e.kind == EffectKind::thermal_drift) {
+        e.lag_s = parse_number(text, value, "lag");
+        if (e.lag_s < 0.0) fail(text, "lag must be ≥ 0 s");
       } else if (key == "period" && e.kind == EffectKind::cyclic) {
         e.period_mm = parse_number(text, value, "period");
         if (e.period_mm <= 0.0) fail(text, "period must be > 0 mm");
@@ -162,6 +166,14 @@ Effect parse_effect(const std::string& text) {
   if (e.kind == EffectKind::coupling && e.with_axis < 0)
     fail(text, "coupling needs with=AXIS (the second position it depends on)");
   return e;
+}
+
+double drift_fraction(double t_s, double tau_s, double lag_s) {
+  const double t = std::max(t_s, 0.0);
+  if (lag_s <= 0.0) return 1.0 - std::exp(-t / tau_s);
+  if (std::abs(tau_s - lag_s) <= 1e-9 * tau_s)
+    return 1.0 - (1.0 + t / tau_s) * std::exp(-t / tau_s);
+  return 1.0 - (tau_s * std::exp(-t / tau_s) - lag_s * std::exp(-t / lag_s)) / (tau_s - lag_s);
 }
 
 }  // namespace abbe::sim

@@ -91,7 +91,7 @@ Eigen::Vector3d TruthMachine::effects_um(const TipState& tip) const {
         d[e.direction] += e.magnitude * sa / 1000.0;
         break;
       case EffectKind::thermal_drift: {
-        const double f = 1.0 - std::exp(-std::max(tip.time, 0.0) / e.tau_s);
+        const double f = drift_fraction(tip.time, e.tau_s, e.lag_s);
         d[e.direction] += (e.unit == "ppm" ? e.magnitude * sa / 1000.0 : e.magnitude) * f;
         break;
       }

@@ -40,7 +40,7 @@ std::vector<TipState> grid_points(const GridOptions& o) {
   double time = 0.0;
   bool x_up = true, y_up = true;
   for (int rep = 1; rep <= o.repeat; ++rep) {
-    const std::string set = o.repeat > 1 ? o.set + std::to_string(rep) : o.set;
+    const std::string set = o.repeat > 1 && !o.one_setup ? o.set + std::to_string(rep) : o.set;
     for (std::size_t kz = zs.size(); kz-- > 0;) {
       for (std::size_t ky = 0; ky < ys.size(); ++ky) {
         const double y = ys[y_up ? ky : ys.size() - 1 - ky];

@@ -16,6 +16,16 @@
 namespace abbe::diagnose {
 namespace {
 
+// A term of `kind` driven by and acting along axis `axis` (a datum offset
+// of `set` for setup_offset).
+Term term(TermKind kind, int axis, const std::string& set = "") {
+  Term t;
+  t.kind = kind;
+  t.axis = t.direction = axis;
+  t.set = set;
+  return t;
+}
+
 // A run along X measured in dx, with the time growing along the run (t
 // correlated with x): a scale X→X (a ppm) and a linear drift t→X (b µm/h).
 Problem run(double a_ppm, double b_um_per_h, double sigma, std::uint64_t seed) {
@@ -46,20 +56,13 @@ Problem run(double a_ppm, double b_um_per_h, double sigma, std::uint64_t seed) {
 
 CandidateSet two_terms() {
   CandidateSet cs;
-  Term offset;
-  offset.kind = TermKind::setup_offset;
-  offset.axis = offset.direction = 0;
-  offset.set = "run";
-  cs.datum.push_back(offset);
-  Term scale;
-  scale.kind = TermKind::scale;
-  scale.axis = scale.direction = 0;
+  cs.datum.push_back(term(TermKind::setup_offset, 0, "run"));
   Term drift;
   drift.kind = TermKind::thermal_drift;
   drift.direction = 0;
   drift.axis = 0;
   drift.tau_s = 0.0;  // linear in t
-  cs.fixed = {scale, drift};
+  cs.fixed = {term(TermKind::scale, 0), drift};
   cs.named_tests = 2;
   return cs;
 }
@@ -131,20 +134,8 @@ TEST(DiagnoseAttribution, IndependentTermsShareNothing) {
   pb.sets = {"a"};
   pb.direction_present = {true, true, false};
   CandidateSet cs;
-  for (int d = 0; d < 2; ++d) {
-    Term off;
-    off.kind = TermKind::setup_offset;
-    off.axis = off.direction = d;
-    off.set = "a";
-    cs.datum.push_back(off);
-  }
-  Term scale;
-  scale.kind = TermKind::scale;
-  scale.axis = scale.direction = 0;
-  Term rev;
-  rev.kind = TermKind::reversal;
-  rev.axis = rev.direction = 1;
-  cs.fixed = {scale, rev};
+  for (int d = 0; d < 2; ++d) cs.datum.push_back(term(TermKind::setup_offset, d, "a"));
+  cs.fixed = {term(TermKind::scale, 0), term(TermKind::reversal, 1)};
   cs.named_tests = 2;
   const SelectionResult res = select_effects(pb, cs, SelectionOptions{});
   ASSERT_EQ(res.terms.size(), 2u);

@@ -77,19 +77,11 @@ const testing::VirtualMachine& noisy_vm() {
 // ---------------------------------------------------------------- designs
 enum class Design { grid, plane, toolpath, ballbar, diagonals };
 const char* design_name(Design d) {
-  switch (d) {
-    case Design::grid:
-      return "grid 12x8x5, serpentine both ways (dx dy dz)";
-    case Design::plane:
-      return "one plate at one Z (dx dy)";
-    case Design::toolpath:
-      return "toolpath at one Z (dx dy dz)";
-    case Design::ballbar:
-      return "ballbar XY/XZ/YZ both ways (dn)";
-    case Design::diagonals:
-      return "four body diagonals (along the line)";
-  }
-  return "";
+  static const char* const names[] = {"grid 12x8x5, serpentine both ways (dx dy dz)",
+                                      "one plate at one Z (dx dy)", "toolpath at one Z (dx dy dz)",
+                                      "ballbar XY/XZ/YZ both ways (dn)",
+                                      "four body diagonals (along the line)"};
+  return names[static_cast<int>(d)];
 }
 
 struct Sample {
@@ -231,23 +223,10 @@ std::vector<Sample> make_design(Design d) {
 // ---------------------------------------------------------- hidden shapes
 enum class Shape { none, scale, squareness, reversal, pitch, drift, coupling };
 const char* shape_name(Shape s) {
-  switch (s) {
-    case Shape::none:
-      return "none";
-    case Shape::scale:
-      return "scale";
-    case Shape::squareness:
-      return "squareness";
-    case Shape::reversal:
-      return "reversal";
-    case Shape::pitch:
-      return "pitch+harmonic";
-    case Shape::drift:
-      return "drift t/(t+tau)";
-    case Shape::coupling:
-      return "coupling off-centre";
-  }
-  return "";
+  static const char* const names[] = {
+      "none",           "scale",           "squareness",         "reversal",
+      "pitch+harmonic", "drift t/(t+tau)", "coupling off-centre"};
+  return names[static_cast<int>(s)];
 }
 
 struct Hidden {

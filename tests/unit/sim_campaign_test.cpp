@@ -301,6 +301,14 @@ TEST(SimMeasure, GridWalkDirectionsTimesAndEffects) {
   EXPECT_DOUBLE_EQ(tips[3].time, 15.0);
   EXPECT_EQ(tips.front().set, "grid1");
   EXPECT_EQ(tips.back().set, "grid2");
+  o.one_setup = true;  // both passes from one setup: one set, times going on
+  const auto one = grid_points(o);
+  ASSERT_EQ(one.size(), tips.size());
+  for (std::size_t i = 0; i < one.size(); ++i) {
+    EXPECT_EQ(one[i].set, "grid") << i;
+    EXPECT_EQ(one[i].time, tips[i].time) << i;
+    EXPECT_EQ(one[i].p, tips[i].p) << i;
+  }
   // Noise-free measurement equals the truth; an injected reversal changes only y.
   const auto clean = measure(g.truth, tips, 0.0, 1);
   g.truth.effects.push_back(parse_effect("reversal:Y:4um"));

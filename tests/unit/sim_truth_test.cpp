@@ -210,6 +210,14 @@ TEST(SimTruth, Effects) {
   later.time = 1200.0;
   EXPECT_NEAR(with("thermal_drift:Z:8um:tau=1200", later).z(), 8.0 * (1.0 - std::exp(-1.0)), 1e-12);
   EXPECT_NEAR(with("thermal_drift:Z:8um:tau=1200", tip).z(), 0.0, 1e-12);  // t = 0
+  // Two lags in series (τ 1200 s, lag 600 s) at t = 1200 s:
+  // 1 − (1200·e^−1 − 600·e^−2)/600 = 1 − 2e^−1 + e^−2.
+  EXPECT_NEAR(with("thermal_drift:Z:8um:tau=1200,lag=600", later).z(),
+              8.0 * (1.0 - 2.0 * std::exp(-1.0) + std::exp(-2.0)), 1e-12);
+  EXPECT_NEAR(with("thermal_drift:Z:8um:tau=1200,lag=600", tip).z(), 0.0, 1e-12);
+  // lag = τ: 1 − (1 + t/τ)·e^(−t/τ) = 1 − 2/e at t = τ.
+  EXPECT_NEAR(with("thermal_drift:Z:8um:tau=1200,lag=1200", later).z(),
+              8.0 * (1.0 - 2.0 * std::exp(-1.0)), 1e-12);
   EXPECT_NEAR(with("cyclic:X:1.5um:period=16", tip).x(), 1.5 * std::sin(2.0 * M_PI * -300.0 / 16.0),
               1e-12);
   // coupling: u_X = (−300 + 500)/500 = 0.4, u_Y = (−200 + 500)/500 = 0.6 (travels −1000…0)
@@ -227,6 +235,25 @@ TEST(SimTruth, Effects) {
   EXPECT_EQ(t.deviation_um(tip), base);  // effects do not leak into the original
 }
 
+TEST(SimEffect, DriftWithALagIsNotAnExponential) {
+  // Zero at t = 0, starts with zero slope, rises monotonically to 1; the
+  // lag-free form is the exponential; τ and the lag play symmetric roles.
+  EXPECT_DOUBLE_EQ(drift_fraction(0.0, 2400.0, 900.0), 0.0);
+  EXPECT_DOUBLE_EQ(drift_fraction(-5.0, 2400.0, 900.0), 0.0);
+  EXPECT_LT(drift_fraction(10.0, 2400.0, 900.0), 1e-4);  // exponential: 4.2e-3
+  EXPECT_NEAR(drift_fraction(10.0, 2400.0, 0.0), 1.0 - std::exp(-10.0 / 2400.0), 1e-15);
+  EXPECT_NEAR(drift_fraction(1e6, 2400.0, 900.0), 1.0, 1e-12);
+  EXPECT_NEAR(drift_fraction(3000.0, 2400.0, 900.0), drift_fraction(3000.0, 900.0, 2400.0), 1e-12);
+  EXPECT_NEAR(drift_fraction(3000.0, 2400.0, 2400.0 * (1.0 + 1e-12)),
+              drift_fraction(3000.0, 2400.0, 2400.0), 1e-6);
+  double prev = 0.0;
+  for (double t = 60.0; t <= 20000.0; t += 60.0) {
+    const double f = drift_fraction(t, 2400.0, 900.0);
+    EXPECT_GT(f, prev) << t;
+    prev = f;
+  }
+}
+
 TEST(SimEffect, ParsesAndRejects) {
   const Effect e = parse_effect("cyclic:X:1.5um:period=12,phase=90,dir=Y");
   EXPECT_EQ(e.kind, EffectKind::cyclic);
@@ -237,10 +264,10 @@ TEST(SimEffect, ParsesAndRejects) {
   EXPECT_NEAR(e.phase_rad, M_PI / 2, 1e-15);
   EXPECT_EQ(parse_effect("thermal_drift:Z:10ppm").unit, "ppm");
   EXPECT_EQ(parse_effect("arm_offset:Y:50mm").direction, 2);
-  for (const char* bad :
-       {"reversal:Y:4", "reversal:Q:4um", "wobble:X:1um", "scale:X:4um", "coupling:X:5um",
-        "cyclic:X:1um:period=0", "cyclic:X:1um:tau=5", "reversal:Y", "setup:X:abcum",
-        "thermal_drift:Z:8um:tau=-1", "reversal:Y:4um:dir"})
+  for (const char* bad : {"reversal:Y:4", "reversal:Q:4um", "wobble:X:1um", "scale:X:4um",
+                          "coupling:X:5um", "cyclic:X:1um:period=0", "cyclic:X:1um:tau=5",
+                          "reversal:Y", "setup:X:abcum", "thermal_drift:Z:8um:tau=-1",
+                          "thermal_drift:Z:8um:lag=-1", "cyclic:X:1um:lag=5", "reversal:Y:4um:dir"})
     EXPECT_THROW(parse_effect(bad), std::invalid_argument) << bad;
 }
 

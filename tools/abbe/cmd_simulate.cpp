@@ -137,6 +137,7 @@ struct MeasureOptions {
   std::uint64_t seed = 1;
   double interval = 5.0;
   int repeat = 1;
+  bool one_setup = false;
   std::string set;
   double step = 5.0;
   gcode::DialectOptions dialect;
@@ -219,6 +220,7 @@ int run_measure(const MeasureOptions& o) {
     go.tool_length = tool_length;
     go.interval_s = o.interval;
     go.repeat = o.repeat;
+    go.one_setup = o.one_setup;
     if (!o.set.empty()) go.set = o.set;
     if (o.repeat < 1) bad_option("--repeat", "must be ≥ 1");
     if (!(o.interval >= 0.0)) bad_option("--interval", "must be ≥ 0 s");
@@ -324,6 +326,8 @@ const CommandRegistrar registrar(
           ->capture_default_str();
       measure->add_option("--repeat", me->repeat, "Grid: measure it N times (sets <set>1..N)")
           ->capture_default_str();
+      measure->add_flag("--one-setup", me->one_setup,
+                        "Grid with --repeat: every pass in the one set (one setup, one datum)");
       measure->add_option("--set", me->set, "Set label (default grid | program)");
       measure->add_option("--step", me->step, "Program: fragmentation step, mm")
           ->capture_default_str();

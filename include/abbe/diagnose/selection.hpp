@@ -4,9 +4,11 @@
 // (orthogonal to what is already selected) is added if it passes
 //  - a significance floor tied to the noise: ΔRSS > σ̂²·χ²_k(α / N_tests),
 //  - the held-out check: the k-fold cross-validated SSE decreases,
-// and a named kind wins only if it explains at least `name_ratio` of what the
-// best smooth `unexplained` function explains; otherwise the smooth function
-// is taken and reported as unexplained structure. Candidates whose fitted
+// and a named kind wins only if it (or a combination of up to three named
+// kinds, compared on an information criterion that counts searched
+// parameters) explains at least `name_ratio` of what the best smooth
+// `unexplained` function explains; otherwise the smooth function is taken
+// and reported as unexplained structure. Candidates whose fitted
 // contributions are nearly identical to the winner's are reported with it
 // as ambiguous.
 #include <Eigen/Core>
@@ -37,6 +39,24 @@ struct SelectionOptions {
   // neighbour) reaches this share of the best peak's power (aliasing).
   double alias_power = 0.9;
   std::size_t scan_points = 20000;  // points used to locate a period peak
+  // Parsimony between competing explanations of one structure: a cheaper
+  // significant named candidate whose fitted contribution correlates with
+  // the largest one's above `competing_corr` takes its place when its
+  // information criterion ΔRSS/σ̂² − ln(n)·cost is better, cost = its
+  // columns plus `searched_cost` for a parameter found by search (a period,
+  // a time constant); false: the largest ΔRSS wins (before).
+  bool parsimony_ic = true;
+  double searched_cost = 2.0;
+  double competing_corr = 0.9;
+  // Before a smooth `unexplained` function is taken, combinations of up to
+  // this many significant named candidates (greedy) compete with it on the
+  // same criterion (1: no combinations).
+  int combinations = 3;
+  // The flexibility of a smooth `unexplained` function that wins a step is
+  // chosen by the held-out SSE among these Legendre degrees (one variable;
+  // per variable of a pair); empty: the candidates' fixed degree.
+  std::vector<int> single_degrees{2, 3, 4, 6, 8, 10, 12};
+  std::vector<int> pair_degrees{2, 3, 4, 5, 6};
   // Optional: called at the start of each selection step (0-based), e.g. for
   // a progress bar.
   std::function<void(int step)> on_step;

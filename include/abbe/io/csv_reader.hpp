@@ -7,6 +7,7 @@
 // In a file separated by `;` or tabs, a number written with a decimal comma
 // ("1,5") reads as 1.5. Every field keeps its 1-based line and column, so
 // errors name file, line and column (docs/formats.md).
+#include <array>
 #include <cstddef>
 #include <istream>
 #include <optional>
@@ -34,6 +35,17 @@ class CsvReader {
   // nullopt when there is none. Throws for a name that appears twice.
   std::optional<std::size_t> column(std::string_view name) const;
   const std::vector<std::string>& header_names() const { return header_; }  // lower case
+  // The header index of every one of `names` (−1 where there is no such
+  // column). Fails (field "header") naming the first of the leading
+  // `required` names without a column: "the header has no `NAME` column
+  // (NEEDS; found: the header's names)".
+  template <std::size_t N>
+  std::array<int, N> columns(const std::array<std::string_view, N>& names, std::size_t required,
+                             std::string_view needs) const {
+    std::array<int, N> col;
+    find_columns(names.data(), N, required, needs, col.data());
+    return col;
+  }
 
   // The next record that is not blank (nor a comment); false at the end.
   bool next();
@@ -58,6 +70,8 @@ class CsvReader {
  private:
   bool read_record();
   void split(char sep);
+  void find_columns(const std::string_view* names, std::size_t count, std::size_t required,
+                    std::string_view needs, int* out) const;
 
   std::istream& in_;
   std::string file_;

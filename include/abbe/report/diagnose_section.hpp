@@ -13,7 +13,7 @@ namespace abbe::report {
 struct DiagnosisForReport {
   diagnose::Diagnosis diagnosis;
   diagnose::Problem before;  // residual of the model
-  diagnose::Problem after;   // residual of the model + the selected effects (overlay)
+  diagnose::Problem after;   // residual of the model + the selected effects (overlay) + datum
 };
 
 // Runs the diagnosis, then rebuilds the residual with its overlay added.

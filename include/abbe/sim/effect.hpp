@@ -24,6 +24,7 @@ struct Effect {
   double magnitude = 0.0;   // in `unit`
   std::string unit;         // "um", "urad", "ppm" or "mm"
   double tau_s = 1800.0;    // thermal_drift time constant, s
+  double lag_s = 0.0;       // thermal_drift: a second lag in series, s (0: a pure exponential)
   double period_mm = 16.0;  // cyclic period, mm
   double phase_rad = 0.0;   // cyclic phase
   int with_axis = -1;       // coupling partner axis
@@ -34,5 +35,12 @@ struct Effect {
 
 // Throws std::invalid_argument with a message naming the bad part.
 Effect parse_effect(const std::string& text);
+
+// The fraction of a thermal drift reached at time t ≥ 0 (0 at t = 0, → 1):
+// 1 − e^(−t/τ) for lag 0; with a lag L the step response of two first-order
+// lags in series, 1 − (τ·e^(−t/τ) − L·e^(−t/L))/(τ − L) (1 − (1 + t/τ)·e^(−t/τ)
+// for L = τ): it starts with zero slope (heat reaching the structure through a
+// second body), so it is not an exponential of any τ.
+double drift_fraction(double t_s, double tau_s, double lag_s);
 
 }  // namespace abbe::sim

@@ -25,6 +25,7 @@ struct GridOptions {
   double tool_length = 0.0;
   double interval_s = 5.0;  // time per measured point (4 s dwell + move)
   int repeat = 1;           // the grid measured `repeat` times, sets "<set>1".."<set>N"
+  bool one_setup = false;   // every pass in the one set `set` (one setup: one datum)
   std::string set = "grid";
 };
 

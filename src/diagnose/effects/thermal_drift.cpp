@@ -9,6 +9,13 @@
 #include "builtin_effects.hpp"
 
 namespace abbe::diagnose::effects {
+namespace {
+// τ = 0 is the drift linear in time (per hour), named so ("τ 0 s" would
+// read as an instant step).
+std::string time_law(const Term& t) {
+  return t.tau_s > 0.0 ? fmt::format("τ {:.0f} s", t.tau_s) : std::string("linear in t");
+}
+}  // namespace
 
 EffectDescriptor thermal_drift() {
   EffectDescriptor d = make_descriptor(TermKind::thermal_drift, "thermal_drift", "thermal_drift");
@@ -20,20 +27,20 @@ EffectDescriptor thermal_drift() {
   };
   d.label = [](const Term& t) {
     const char dir = axis_name(t.direction);
-    return t.with_axis >= 0 ? fmt::format("thermal_drift {}·t→{} (τ {:.0f} s)",
-                                          variable_name(t.with_axis), dir, t.tau_s)
-                            : fmt::format("thermal_drift t→{} (τ {:.0f} s)", dir, t.tau_s);
+    return t.with_axis >= 0 ? fmt::format("thermal_drift {}·t→{} ({})", variable_name(t.with_axis),
+                                          dir, time_law(t))
+                            : fmt::format("thermal_drift t→{} ({})", dir, time_law(t));
   };
   d.description = [](const Term& t) {
     const char dir = axis_name(t.direction);
-    return t.with_axis >= 0 ? fmt::format(
-                                  "{} grows with time ∝ {} ({:+.2f} ppm, τ {:.0f} s): thermal "
-                                  "expansion during warm-up",
-                                  dir, variable_name(t.with_axis), coef_or_zero(t, 0), t.tau_s)
-                            : fmt::format(
-                                  "{} drifts with time ({:+.2f} µm, τ {:.0f} s): warm-up, spindle "
-                                  "growth",
-                                  dir, coef_or_zero(t, 0), t.tau_s);
+    if (t.with_axis >= 0)
+      return fmt::format(
+          "{} grows with time ∝ {} ({:+.2f} ppm{}, {}): thermal expansion during "
+          "warm-up",
+          dir, variable_name(t.with_axis), coef_or_zero(t, 0), t.tau_s > 0.0 ? "" : " per hour",
+          time_law(t));
+    return fmt::format("{} drifts with time ({:+.2f} µm{}, {}): warm-up, spindle growth", dir,
+                       coef_or_zero(t, 0), t.tau_s > 0.0 ? "" : " per hour", time_law(t));
   };
   d.params = [](const Term& t) -> NamedValues {
     return {{t.with_axis >= 0 ? "ppm" : (t.tau_s > 0.0 ? "um" : "um_per_h"), coef_or_zero(t, 0)},
