@@ -54,3 +54,21 @@ file(READ ${WORK}/out.csv contents)
 if(NOT contents STREQUAL "previous contents\n")
   message(FATAL_ERROR "the output was changed by a refused import")
 endif()
+
+# Several components in one file (one section each): every component in the
+# runs file and in the table.
+execute_process(COMMAND ${ABBE} import laser ${DATA}/three-components.csv -o ${WORK}/runs3.csv
+                        --table ${WORK}/table3.csv
+                RESULT_VARIABLE rc ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "import laser, three components: exit ${rc}\n${err}")
+endif()
+file(READ ${WORK}/runs3.csv runs3)
+if(NOT runs3 MATCHES "\nX,EXX,0,1,up,0\n.*\nX,EBX,200,1,up,[34][0-9.]*\n.*\nY,EYY,0,2,up,1\\.9[0-9]*\n$")
+  message(FATAL_ERROR "unexpected runs file of three components:\n${runs3}")
+endif()
+file(READ ${WORK}/table3.csv table3)
+if(NOT table3 MATCHES "^axis,component,position_mm,direction,value,uncertainty\nX,EXX,0,fwd,.*\nX,EBX,200,mean,[45][0-9.]*,[01][0-9.]*\n.*Y,EYY,0,mean,[12][0-9.]*,")
+  message(FATAL_ERROR "unexpected table of three components:\n${table3}")
+endif()
+

@@ -16,6 +16,7 @@
 #include "abbe/pipeline/predict.hpp"
 #include "minimal_machine_text.hpp"
 #include "model_test_machines.hpp"
+#include "uncertainty_test_machines.hpp"
 
 namespace abbe::pipeline {
 namespace {
@@ -53,43 +54,9 @@ McRun run(const Machine& m, const std::string& points_csv, std::size_t draws,
   return r;
 }
 
-// A table with every component of every axis (values of a few µm/µrad) and
-// per-target uncertainties; reflectors away from the points.
-std::string full_table(bool with_u, double u_target) {
-  std::string csv = with_u ? "axis,component,position_mm,direction,value,uncertainty\n"
-                           : std::string(test::kHeader);
-  int k = 0;
-  for (char a : {'X', 'Y', 'Z'})
-    for (char d : {'X', 'Y', 'Z', 'A', 'B', 'C'})
-      for (int i = 0; i <= 6; ++i, ++k) {
-        const double v = 3.0 * std::sin(0.7 * k);
-        csv += fmt::format("{},E{}{},{},mean,{:.6f}", a, d, a, -1200.0 + 400.0 * i, v);
-        if (with_u) csv += fmt::format(",{}", u_target);
-        csv += "\n";
-      }
-  return csv;
-}
-
-MachineSpec full_spec(bool with_u, double u_target) {
-  MachineSpec spec =
-      test::spec_with("w X' b Y Z t", full_table(with_u, u_target),
-                      Eigen::Vector3d(-500, -250, -280), 130.0, Eigen::Vector3d(-800, -256, -478));
-  spec.squareness = {14.0, -24.0, 13.0};
-  return spec;
-}
-
-const char* kPoints =
-    "x,y,z\n-100,-50,-30\n-300,-200,-250\n-650,-420,-120\n-900,-10,-400\n-480,-333,-333\n"
-    "-20,-590,-10\n-777,-111,-222\n-250,-250,-250\n";
-
-void set_all_sources(machine::CampaignUncertainty& u) {
-  u.given = true;
-  u.laser_constant_um = 0.2;
-  u.laser_ppm = 1.0;
-  u.component.fill(0.3);
-  u.reflector_mm = 2.0;
-  u.squareness_urad = {1.0, 1.5, 0.5};
-}
+using test::full_spec;
+using test::kPoints;
+using test::set_all_sources;
 
 TEST(PredictionUncertainty, ZeroInputUncertaintyGivesZero) {
   MachineSpec spec = full_spec(true, 0.0);
@@ -260,37 +227,27 @@ TEST(PredictionUncertainty, SummaryStatesTheCoverageFactor) {
 // Bad uncertainty values are refused with the file, line and field.
 const std::string& kDir = abbe::testing::kMachinesDir;
 const std::string& kMachine = abbe::testing::kMinimalMachine;
-
-struct BadU {
-  std::string key;  // appended to kMachine
-  std::size_t line;
-  std::string field;
-  std::string says;
-};
-
-class UncertaintyKeyRejects : public ::testing::TestWithParam<BadU> {};
-
-TEST_P(UncertaintyKeyRejects, NamesFileLineAndField) {
-  const BadU& b = GetParam();
-  abbe::testing::expect_machine_rejected(kMachine + b.key, b.line, b.field, b.says);
-}
+using abbe::testing::AppendedKey;
+using abbe::testing::AppendedKeyRejects;
 
 INSTANTIATE_TEST_SUITE_P(
-    Cases, UncertaintyKeyRejects,
-    ::testing::Values(
-        BadU{"uncertainty: {reflector_mm: -1}\n", 22, "uncertainty.reflector_mm", "negative"},
-        BadU{"uncertainty: {reflector_mm: .nan}\n", 22, "uncertainty.reflector_mm", "finite"},
-        BadU{"uncertainty:\n  laser: {constant_um: 0.1, ppm: -0.5}\n", 23, "uncertainty.laser.ppm",
-             "negative"},
-        BadU{"uncertainty:\n  laser: {constant_um: .inf}\n", 23, "uncertainty.laser.constant_um",
-             "finite"},
-        BadU{"uncertainty:\n  components: {EXX: 0.1, EYX: -2}\n", 23, "uncertainty.components.EYX",
-             "negative"},
-        BadU{"uncertainty:\n  components: {EC0Y: 0.1}\n", 23, "uncertainty.components.EC0Y",
-             "not a component name"},
-        BadU{"uncertainty:\n  squareness: {EC0Y: -1}\n", 23, "uncertainty.squareness.EC0Y",
-             "negative"},
-        BadU{"uncertainty:\n  laser_ppm: 1\n", 23, "uncertainty.laser_ppm", "unknown key"}));
+    Uncertainty, AppendedKeyRejects,
+    ::testing::Values(AppendedKey{"uncertainty: {reflector_mm: -1}\n", 22,
+                                  "uncertainty.reflector_mm", "negative"},
+                      AppendedKey{"uncertainty: {reflector_mm: .nan}\n", 22,
+                                  "uncertainty.reflector_mm", "finite"},
+                      AppendedKey{"uncertainty:\n  laser: {constant_um: 0.1, ppm: -0.5}\n", 23,
+                                  "uncertainty.laser.ppm", "negative"},
+                      AppendedKey{"uncertainty:\n  laser: {constant_um: .inf}\n", 23,
+                                  "uncertainty.laser.constant_um", "finite"},
+                      AppendedKey{"uncertainty:\n  components: {EXX: 0.1, EYX: -2}\n", 23,
+                                  "uncertainty.components.EYX", "negative"},
+                      AppendedKey{"uncertainty:\n  components: {EC0Y: 0.1}\n", 23,
+                                  "uncertainty.components.EC0Y", "not a component name"},
+                      AppendedKey{"uncertainty:\n  squareness: {EC0Y: -1}\n", 23,
+                                  "uncertainty.squareness.EC0Y", "negative"},
+                      AppendedKey{"uncertainty:\n  laser_ppm: 1\n", 23, "uncertainty.laser_ppm",
+                                  "unknown key"}));
 
 TEST(PredictionUncertainty, GoodKeysParse) {
   const Machine m = Machine::parse(kMachine +
