@@ -15,21 +15,29 @@ endif()
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
 
-execute_process(COMMAND ${ABBE} import laser ${DATA}/x-positioning-um.csv -o ${WORK}/runs.csv
-                        --table ${WORK}/table.csv
-                RESULT_VARIABLE rc ERROR_VARIABLE err)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "import laser: exit ${rc}\n${err}")
-endif()
-file(READ ${WORK}/runs.csv runs)
-if(NOT runs MATCHES "^axis,component,target_mm,run,direction,deviation\nX,EXX,0,1,up,0\nX,EXX,0,1,down,-1.2\n")
-  message(FATAL_ERROR "unexpected runs file:\n${runs}")
-endif()
-file(READ ${WORK}/table.csv table)
-if(NOT table MATCHES "^axis,component,position_mm,direction,value,uncertainty\nX,EXX,0,fwd,0\\.1[0-9]*,0\\.057735026918962[0-9]*\n")
-  message(FATAL_ERROR "unexpected table:\n${table}")
-endif()
-execute_process(COMMAND ${ABBE} iso230 ${WORK}/runs.csv RESULT_VARIABLE rc OUTPUT_VARIABLE out
+# import_checked(INPUT NAME RUNS_REGEX TABLE_REGEX): imports INPUT into
+# NAME-runs.csv and NAME-table.csv and checks both against their patterns.
+function(import_checked input name runs_regex table_regex)
+  execute_process(COMMAND ${ABBE} import laser ${input} -o ${WORK}/${name}-runs.csv
+                          --table ${WORK}/${name}-table.csv
+                  RESULT_VARIABLE rc ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "import laser ${input}: exit ${rc}\n${err}")
+  endif()
+  file(READ ${WORK}/${name}-runs.csv runs)
+  if(NOT runs MATCHES "${runs_regex}")
+    message(FATAL_ERROR "unexpected runs file of ${input}:\n${runs}")
+  endif()
+  file(READ ${WORK}/${name}-table.csv table)
+  if(NOT table MATCHES "${table_regex}")
+    message(FATAL_ERROR "unexpected table of ${input}:\n${table}")
+  endif()
+endfunction()
+
+import_checked(${DATA}/x-positioning-um.csv x
+  "^axis,component,target_mm,run,direction,deviation\nX,EXX,0,1,up,0\nX,EXX,0,1,down,-1.2\n"
+  "^axis,component,position_mm,direction,value,uncertainty\nX,EXX,0,fwd,0\\.1[0-9]*,0\\.057735026918962[0-9]*\n")
+execute_process(COMMAND ${ABBE} iso230 ${WORK}/x-runs.csv RESULT_VARIABLE rc OUTPUT_VARIABLE out
                 ERROR_VARIABLE err)
 if(NOT rc EQUAL 0 OR NOT out MATCHES "EXX")
   message(FATAL_ERROR "iso230 of the imported runs: exit ${rc}\n${out}${err}")
@@ -57,18 +65,6 @@ endif()
 
 # Several components in one file (one section each): every component in the
 # runs file and in the table.
-execute_process(COMMAND ${ABBE} import laser ${DATA}/three-components.csv -o ${WORK}/runs3.csv
-                        --table ${WORK}/table3.csv
-                RESULT_VARIABLE rc ERROR_VARIABLE err)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "import laser, three components: exit ${rc}\n${err}")
-endif()
-file(READ ${WORK}/runs3.csv runs3)
-if(NOT runs3 MATCHES "\nX,EXX,0,1,up,0\n.*\nX,EBX,200,1,up,[34][0-9.]*\n.*\nY,EYY,0,2,up,1\\.9[0-9]*\n$")
-  message(FATAL_ERROR "unexpected runs file of three components:\n${runs3}")
-endif()
-file(READ ${WORK}/table3.csv table3)
-if(NOT table3 MATCHES "^axis,component,position_mm,direction,value,uncertainty\nX,EXX,0,fwd,.*\nX,EBX,200,mean,[45][0-9.]*,[01][0-9.]*\n.*Y,EYY,0,mean,[12][0-9.]*,")
-  message(FATAL_ERROR "unexpected table of three components:\n${table3}")
-endif()
-
+import_checked(${DATA}/three-components.csv three
+  "\nX,EXX,0,1,up,0\n.*\nX,EBX,200,1,up,[34][0-9.]*\n.*\nY,EYY,0,2,up,1\\.9[0-9]*\n$"
+  "^axis,component,position_mm,direction,value,uncertainty\nX,EXX,0,fwd,.*\nX,EBX,200,mean,[45][0-9.]*,[01][0-9.]*\n.*Y,EYY,0,mean,[12][0-9.]*,")

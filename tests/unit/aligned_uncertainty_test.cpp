@@ -25,32 +25,12 @@ namespace {
 using machine::Machine;
 using machine::MachineSpec;
 
-struct Row {
-  Eigen::Vector3d e, aligned, u, u_aligned;
-};
-
-struct McRun {
-  UncertainPrediction prediction;
-  std::vector<Row> rows;
-};
+using Row = test::McRow;
+using test::McRun;
 
 McRun run(const Machine& m, const std::string& points_csv, std::size_t draws, std::uint64_t seed,
           const AlignOptions& align) {
-  PredictOptions po;
-  po.input = PredictInput::points;
-  UncertaintyOptions uo;
-  uo.draws = draws;
-  uo.seed = seed;
-  std::istringstream in(points_csv);
-  McRun r;
-  r.prediction = predict_with_uncertainty(
-      in, "points.csv", m, po, uo, align, {},
-      [&](const model::EvalPoint&, std::size_t, const std::vector<model::Deviation>& devs,
-          const std::vector<double>&, const std::vector<Eigen::Vector3d>& aligned,
-          const std::vector<Eigen::Vector3d>& u, const std::vector<Eigen::Vector3d>& u_aligned) {
-        r.rows.push_back({devs[0].e_um, aligned[0], u[0], u_aligned[0]});
-      });
-  return r;
+  return test::run_points(m, points_csv, draws, seed, model::ModelKind::ae_arm, align);
 }
 
 AlignOptions best_fit_options() {
@@ -163,19 +143,10 @@ TEST(AlignedUncertainty, DoublingTheDrawsChangesAlignedULessThanFivePercent) {
   const Machine m(spec);
   const McRun a = run(m, test::kPoints, 2000, 1, best_fit_options());
   const McRun b = run(m, test::kPoints, 4000, 1, best_fit_options());
-  double worst = 0.0;
-  for (std::size_t i = 0; i < a.rows.size(); ++i)
-    for (int c = 0; c < 3; ++c) {
-      ASSERT_GT(b.rows[i].u_aligned[c], 0.01) << i << " " << c;
-      worst = std::max(worst, std::abs(a.rows[i].u_aligned[c] / b.rows[i].u_aligned[c] - 1.0));
-    }
-  EXPECT_LT(worst, 0.05);
-  for (std::size_t f = 0; f < kUncertainFigures; ++f) {
-    const double ua = a.prediction.uncertainty.models[0].aligned.figures[f].u;
-    const double ub = b.prediction.uncertainty.models[0].aligned.figures[f].u;
-    ASSERT_GT(ub, 0.0);
-    EXPECT_LT(std::abs(ua / ub - 1.0), 0.05) << "figure " << f;
-  }
+  auto u = [](const Row& r) { return r.u_aligned; };
+  test::expect_converged(test::column(a.rows, u), test::column(b.rows, u),
+                         a.prediction.uncertainty.models[0].aligned,
+                         b.prediction.uncertainty.models[0].aligned);
 }
 
 TEST(AlignedUncertainty, SeededAndReproducible) {
@@ -185,13 +156,9 @@ TEST(AlignedUncertainty, SeededAndReproducible) {
   const McRun a = run(m, block_points(), 40, 7, datum_options());
   const McRun b = run(m, block_points(), 40, 7, datum_options());
   const McRun c = run(m, block_points(), 40, 8, datum_options());
-  bool differs = false;
-  for (std::size_t i = 0; i < a.rows.size(); ++i) {
-    EXPECT_EQ(a.rows[i].u_aligned, b.rows[i].u_aligned);
-    differs = differs || a.rows[i].u_aligned != c.rows[i].u_aligned;
-  }
-  EXPECT_TRUE(differs);
-  EXPECT_EQ(summary_json(a.prediction), summary_json(b.prediction));
+  auto u = [](const Row& r) { return r.u_aligned; };
+  test::expect_seeded(test::column(a.rows, u), test::column(b.rows, u), test::column(c.rows, u),
+                      summary_json(a.prediction), summary_json(b.prediction));
 }
 
 TEST(AlignedUncertainty, SummaryCarriesTheAlignedFigures) {

@@ -3,7 +3,8 @@
 // each read and checked as a file of its own — its units converted or
 // refused for its component — with the line numbers of the whole file; the
 // runs file and the table hold every section. Data: tests/data/laser
-// (hand-written, see its README.md).
+// (hand-written, see its README.md). The refusals of every section:
+// laser_export_test.cpp (LaserExportRefuses, Sections).
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -12,7 +13,6 @@
 #include <vector>
 
 #include "abbe/diagnose/iso230.hpp"
-#include "abbe/io/input_error.hpp"
 #include "abbe/io/laser_export.hpp"
 #include "abbe/machine/component_table.hpp"
 
@@ -20,11 +20,6 @@ namespace abbe::io {
 namespace {
 
 const std::string kData = std::string(ABBE_TEST_DATA_DIR) + "/laser/";
-
-std::vector<LaserExport> read_all(const std::string& text) {
-  std::istringstream in(text);
-  return read_laser_exports(in, "laser.csv");
-}
 
 TEST(LaserSections, ThreeComponentsInOneFile) {
   const std::vector<LaserExport> s = load_laser_exports(kData + "three-components.csv");
@@ -77,50 +72,6 @@ TEST(LaserSections, OneSectionIsTheSingleComponentExport) {
     EXPECT_EQ(laser_table_csv(s), laser_table_csv(one)) << name;
   }
 }
-
-struct SectionRefusal {
-  std::string second;  // the second section, after a first good one
-  std::size_t line, column;
-  std::string field, says;
-};
-
-class LaserSectionRefuses : public ::testing::TestWithParam<SectionRefusal> {};
-
-const std::string kFirst =
-    "# axis: X\n# component: EXX\n# units: um\n"
-    "target,run,direction,reading\n0,1,up,1\n0,2,up,2\n";  // lines 1-6
-
-// Every rule is checked in every section, at the line of the whole file.
-TEST_P(LaserSectionRefuses, NamesTheLineOfTheFile) {
-  const SectionRefusal& r = GetParam();
-  try {
-    read_all(kFirst + r.second);
-    FAIL() << "accepted:\n" << r.second;
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.where().file, "laser.csv");
-    EXPECT_EQ(e.where().line, r.line) << e.what();
-    EXPECT_EQ(e.where().column, r.column) << e.what();
-    EXPECT_EQ(e.where().field, r.field) << e.what();
-    EXPECT_NE(e.message().find(r.says), std::string::npos) << e.what();
-  }
-}
-
-const std::string kRows = "target,run,direction,reading\n0,1,up,1\n";
-
-INSTANTIATE_TEST_SUITE_P(
-    Cases, LaserSectionRefuses,
-    ::testing::Values(
-        // The second section's unit does not fit its component (the first's would).
-        SectionRefusal{"# axis: X\n# component: EBX\n# units: um\n" + kRows, 9, 10, "units",
-                       "EBX is angular but the unit um is linear"},
-        SectionRefusal{"# axis: Y\n# component: EYY\n# units: arcsec\n" + kRows, 9, 10, "units",
-                       "EYY is linear but the unit arcsec is angular"},
-        // Metadata the first section gave is not inherited.
-        SectionRefusal{"# component: EYY\n# units: um\n" + kRows, 0, 0, "axis", "# axis:"},
-        SectionRefusal{"# axis: Y\n# component: EYY\n# units: um\n" + kRows + "0,1,up,2\n", 12, 3,
-                       "run", "already on line 11"},
-        SectionRefusal{"# axis: X\n# component: EXX\n# units: mm\n" + kRows, 8, 0, "component",
-                       "EXX is already the component of an earlier section"}));
 
 }  // namespace
 }  // namespace abbe::io

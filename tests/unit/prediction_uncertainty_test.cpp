@@ -24,19 +24,14 @@ namespace {
 using machine::Machine;
 using machine::MachineSpec;
 
-struct Row {
-  Eigen::Vector3d p;
-  Eigen::Vector3d e;
-  Eigen::Vector3d u;
-};
+using Row = test::McRow;
+using test::McRun;
 
-struct McRun {
-  UncertainPrediction prediction;
-  std::vector<Row> rows;
-};
-
+// Without --align (the overload without AlignOptions is the one `predict
+// --uncertainty` calls: its rows are those of the aligned one with none).
 McRun run(const Machine& m, const std::string& points_csv, std::size_t draws,
           std::uint64_t seed = 1, model::ModelKind kind = model::ModelKind::ae_arm) {
+  McRun r = test::run_points(m, points_csv, draws, seed, kind, AlignOptions{});
   PredictOptions po;
   po.models = {kind};
   po.input = PredictInput::points;
@@ -44,13 +39,16 @@ McRun run(const Machine& m, const std::string& points_csv, std::size_t draws,
   uo.draws = draws;
   uo.seed = seed;
   std::istringstream in(points_csv);
-  McRun r;
-  r.prediction = predict_with_uncertainty(
+  std::size_t i = 0;
+  predict_with_uncertainty(
       in, "points.csv", m, po, uo, {},
-      [&](const model::EvalPoint& p, std::size_t, const std::vector<model::Deviation>& devs,
+      [&](const model::EvalPoint&, std::size_t, const std::vector<model::Deviation>& devs,
           const std::vector<double>&, const std::vector<Eigen::Vector3d>& u) {
-        r.rows.push_back({p.p, devs[0].e_um, u[0]});
+        EXPECT_EQ(r.rows.at(i).e, devs[0].e_um);
+        EXPECT_EQ(r.rows.at(i).u, u[0]);
+        ++i;
       });
+  EXPECT_EQ(i, r.rows.size());
   return r;
 }
 
@@ -105,19 +103,10 @@ TEST(PredictionUncertainty, DoublingTheDrawsChangesULessThanFivePercent) {
   const Machine m(spec);
   const McRun a = run(m, kPoints, 2000);
   const McRun b = run(m, kPoints, 4000);
-  double worst = 0.0;
-  for (std::size_t i = 0; i < a.rows.size(); ++i)
-    for (int c = 0; c < 3; ++c) {
-      ASSERT_GT(b.rows[i].u[c], 0.01);
-      worst = std::max(worst, std::abs(a.rows[i].u[c] / b.rows[i].u[c] - 1.0));
-    }
-  EXPECT_LT(worst, 0.05);
-  for (std::size_t f = 0; f < kUncertainFigures; ++f) {
-    const double ua = a.prediction.uncertainty.models[0].all.figures[f].u;
-    const double ub = b.prediction.uncertainty.models[0].all.figures[f].u;
-    ASSERT_GT(ub, 0.0);
-    EXPECT_LT(std::abs(ua / ub - 1.0), 0.05) << "figure " << f;
-  }
+  auto u = [](const Row& r) { return r.u; };
+  test::expect_converged(test::column(a.rows, u), test::column(b.rows, u),
+                         a.prediction.uncertainty.models[0].all,
+                         b.prediction.uncertainty.models[0].all);
 }
 
 // A linear case by hand: e_x = EXX(s_x) interpolated between two targets
@@ -188,13 +177,9 @@ TEST(PredictionUncertainty, SeededAndReproducible) {
   const McRun a = run(m, kPoints, 50, 7);
   const McRun b = run(m, kPoints, 50, 7);
   const McRun c = run(m, kPoints, 50, 8);
-  bool differs = false;
-  for (std::size_t i = 0; i < a.rows.size(); ++i) {
-    EXPECT_EQ(a.rows[i].u, b.rows[i].u);
-    differs = differs || a.rows[i].u != c.rows[i].u;
-  }
-  EXPECT_TRUE(differs);
-  EXPECT_EQ(summary_json(a.prediction), summary_json(b.prediction));
+  auto u = [](const Row& r) { return r.u; };
+  test::expect_seeded(test::column(a.rows, u), test::column(b.rows, u), test::column(c.rows, u),
+                      summary_json(a.prediction), summary_json(b.prediction));
 }
 
 TEST(PredictionUncertainty, NothingToPropagateIsAnError) {

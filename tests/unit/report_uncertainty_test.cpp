@@ -19,6 +19,7 @@
 #include "abbe/report/line_plot.hpp"
 #include "abbe/report/predict_section.hpp"
 #include "abbe/report/predicted_path.hpp"
+#include "rect_program.hpp"
 
 namespace abbe::report {
 namespace {
@@ -27,19 +28,7 @@ const std::string kPlainMachine = std::string(ABBE_TEST_DATA_DIR) + "/machines/s
 const std::string kUncertainMachine =
     std::string(ABBE_SOURCE_DIR) + "/machines/sample/machine-uncertainty.yaml";
 
-// A rectangle at z = -280 with G43 H1, 5 mm steps, 300 × 200 mm, and the
-// rapids to and from it.
-const char* kProgram =
-    "G17 G21 G90 G94\n"
-    "G43 H1\n"
-    "G0 X-350 Y-150 Z-270\n"
-    "G1 Z-280 F300\n"
-    "G1 X-650 F1000\n"
-    "G1 Y-350\n"
-    "G1 X-350\n"
-    "G1 Y-150\n"
-    "G0 Z-100\n"
-    "M30\n";
+const char* const kProgram = test::kRectProgram;
 
 PredictedPath predicted(const std::string& machine_file, std::size_t draws,
                         std::size_t max_points = 20000) {
@@ -78,14 +67,14 @@ bool has_nan(const std::string& text) {
 }
 
 // The SHA-256 of the page made by the report before --uncertainty existed
-// (commit c313afb), for the same program and machine.
+// (main at c313afb, made with its library), for the same program and machine.
 TEST(ReportUncertainty, WithoutUncertaintyThePageIsUnchanged) {
   const PredictedPath r = predicted(kPlainMachine, 0);
   EXPECT_FALSE(r.has_uncertainty());
   const std::string html = page_of(r);
   EXPECT_EQ(count(html, "class=\"band\""), 0u);
   EXPECT_EQ(io::sha256_hex(html),
-            "983c216f1061e2e5691ee000cf0bceee4781b6400f5bc310e845f1393414becb");
+            "d709323bf6f5b56b3620a724fb9ba01770013a593b7d2edf86e21231ad528fe6");
 }
 
 TEST(ReportUncertainty, KeptPointsCarryTheUOfPredict) {
