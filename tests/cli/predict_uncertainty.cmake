@@ -90,6 +90,8 @@ expect(1 "no uncertainty in the machine file"
 expect(2 "one draw" "--uncertainty" --machine ${umachine} --uncertainty 1)
 expect(2 "--align datums without its datum sets" "--align datums needs --datum-primary"
        --machine ${umachine} --uncertainty 10 --align datums)
+expect(2 "a datum set without --align datums" "--datum-primary needs --align datums"
+       --machine ${umachine} --uncertainty 10 --align best-fit --datum-primary 2-31)
 
 # With --align: the aligned columns, then u_dx,u_dy,u_dz, then u_adx,u_ady,
 # u_adz; the absolute u are those without --align (the same draws), the

@@ -176,13 +176,13 @@ int run_predict(const PredictOptions& o, const GlobalOptions& g) {
   if (!o.extend.empty())
     po.extension = std::make_shared<const diagnose::OverlayExtension>(
         diagnose::Overlay::load(o.extend), machine);
-  if (o.uncertainty > 0) return run_predict_uncertain(o, g, machine, po, format);
-  if (o.align != "none") return run_predict_aligned(o, g, machine, po, format);
   for (int k = 0; k < 3; ++k)
-    if (!o.datum[k].empty()) {
+    if (!o.datum[k].empty() && o.align != "datums") {
       fmt::print(stderr, "abbe predict: {} needs --align datums\n", kDatumOption[k]);
       return kUsage;
     }
+  if (o.uncertainty > 0) return run_predict_uncertain(o, g, machine, po, format);
+  if (o.align != "none") return run_predict_aligned(o, g, machine, po, format);
 
   InputStream input(o.input, "the input");
   PointsOutput points = open_points(o, format, po.models, false);
