@@ -2,7 +2,8 @@
 # Whole-process benchmark of `abbe predict --uncertainty N` against plain
 # `abbe predict` on the thesis toolpaths (nc-samples/thesis-toolpath-*.ngc),
 # same binary, same run, best of $ABBE_BENCH_REPEAT (CPU time user + sys),
-# and the ratio. Machine: machines/sample/machine-uncertainty.yaml.
+# and the ratio; also `--uncertainty N --align best-fit` (every draw's part
+# set up again). Machine: machines/sample/machine-uncertainty.yaml.
 #
 # usage: tools/bench_uncertainty.sh [ABBE] [N]
 #   ABBE: the abbe executable (default build/release/abbe, else build/test/abbe)
@@ -34,14 +35,18 @@ best() {
 }
 
 echo "abbe: $abbe; draws: $draws; best of $repeat (CPU s)"
-printf '%-22s %-7s %7s %9s %12s %8s\n' program model points plain "uncertainty" ratio
+printf '%-22s %-7s %7s %9s %12s %8s %12s %8s\n' program model points plain "uncertainty" ratio \
+  "+align" ratio
 for p in nc-samples/thesis-toolpath-1.ngc nc-samples/thesis-toolpath-2.ngc; do
   for m in ae-arm all; do
     points=$("$abbe" -q predict "$p" --machine "$machine" --model "$m" -o - 2>/dev/null | tail -n +2 | wc -l)
     a=$(best "$abbe" -q predict "$p" --machine "$machine" --model "$m" -o "$tmp/plain.csv")
     b=$(best "$abbe" -q predict "$p" --machine "$machine" --model "$m" --uncertainty "$draws" \
       -o "$tmp/u.csv")
-    printf '%-22s %-7s %7s %9s %12s %8s\n' "$(basename "$p")" "$m" "$points" "$a" "$b" \
-      "$(awk -v a="$a" -v b="$b" 'BEGIN{ if (a > 0) printf "%.1f", b / a; else print "n/a" }')"
+    c=$(best "$abbe" -q predict "$p" --machine "$machine" --model "$m" --uncertainty "$draws" \
+      --align best-fit -o "$tmp/ua.csv")
+    ratio() { awk -v a="$1" -v b="$2" 'BEGIN{ if (a > 0) printf "%.1f", b / a; else print "n/a" }'; }
+    printf '%-22s %-7s %7s %9s %12s %8s %12s %8s\n' "$(basename "$p")" "$m" "$points" "$a" "$b" \
+      "$(ratio "$a" "$b")" "$c" "$(ratio "$a" "$c")"
   done
 done

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <iterator>
@@ -66,6 +67,27 @@ std::string blank_comments(const std::string& text) {
   return out;
 }
 
+// The index of a metadata key (axis, component, units, reference,
+// environment compensation; lower case, with their other spellings), −1 for
+// another key.
+int metadata_key(const std::string& key) {
+  if (key == "axis") return 0;
+  if (key == "component") return 1;
+  if (key == "units" || key == "unit") return 2;
+  if (key == "reference" || key == "reference target") return 3;
+  if (key == "environment compensation" || key == "environment") return 4;
+  return -1;
+}
+
+// A line `# key: value` with a metadata key.
+bool is_metadata_line(const std::string& l) {
+  const auto hash = l.find_first_not_of(" \t");
+  if (hash == std::string::npos || l[hash] != '#') return false;
+  const auto colon = l.find(':', hash);
+  return colon != std::string::npos &&
+         metadata_key(lower(trim(l.substr(hash + 1, colon - hash - 1)))) >= 0;
+}
+
 }  // namespace
 
 std::optional<LaserUnit> parse_laser_unit(const std::string& text) {
@@ -118,12 +140,9 @@ LaserExport read_laser_export(std::istream& in, const std::string& file) {
       const auto colon = l.find(':', hash);
       if (colon == std::string::npos) continue;
       const std::string key = lower(trim(l.substr(hash + 1, colon - hash - 1)));
-      Meta* m = key == "axis"                                               ? &axis
-                : key == "component"                                        ? &component
-                : key == "units" || key == "unit"                           ? &units
-                : key == "reference" || key == "reference target"           ? &reference
-                : key == "environment compensation" || key == "environment" ? &environment
-                                                                            : nullptr;
+      Meta* const metas[] = {&axis, &component, &units, &reference, &environment};
+      const int k = metadata_key(key);
+      Meta* m = k < 0 ? nullptr : metas[k];
       if (!m) continue;
       Meta here;
       here.seen = true;
@@ -273,11 +292,92 @@ LaserExport load_laser_export(const std::string& path) {
   return read_input(path, "laser export", read_laser_export);
 }
 
-std::string laser_runs_csv(const LaserExport& data) {
-  std::string out = "axis,component,target_mm,run,direction,deviation\n";
+std::vector<LaserExport> read_laser_exports(std::istream& in, const std::string& file) {
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // The lines, and where each section starts (index of its first line).
+  std::vector<std::string> lines;
+  {
+    std::size_t pos = 0;
+    while (pos <= text.size()) {
+      std::size_t end = text.find('\n', pos);
+      if (end == std::string::npos) end = text.size();
+      lines.push_back(text.substr(pos, end - pos));
+      pos = end + 1;
+    }
+  }
+  std::vector<std::size_t> starts{0};
+  bool data_seen = false;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    std::string l = lines[i];
+    if (i == 0 && l.compare(0, 3, "\xEF\xBB\xBF") == 0) l.erase(0, 3);
+    if (is_metadata_line(l)) {
+      if (data_seen) starts.push_back(i);
+      data_seen = false;
+      continue;
+    }
+    const auto first = l.find_first_not_of(" \t\r");
+    if (first != std::string::npos && l[first] != '#') data_seen = true;
+  }
+  // Each section read on its own: the other sections' lines left empty, so
+  // the line numbers are those of the file.
+  std::vector<LaserExport> out;
+  for (std::size_t s = 0; s < starts.size(); ++s) {
+    const std::size_t end = s + 1 < starts.size() ? starts[s + 1] : lines.size();
+    std::string section;
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+      if (i >= starts[s] && i < end) section += lines[i];
+      if (i + 1 < lines.size()) section += '\n';
+    }
+    std::istringstream one(section);
+    LaserExport d = read_laser_export(one, file);
+    for (const LaserExport& e : out)
+      if (e.component == d.component) {
+        std::size_t line = 0;
+        for (std::size_t i = starts[s]; i < end && line == 0; ++i) {
+          const auto hash = lines[i].find('#');
+          if (is_metadata_line(lines[i]) &&
+              lower(trim(lines[i].substr(hash + 1, lines[i].find(':') - hash - 1))) == "component")
+            line = i + 1;
+        }
+        throw InputError({file, line, 0, "component", line ? lines[line - 1] : ""},
+                         fmt::format("{} is already the component of an earlier section (one "
+                                     "section per component)",
+                                     d.component));
+      }
+    out.push_back(std::move(d));
+  }
+  return out;
+}
+
+std::vector<LaserExport> load_laser_exports(const std::string& path) {
+  return read_input(path, "laser export", read_laser_exports);
+}
+
+namespace {
+void append_runs(std::string& out, const LaserExport& data) {
   for (const LaserReading& r : data.readings)
     out += fmt::format("{},{},{},{},{},{}\n", data.axis, data.component, r.target_mm, r.run,
                        r.dir > 0 ? "up" : "down", r.value);
+}
+constexpr const char* kRunsHeader = "axis,component,target_mm,run,direction,deviation\n";
+constexpr const char* kTableHeader = "axis,component,position_mm,direction,value,uncertainty\n";
+}  // namespace
+
+std::string laser_runs_csv(const LaserExport& data) {
+  std::string out = kRunsHeader;
+  append_runs(out, data);
+  return out;
+}
+
+std::string laser_runs_csv(const std::vector<LaserExport>& sections) {
+  std::string out = kRunsHeader;
+  for (const LaserExport& d : sections) append_runs(out, d);
+  return out;
+}
+
+std::string laser_table_csv(const std::vector<LaserExport>& sections) {
+  std::string out = kTableHeader;
+  for (const LaserExport& d : sections) out += laser_table_csv(d).substr(std::strlen(kTableHeader));
   return out;
 }
 
@@ -320,7 +420,7 @@ std::string laser_table_csv(const LaserExport& data) {
     const double var = std::max(0.0, (s.sum2 - n * mean * mean) / (n - 1.0));
     return std::make_pair(mean, std::sqrt(var / n));
   };
-  std::string out = "axis,component,position_mm,direction,value,uncertainty\n";
+  std::string out = kTableHeader;
   for (const Target& t : targets) {
     if (any_up && any_down) {
       const auto [mu, uu] = mean_u(t.up, t.mm, "up");

@@ -73,6 +73,13 @@ ErrorModel ErrorModel::with_extension(std::shared_ptr<const ErrorExtension> exte
   return m;
 }
 
+ErrorModel ErrorModel::as_kind(ModelKind kind) const {
+  ErrorModel m = *this;
+  m.kind_ = kind;
+  m.formula_ = descriptor(kind).formula;
+  return m;
+}
+
 Eigen::Vector3d ErrorModel::measurement_point(Axis j, int k, const EvalPoint& point) const {
   return geometry_->measurement_point(j, k, point.p + Eigen::Vector3d(0.0, 0.0, point.tool_length));
 }

@@ -6,21 +6,13 @@
 #include <cctype>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
+#include <utility>
 
 #include "abbe/io/input_error.hpp"
 #include "abbe/io/units.hpp"
-#include "abbe/pipeline/interpreter_setup.hpp"
-#include "abbe/pipeline/point_reader.hpp"
-#include "abbe/pipeline/program_path.hpp"
 
 namespace abbe::pipeline {
 namespace {
-
-struct StoredPoint {
-  model::EvalPoint point;
-  std::size_t line = 0;
-  bool cutting = true;  // on a feed motion (every point of a CSV of points)
-};
 
 nlohmann::json stats_json(const ModelStats& s) {
   return {{"max_abs_dx_um", s.max_abs_um.x()},
@@ -104,101 +96,84 @@ bool LineSet::contains(std::size_t line) const {
   return false;
 }
 
+PartSetup::PartSetup(const StoredPrediction& stored, const AlignOptions& align, std::string file)
+    : stored_(stored), method_(align.method), file_(std::move(file)) {
+  for (std::size_t i = 0; i < stored.size(); ++i) {
+    if (stored.rapid[i]) continue;
+    const std::size_t k = part_.size();
+    part_.push_back(i);
+    centroid_ += stored.points[i].p;
+    if (method_ != AlignMethod::datums) continue;
+    const std::size_t line = stored.lines[i];
+    if (align.primary.contains(line)) datums_.primary.push_back(k);
+    if (align.secondary.contains(line)) datums_.secondary.push_back(k);
+    if (align.tertiary.contains(line)) datums_.tertiary.push_back(k);
+  }
+  if (!part_.empty()) centroid_ /= static_cast<double>(part_.size());
+}
+
+PartAlignmentSummary PartSetup::summary() const {
+  PartAlignmentSummary a;
+  a.method = method_;
+  a.part_points = part_.size();
+  a.datum_points[0] = datums_.primary.size();
+  a.datum_points[1] = datums_.secondary.size();
+  a.datum_points[2] = datums_.tertiary.size();
+  return a;
+}
+
+ModelAlignment PartSetup::align(model::ModelKind kind,
+                                const std::vector<Eigen::Vector3d>& e_um) const {
+  PartPoints pts;
+  for (std::size_t i : part_) pts.add(stored_.points[i].p, e_um[i]);
+  ModelAlignment ma;
+  ma.kind = kind;
+  try {
+    if (method_ == AlignMethod::best_fit) ma.motion = best_fit(pts);
+    if (method_ == AlignMethod::datums) ma.motion = datum_alignment(pts, datums_);
+  } catch (const AlignmentError& e) {
+    SourceLocation where;
+    where.file = file_;
+    where.field = method_ == AlignMethod::datums ? "--datum-*" : "--align";
+    throw InputError(where, std::string("cannot align the part: ") + e.what());
+  }
+  ma.rotation_urad = ma.motion.rotation_urad();
+  ma.centroid_shift_um = aligned_deviation_um(ma.motion, centroid_, Eigen::Vector3d::Zero());
+  for (std::size_t i : part_) {
+    const Eigen::Vector3d& e = e_um[i];
+    ma.absolute.add(e, e.norm(), stored_.lines[i]);
+    const Eigen::Vector3d r = aligned_deviation_um(ma.motion, stored_.points[i].p, e);
+    ma.aligned.add(r, r.norm(), stored_.lines[i]);
+  }
+  return ma;
+}
+
+std::vector<Eigen::Vector3d> deviations_um(const StoredPrediction& stored, std::size_t m) {
+  std::vector<Eigen::Vector3d> e(stored.size());
+  for (std::size_t i = 0; i < e.size(); ++i) e[i] = stored.devs[m][i].e_um;
+  return e;
+}
+
 AlignedPrediction predict_aligned(std::istream& in, const std::string& file,
                                   const machine::Machine& machine, const PredictOptions& options,
                                   const AlignOptions& align, const PredictionSink& progress,
                                   const AlignedSink& sink) {
-  std::vector<StoredPoint> stored;
-  std::vector<std::vector<model::Deviation>> devs(options.models.size());
-  std::vector<std::vector<double>> norms(options.models.size());
-  ModelSet models(machine, options.models, options.extension);
-  // The walk of `predict`, keeping whether a point lies on a feed motion.
-  auto evaluate = [&](const model::EvalPoint& p, std::size_t line, bool cutting) {
-    models.evaluate(p, file, line, !cutting);
-    stored.push_back({p, line, cutting});
-    for (std::size_t m = 0; m < models.size(); ++m) {
-      devs[m].push_back(models.deviations()[m]);
-      norms[m].push_back(models.norms_um()[m]);
-    }
-    if (progress) progress(p, line, models);
-  };
-  if (options.input == PredictInput::points) {
-    PointReader reader(in, file, machine.tool_length());
-    model::EvalPoint p;
-    std::size_t line = 0;
-    while (reader.next(p, line)) evaluate(p, line, true);
-  } else {
-    run_path(in, file, interpreter_config(machine), options.path, [&](const path::PathPoint& pp) {
-      evaluate(eval_point(pp), pp.line,
-               pp.kind == gcode::MotionKind::linear || pp.kind == gcode::MotionKind::arc);
-    });
-  }
+  const StoredPrediction stored = predict_stored(in, file, machine, options, progress);
+  const PartSetup setup(stored, align, file);
   AlignedPrediction out;
-  out.summary = summarize(models, machine, file);
-  out.summary.moves = options.input == PredictInput::program;
-
-  // The part: the cutting points; the datum sets among them.
-  std::vector<std::size_t> part;
-  DatumIndices datums;
-  for (std::size_t i = 0; i < stored.size(); ++i) {
-    if (!stored[i].cutting) continue;
-    const std::size_t k = part.size();
-    part.push_back(i);
-    if (align.method != AlignMethod::datums) continue;
-    const std::size_t line = stored[i].line;
-    if (align.primary.contains(line)) datums.primary.push_back(k);
-    if (align.secondary.contains(line)) datums.secondary.push_back(k);
-    if (align.tertiary.contains(line)) datums.tertiary.push_back(k);
-  }
-  PartAlignmentSummary& a = out.alignment;
-  a.method = align.method;
-  a.part_points = part.size();
-  a.datum_points[0] = datums.primary.size();
-  a.datum_points[1] = datums.secondary.size();
-  a.datum_points[2] = datums.tertiary.size();
-
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-  for (std::size_t i : part) centroid += stored[i].point.p;
-  if (!part.empty()) centroid /= static_cast<double>(part.size());
-
-  for (std::size_t m = 0; m < options.models.size(); ++m) {
-    PartPoints pts;
-    for (std::size_t i : part) pts.add(stored[i].point.p, devs[m][i].e_um);
-    ModelAlignment ma;
-    ma.kind = options.models[m];
-    try {
-      if (align.method == AlignMethod::best_fit) ma.motion = best_fit(pts);
-      if (align.method == AlignMethod::datums) ma.motion = datum_alignment(pts, datums);
-    } catch (const AlignmentError& e) {
-      SourceLocation where;
-      where.file = file;
-      where.field = align.method == AlignMethod::datums ? "--datum-*" : "--align";
-      throw InputError(where, std::string("cannot align the part: ") + e.what());
-    }
-    ma.rotation_urad = ma.motion.rotation_urad();
-    ma.centroid_shift_um = aligned_deviation_um(ma.motion, centroid, Eigen::Vector3d::Zero());
-    for (std::size_t i : part) {
-      const Eigen::Vector3d& e = devs[m][i].e_um;
-      ma.absolute.add(e, e.norm(), stored[i].line);
-      const Eigen::Vector3d r = aligned_deviation_um(ma.motion, stored[i].point.p, e);
-      ma.aligned.add(r, r.norm(), stored[i].line);
-    }
-    a.models.push_back(ma);
-  }
-
+  out.summary = stored.summary;
+  out.alignment = setup.summary();
+  for (std::size_t m = 0; m < options.models.size(); ++m)
+    out.alignment.models.push_back(setup.align(options.models[m], deviations_um(stored, m)));
   if (sink) {
-    std::vector<model::Deviation> row_devs(options.models.size());
-    std::vector<double> row_norms(options.models.size());
     std::vector<Eigen::Vector3d> row_aligned(options.models.size());
-    for (std::size_t i = 0; i < stored.size(); ++i) {
-      for (std::size_t m = 0; m < options.models.size(); ++m) {
-        row_devs[m] = devs[m][i];
-        row_norms[m] = norms[m][i];
+    stored.for_each([&](std::size_t i, const std::vector<model::Deviation>& devs,
+                        const std::vector<double>& norms) {
+      for (std::size_t m = 0; m < devs.size(); ++m)
         row_aligned[m] =
-            aligned_deviation_um(a.models[m].motion, stored[i].point.p, devs[m][i].e_um);
-      }
-      sink(stored[i].point, stored[i].line, row_devs, row_norms, row_aligned);
-    }
+            aligned_deviation_um(out.alignment.models[m].motion, stored.points[i].p, devs[m].e_um);
+      sink(stored.points[i], stored.lines[i], devs, norms, row_aligned);
+    });
   }
   return out;
 }

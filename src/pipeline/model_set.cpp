@@ -26,8 +26,9 @@ double ModelStats::rms_um() const {
 ModelSet::ModelSet(const machine::Machine& machine, std::vector<model::ModelKind> kinds,
                    std::shared_ptr<const model::ErrorExtension> extension)
     : kinds_(std::move(kinds)) {
+  // The tables are resampled once, for the first model; the others share them.
   for (auto k : kinds_) {
-    models_.emplace_back(machine, k);
+    models_.push_back(models_.empty() ? model::ErrorModel(machine, k) : models_.front().as_kind(k));
     if (extension) models_.back() = models_.back().with_extension(extension);
   }
   data_.resize(kinds_.size());

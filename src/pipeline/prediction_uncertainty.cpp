@@ -5,12 +5,14 @@
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <random>
 
 #include "abbe/io/input_error.hpp"
 #include "abbe/io/units.hpp"
 #include "abbe/machine/campaign_uncertainty.hpp"
 #include "abbe/pipeline/model_set.hpp"
+#include "abbe/pipeline/stored_prediction.hpp"
 
 namespace abbe::pipeline {
 namespace {
@@ -33,10 +35,20 @@ class NormalStream {
   std::mt19937_64 engine_;
 };
 
-struct StoredPoint {
-  model::EvalPoint point;
-  std::size_t line = 0;
-  bool rapid = false;
+// Σδ and Σδ² of a point's deviation over the draws (δ about the plain
+// prediction: no cancellation), and its standard deviation.
+struct Moments {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  Eigen::Vector3d sum2 = Eigen::Vector3d::Zero();
+  void add(const Eigen::Vector3d& delta) {
+    sum += delta;
+    sum2 += delta.cwiseProduct(delta);
+  }
+  Eigen::Vector3d u(std::size_t draws) const {
+    const double n = static_cast<double>(draws);
+    const Eigen::Vector3d var = (sum2 - sum.cwiseProduct(sum) / n) / (n - 1.0);
+    return var.cwiseMax(0.0).cwiseSqrt();
+  }
 };
 
 std::array<double, kUncertainFigures> figures_of(const ModelStats& s) {
@@ -101,6 +113,22 @@ UncertainPrediction predict_with_uncertainty(std::istream& in, const std::string
                                              const PredictionSink& progress,
                                              const UncertainSink& sink,
                                              const std::function<void(std::size_t)>& draw_done) {
+  AlignedUncertainSink aligned_sink;
+  if (sink)
+    aligned_sink = [&sink](const model::EvalPoint& p, std::size_t line,
+                           const std::vector<model::Deviation>& devs,
+                           const std::vector<double>& norms, const std::vector<Eigen::Vector3d>&,
+                           const std::vector<Eigen::Vector3d>& u,
+                           const std::vector<Eigen::Vector3d>&) { sink(p, line, devs, norms, u); };
+  return predict_with_uncertainty(in, file, machine, options, uncertainty, AlignOptions{}, progress,
+                                  aligned_sink, draw_done);
+}
+
+UncertainPrediction predict_with_uncertainty(
+    std::istream& in, const std::string& file, const machine::Machine& machine,
+    const PredictOptions& options, const UncertaintyOptions& uncertainty, const AlignOptions& align,
+    const PredictionSink& progress, const AlignedUncertainSink& sink,
+    const std::function<void(std::size_t)>& draw_done) {
   if (!machine::has_campaign_uncertainty(machine)) {
     SourceLocation where;
     where.file = machine.spec().file;
@@ -113,50 +141,62 @@ UncertainPrediction predict_with_uncertainty(std::istream& in, const std::string
   if (uncertainty.draws < 2) throw std::invalid_argument("--uncertainty needs at least 2 draws");
 
   // The plain prediction, walked once; the points are kept for the draws.
-  std::vector<StoredPoint> stored;
-  const std::size_t n_models = options.models.size();
-  std::vector<std::vector<model::Deviation>> devs(n_models);
-  std::vector<std::vector<double>> norms(n_models);
-  std::size_t rapid_before = 0;
   UncertainPrediction out;
-  out.summary = predict(in, file, machine, options,
-                        [&](const model::EvalPoint& p, std::size_t line, const ModelSet& models) {
-                          // A rapid point is the one the rapid statistics counted.
-                          const std::size_t rapid_now = models.rapid_stats().front().points;
-                          stored.push_back({p, line, rapid_now != rapid_before});
-                          rapid_before = rapid_now;
-                          for (std::size_t m = 0; m < n_models; ++m) {
-                            devs[m].push_back(models.deviations()[m]);
-                            norms[m].push_back(models.norms_um()[m]);
-                          }
-                          if (progress) progress(p, line, models);
-                        });
-
-  // The draws: per point and model, Σδ and Σδ² of δ = e_draw − e (µm); per
-  // model and group, the figures of every draw.
+  const StoredPrediction stored = predict_stored(in, file, machine, options, progress);
+  out.summary = stored.summary;
+  const std::size_t n_models = options.models.size();
   const std::size_t n_points = stored.size();
-  std::vector<Eigen::Vector3d> sum(n_points * n_models, Eigen::Vector3d::Zero());
-  std::vector<Eigen::Vector3d> sum2(n_points * n_models, Eigen::Vector3d::Zero());
+
+  // The part's set-up of the plain prediction, and its deviations after it.
+  const bool aligned = align.method != AlignMethod::none;
+  std::optional<PartSetup> setup;
+  std::vector<std::vector<Eigen::Vector3d>> plain_aligned(n_models);
+  if (aligned) {
+    setup.emplace(stored, align, file);
+    out.alignment = setup->summary();
+    for (std::size_t m = 0; m < n_models; ++m) {
+      out.alignment.models.push_back(setup->align(options.models[m], deviations_um(stored, m)));
+      const RigidMotion& motion = out.alignment.models[m].motion;
+      plain_aligned[m].resize(n_points);
+      for (std::size_t i = 0; i < n_points; ++i)
+        plain_aligned[m][i] =
+            aligned_deviation_um(motion, stored.points[i].p, stored.devs[m][i].e_um);
+    }
+  }
+
+  // The draws: per point and model, the moments of δ = e_draw − e (and of the
+  // deviation after the draw's own set-up minus the plain one); per model and
+  // group, the figures of every draw.
+  std::vector<Moments> absolute(n_points * n_models), after(aligned ? n_points * n_models : 0);
   using Figures = std::array<double, kUncertainFigures>;
-  std::vector<std::vector<Figures>> fig_all(n_models), fig_cut(n_models), fig_rapid(n_models);
+  std::vector<std::vector<Figures>> fig_all(n_models), fig_cut(n_models), fig_rapid(n_models),
+      fig_aligned(n_models);
+  std::vector<std::vector<Eigen::Vector3d>> drawn_e(
+      aligned ? n_models : 0, std::vector<Eigen::Vector3d>(n_points, Eigen::Vector3d::Zero()));
   NormalStream normal(uncertainty.seed);
   const std::function<double()> deviate = [&normal] { return normal(); };
   for (std::size_t d = 0; d < uncertainty.draws; ++d) {
     const machine::Machine drawn = machine::draw_campaign(machine, deviate);
     ModelSet models(drawn, options.models, options.extension);
     for (std::size_t i = 0; i < n_points; ++i) {
-      const StoredPoint& sp = stored[i];
-      models.evaluate(sp.point, file, sp.line, sp.rapid);
+      models.evaluate(stored.points[i], file, stored.lines[i], stored.rapid[i]);
       for (std::size_t m = 0; m < n_models; ++m) {
-        const Eigen::Vector3d delta = models.deviations()[m].e_um - devs[m][i].e_um;
-        sum[i * n_models + m] += delta;
-        sum2[i * n_models + m] += delta.cwiseProduct(delta);
+        const Eigen::Vector3d& e = models.deviations()[m].e_um;
+        absolute[i * n_models + m].add(e - stored.devs[m][i].e_um);
+        if (aligned) drawn_e[m][i] = e;
       }
     }
     for (std::size_t m = 0; m < n_models; ++m) {
       fig_all[m].push_back(figures_of(models.stats()[m]));
       fig_cut[m].push_back(figures_of(models.cutting_stats()[m]));
       fig_rapid[m].push_back(figures_of(models.rapid_stats()[m]));
+      if (!aligned) continue;
+      const ModelAlignment a = setup->align(options.models[m], drawn_e[m]);
+      fig_aligned[m].push_back(figures_of(a.aligned));
+      for (std::size_t i = 0; i < n_points; ++i)
+        after[i * n_models + m].add(
+            aligned_deviation_um(a.motion, stored.points[i].p, drawn_e[m][i]) -
+            plain_aligned[m][i]);
     }
     if (draw_done) draw_done(d + 1);
   }
@@ -173,30 +213,35 @@ UncertainPrediction predict_with_uncertainty(std::istream& in, const std::string
     mu.all = group_uncertainty(ms.stats, fig_all[m], pu.coverage_factor);
     mu.cutting = group_uncertainty(ms.cutting, fig_cut[m], pu.coverage_factor);
     mu.rapid = group_uncertainty(ms.rapid, fig_rapid[m], pu.coverage_factor);
+    if (aligned)
+      mu.aligned =
+          group_uncertainty(out.alignment.models[m].aligned, fig_aligned[m], pu.coverage_factor);
     pu.models.push_back(mu);
   }
 
   if (sink) {
-    const double n = static_cast<double>(uncertainty.draws);
-    std::vector<model::Deviation> row_devs(n_models);
-    std::vector<double> row_norms(n_models);
-    std::vector<Eigen::Vector3d> row_u(n_models);
-    for (std::size_t i = 0; i < n_points; ++i) {
+    const std::size_t n = uncertainty.draws;
+    std::vector<Eigen::Vector3d> row_aligned(n_models, Eigen::Vector3d::Zero());
+    std::vector<Eigen::Vector3d> row_u(n_models), row_u_aligned(n_models, Eigen::Vector3d::Zero());
+    stored.for_each([&](std::size_t i, const std::vector<model::Deviation>& devs,
+                        const std::vector<double>& norms) {
       for (std::size_t m = 0; m < n_models; ++m) {
-        row_devs[m] = devs[m][i];
-        row_norms[m] = norms[m][i];
-        const Eigen::Vector3d& s = sum[i * n_models + m];
-        const Eigen::Vector3d var = (sum2[i * n_models + m] - s.cwiseProduct(s) / n) / (n - 1.0);
-        row_u[m] = var.cwiseMax(0.0).cwiseSqrt();
+        row_u[m] = absolute[i * n_models + m].u(n);
+        if (!aligned) continue;
+        row_aligned[m] = plain_aligned[m][i];
+        row_u_aligned[m] = after[i * n_models + m].u(n);
       }
-      sink(stored[i].point, stored[i].line, row_devs, row_norms, row_u);
-    }
+      sink(stored.points[i], stored.lines[i], devs, norms, row_aligned, row_u, row_u_aligned);
+    });
   }
   return out;
 }
 
 std::string summary_json(const UncertainPrediction& prediction) {
-  nlohmann::json j = nlohmann::json::parse(summary_json(prediction.summary));
+  const bool aligned = prediction.alignment.method != AlignMethod::none;
+  nlohmann::json j = nlohmann::json::parse(
+      aligned ? summary_json(AlignedPrediction{prediction.summary, prediction.alignment})
+              : summary_json(prediction.summary));
   const PredictionUncertainty& pu = prediction.uncertainty;
   nlohmann::json u;
   u["method"] = "Monte Carlo (GUM Supplement 1)";
@@ -213,6 +258,7 @@ std::string summary_json(const UncertainPrediction& prediction) {
       jm["cutting"] = group_json(m.cutting);
       jm["rapid"] = group_json(m.rapid);
     }
+    if (aligned) jm["aligned"] = group_json(m.aligned);
     u["models"].push_back(jm);
   }
   j["uncertainty"] = u;
@@ -220,7 +266,10 @@ std::string summary_json(const UncertainPrediction& prediction) {
 }
 
 std::string summary_table(const UncertainPrediction& prediction) {
-  std::string text = summary_table(prediction.summary);
+  const bool aligned = prediction.alignment.method != AlignMethod::none;
+  std::string text =
+      aligned ? summary_table(AlignedPrediction{prediction.summary, prediction.alignment})
+              : summary_table(prediction.summary);
   const PredictionUncertainty& pu = prediction.uncertainty;
   text += fmt::format(
       "uncertainty (Monte Carlo, GUM Supplement 1: {} draws, seed {}): value ± U, U = k·u with "
@@ -243,6 +292,7 @@ std::string summary_table(const UncertainPrediction& prediction) {
     } else {
       row(name, "all", m.all);
     }
+    if (aligned) row("", "aligned", m.aligned);
   }
   return text;
 }

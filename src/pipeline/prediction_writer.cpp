@@ -41,8 +41,10 @@ PredictionWriter::PredictionWriter(PathFormat format, std::vector<model::ModelKi
     row_max_ += 16 * (io::kFixed6MaxChars + 8) + json_keys_.back().size();
     if (aligned_) row_max_ += 4 * (io::kFixed6MaxChars + 10);
     if (uncertain_) row_max_ += 3 * (io::kFixed6MaxChars + 10);
+    if (aligned_ && uncertain_) row_max_ += 3 * (io::kFixed6MaxChars + 12);
   }
   u_um_.assign(kinds_.size(), Eigen::Vector3d::Zero());
+  u_aligned_um_.assign(kinds_.size(), Eigen::Vector3d::Zero());
   pred_.resize(kinds_.size());
   aligned_um_.assign(kinds_.size(), Eigen::Vector3d::Zero());
   buf_.reserve(kChunk + row_max_);
@@ -56,6 +58,7 @@ PredictionWriter::PredictionWriter(PathFormat format, std::vector<model::ModelKi
       if (second_order_[i]) header += fmt::format(",dx2{0},dy2{0},dz2{0}", s);
       if (aligned_) header += fmt::format(",adx{0},ady{0},adz{0},ad{0}", s);
       if (uncertain_) header += fmt::format(",u_dx{0},u_dy{0},u_dz{0}", s);
+      if (aligned_ && uncertain_) header += fmt::format(",u_adx{0},u_ady{0},u_adz{0}", s);
     }
     if (!all) header += ",line";
     put(header + "\n");
@@ -84,6 +87,18 @@ void PredictionWriter::write_uncertain(const model::EvalPoint& p, std::size_t li
   write_row(p, line, devs, norms);
 }
 
+void PredictionWriter::write_uncertain(const model::EvalPoint& p, std::size_t line,
+                                       const std::vector<model::Deviation>& devs,
+                                       const std::vector<double>& norms,
+                                       const std::vector<Eigen::Vector3d>& aligned_um,
+                                       const std::vector<Eigen::Vector3d>& u_um,
+                                       const std::vector<Eigen::Vector3d>& u_aligned_um) {
+  aligned_um_ = aligned_um;
+  u_um_ = u_um;
+  u_aligned_um_ = u_aligned_um;
+  write_row(p, line, devs, norms);
+}
+
 void PredictionWriter::write_row(const model::EvalPoint& p, std::size_t line,
                                  const std::vector<model::Deviation>& devs,
                                  const std::vector<double>& norms) {
@@ -104,7 +119,7 @@ void PredictionWriter::write_row(const model::EvalPoint& p, std::size_t line,
     pred_[i] = p.p + units::kMmPerUm * d.e_um;
     magnitude += l1(d.e_um) + l1(d.second_order_um);
     if (aligned_) magnitude += 2.0 * l1(aligned_um_[i]);
-    if (uncertain_) magnitude += l1(u_um_[i]);
+    if (uncertain_) magnitude += l1(u_um_[i]) + l1(u_aligned_um_[i]);
   }
   if (io::fixed6_fits(magnitude)) {
     const std::size_t old_size = buf_.size();
@@ -153,6 +168,7 @@ void PredictionWriter::row(Out& out, const model::EvalPoint& p,
         out.num(aligned_um_[i].norm());
       }
       if (uncertain_) num3(out, u_um_[i], ",", ",", ",");
+      if (aligned_ && uncertain_) num3(out, u_aligned_um_[i], ",", ",", ",");
     }
     if (!all) {
       out.ch(',');
@@ -179,6 +195,8 @@ void PredictionWriter::row(Out& out, const model::EvalPoint& p,
         out.num(aligned_um_[i].norm());
       }
       if (uncertain_) num3(out, u_um_[i], ", \"u_dx\": ", ", \"u_dy\": ", ", \"u_dz\": ");
+      if (aligned_ && uncertain_)
+        num3(out, u_aligned_um_[i], ", \"u_adx\": ", ", \"u_ady\": ", ", \"u_adz\": ");
       out.ch('}');
     }
     out.ch('}');

@@ -22,16 +22,16 @@ double legend_item_width(const std::string& name) {
   return 44.0 + 7.4 * static_cast<double>(name.size());
 }
 
-LegendLayout layout_legend(const std::vector<Series>& series, double width) {
+LegendLayout layout_legend(const std::vector<std::string>& names, double width) {
   LegendLayout l;
   double x = 0.0;
   int row = 0;
-  for (const auto& s : series) {
-    if (s.name.empty()) {  // not in the legend
+  for (const auto& name : names) {
+    if (name.empty()) {  // not in the legend
       l.pos.emplace_back(x, row);
       continue;
     }
-    const double w = legend_item_width(s.name);
+    const double w = legend_item_width(name);
     if (x > 0.0 && x + w > width) {
       x = 0.0;
       ++row;
@@ -39,7 +39,7 @@ LegendLayout layout_legend(const std::vector<Series>& series, double width) {
     l.pos.emplace_back(x, row);
     x += w;
   }
-  l.rows = series.empty() ? 0 : row + 1;
+  l.rows = names.empty() ? 0 : row + 1;
   return l;
 }
 
@@ -47,19 +47,50 @@ std::string stroke_of(const Series& s, std::size_t i) {
   return s.colour.empty() ? series_colour(i) : s.colour;
 }
 
+constexpr double kBandOpacity = 0.2;
+
+// The band as one polygon: along lo, back along hi (points where either
+// edge is not finite are left out).
+std::string band_polygon(const Band& b, const PlotFrame& f) {
+  const std::size_t n = std::min({b.x.size(), b.lo.size(), b.hi.size()});
+  std::vector<std::size_t> ok;
+  for (std::size_t i = 0; i < n; ++i)
+    if (std::isfinite(b.x[i]) && std::isfinite(b.lo[i]) && std::isfinite(b.hi[i])) ok.push_back(i);
+  if (ok.empty()) return {};
+  std::string pts;
+  auto add = [&](double xv, double yv) {
+    if (!pts.empty()) pts += ' ';
+    pts += svg_coord(f.px(xv));
+    pts += ',';
+    pts += svg_coord(f.py(yv));
+  };
+  for (std::size_t i : ok) add(b.x[i], b.lo[i]);
+  for (auto it = ok.rbegin(); it != ok.rend(); ++it) add(b.x[*it], b.hi[*it]);
+  return fmt::format(
+      "<polygon class=\"band\" fill=\"{}\" fill-opacity=\"{}\" stroke=\"none\" "
+      "points=\"{}\"/>\n",
+      b.colour, kBandOpacity, pts);
+}
+
 }  // namespace
 
 std::string LinePlot::render(int width, int height) const {
   // Data range over the finite points.
   double xlo = std::numeric_limits<double>::infinity(), xhi = -xlo, ylo = xlo, yhi = -xlo;
+  auto extend = [&](double xv, double yv) {
+    if (!std::isfinite(xv) || !std::isfinite(yv)) return;
+    xlo = std::min(xlo, xv);
+    xhi = std::max(xhi, xv);
+    ylo = std::min(ylo, yv);
+    yhi = std::max(yhi, yv);
+  };
   for (const auto& s : series)
-    for (std::size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i)
-      if (std::isfinite(s.x[i]) && std::isfinite(s.y[i])) {
-        xlo = std::min(xlo, s.x[i]);
-        xhi = std::max(xhi, s.x[i]);
-        ylo = std::min(ylo, s.y[i]);
-        yhi = std::max(yhi, s.y[i]);
-      }
+    for (std::size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i) extend(s.x[i], s.y[i]);
+  for (const auto& b : bands)
+    for (std::size_t i = 0; i < std::min({b.x.size(), b.lo.size(), b.hi.size()}); ++i) {
+      extend(b.x[i], b.lo[i]);
+      extend(b.x[i], b.hi[i]);
+    }
   if (!(xlo <= xhi)) xlo = 0.0, xhi = 1.0;
   if (!(ylo <= yhi)) ylo = 0.0, yhi = 1.0;
   widen_range(xlo, xhi);
@@ -74,7 +105,10 @@ std::string LinePlot::render(int width, int height) const {
   widen_range(ylo, yhi);
 
   const double w = static_cast<double>(width), h = static_cast<double>(height);
-  const LegendLayout legend = layout_legend(series, w - 90.0);
+  std::vector<std::string> names;
+  for (const auto& s : series) names.push_back(s.name);
+  for (const auto& b : bands) names.push_back(b.name);
+  const LegendLayout legend = layout_legend(names, w - 90.0);
   PlotFrame f;
   f.left = 74.0;
   f.right = w - 18.0;
@@ -88,6 +122,7 @@ std::string LinePlot::render(int width, int height) const {
 
   // Series, clipped to the plot area.
   o += fmt::format("<g clip-path=\"url(#{}-clip)\">\n", escape_xml(id));
+  for (const Band& b : bands) o += band_polygon(b, f);
   for (std::size_t si = 0; si < series.size(); ++si) {
     const Series& s = series[si];
     const std::string colour = stroke_of(s, si);
@@ -188,6 +223,17 @@ std::string LinePlot::render(int width, int height) const {
           s.style == SeriesStyle::dashed ? " stroke-dasharray=\"6,4\"" : "");
     o += fmt::format("<text x=\"{}\" y=\"{}\" dominant-baseline=\"middle\">{}</text>\n",
                      svg_coord(lx + 29.0), svg_coord(ly + 0.5), escape_xml(s.name));
+  }
+  for (std::size_t bi = 0; bi < bands.size(); ++bi) {
+    const Band& b = bands[bi];
+    if (b.name.empty()) continue;
+    const auto& pos = legend.pos[series.size() + bi];
+    const double lx = f.left + pos.first, ly = 36.0 + 18.0 * pos.second;
+    o += fmt::format(
+        "<rect x=\"{}\" y=\"{}\" width=\"24\" height=\"10\" fill=\"{}\" fill-opacity=\"{}\"/>"
+        "<text x=\"{}\" y=\"{}\" dominant-baseline=\"middle\">{}</text>\n",
+        svg_coord(lx), svg_coord(ly - 5.0), b.colour, kBandOpacity, svg_coord(lx + 29.0),
+        svg_coord(ly + 0.5), escape_xml(b.name));
   }
   o += "</g>\n</svg>\n";
   return o;

@@ -19,12 +19,19 @@ std::string model_name(model::ModelKind k) { return model::to_string(k); }
 std::string hover_text(const PredictedPath& r, std::size_t model, std::size_t i) {
   const Eigen::Vector3d& d = r.deviation_um[model][i];
   auto src = r.source.find(r.line[i]);
+  std::string u;
+  if (r.has_uncertainty()) {
+    const Eigen::Vector3d& ui = r.u_um[model][i];
+    u = fmt::format("\nu(d) = ({:.3f}, {:.3f}, {:.3f}) µm", ui.x(), ui.y(), ui.z());
+  }
   return fmt::format(
-      "line {}: {}\n{}: P = ({:.3f}, {:.3f}, {:.3f}) mm, s = {:.1f} mm\nd = ({:.3f}, {:.3f}, "
-      "{:.3f}) µm, |d| = {:.3f} µm",
-      r.line[i], src == r.source.end() ? "" : src->second, model_name(r.models[model]),
-      r.nominal[i].x(), r.nominal[i].y(), r.nominal[i].z(), r.path_length[i], d.x(), d.y(), d.z(),
-      d.norm());
+             "line {}: {}\n{}: P = ({:.3f}, {:.3f}, {:.3f}) mm, s = {:.1f} mm\nd = ({:.3f}, "
+             "{:.3f}, "
+             "{:.3f}) µm, |d| = {:.3f} µm",
+             r.line[i], src == r.source.end() ? "" : src->second, model_name(r.models[model]),
+             r.nominal[i].x(), r.nominal[i].y(), r.nominal[i].z(), r.path_length[i], d.x(), d.y(),
+             d.z(), d.norm()) +
+         u;
 }
 
 // At most about `n` of the kept points for the SVG plots: every k-th, and
@@ -70,6 +77,23 @@ LinePlot deviation_plot(const PredictedPath& r, const std::vector<std::size_t>& 
   plot.y = {"deviation", "µm", {}, {}};
   const char* names[] = {"dx", "dy", "dz"};
   const char* colours[] = {palette::kBlue, palette::kOrange, palette::kPurple};
+  // With the uncertainty: the band d ± U (U = k·u) of each component, under
+  // the curves.
+  if (r.has_uncertainty()) {
+    const double k = r.uncertainty.coverage_factor;
+    for (int a = 0; a < 3; ++a) {
+      Band band;
+      band.name = a == 0 ? fmt::format("± U (k = {:g})", k) : "";
+      band.colour = colours[a];
+      for (std::size_t i : shown) {
+        const double d = r.deviation_um[m][i][a], u = k * r.u_um[m][i][a];
+        band.x.push_back(r.path_length[i]);
+        band.lo.push_back(d - u);
+        band.hi.push_back(d + u);
+      }
+      plot.bands.push_back(std::move(band));
+    }
+  }
   for (int a = 0; a < 3; ++a) {
     Series s;
     s.name = names[a];
@@ -141,20 +165,36 @@ void render_predict_report(HtmlPage& page, const PredictedPath& r, double k, dou
       "rows of `abbe predict`)",
       {"model", "moves", "points", "max |dx| (µm)", "max |dy| (µm)", "max |dz| (µm)",
        "rms |d| (µm)", "max |d| (µm)", "at line", "out-of-range lookups"});
-  auto row = [&](const ModelPathStats& s, const char* moves, bool lookups) {
+  // `u`: the figures with their expanded uncertainty (null: none).
+  auto row = [&](const ModelPathStats& s, const char* moves, bool lookups,
+                 const pipeline::GroupUncertainty* u) {
     const bool none = s.points == 0;
-    auto num = [&](double v) { return none ? std::string("-") : fmt::format("{:.3f}", v); };
-    t.rows.push_back({model_name(s.model), moves, std::to_string(s.points), num(s.max_abs_um.x()),
-                      num(s.max_abs_um.y()), num(s.max_abs_um.z()), num(s.rms_um), num(s.max_um),
-                      none ? "-" : std::to_string(s.max_line),
+    auto num = [&](double v, std::size_t f) {
+      if (none) return std::string("-");
+      if (u) return fmt::format("{:.3f} ± {:.3f}", v, u->figures[f].expanded);
+      return fmt::format("{:.3f}", v);
+    };
+    t.rows.push_back({model_name(s.model), moves, std::to_string(s.points),
+                      num(s.max_abs_um.x(), 0), num(s.max_abs_um.y(), 1), num(s.max_abs_um.z(), 2),
+                      num(s.rms_um, 3), num(s.max_um, 4), none ? "-" : std::to_string(s.max_line),
                       lookups ? std::to_string(s.out_of_range_lookups) : ""});
   };
+  const bool uncertain = r.has_uncertainty();
   for (std::size_t m = 0; m < r.stats.size(); ++m) {
-    if (m < r.cutting_stats.size()) row(r.cutting_stats[m], "cutting", false);
-    if (m < r.rapid_stats.size()) row(r.rapid_stats[m], "rapid", false);
-    row(r.stats[m], "all", true);
+    const pipeline::ModelUncertainty* mu = uncertain ? &r.uncertainty.models[m] : nullptr;
+    if (m < r.cutting_stats.size())
+      row(r.cutting_stats[m], "cutting", false, mu ? &mu->cutting : nullptr);
+    if (m < r.rapid_stats.size()) row(r.rapid_stats[m], "rapid", false, mu ? &mu->rapid : nullptr);
+    row(r.stats[m], "all", true, mu ? &mu->all : nullptr);
   }
   page.add_table(t);
+  if (uncertain)
+    page.add_note(fmt::format(
+        "Values ± U, the expanded uncertainty U = k·u (k = {:g}) propagated from the campaign's "
+        "uncertainty by Monte Carlo (GUM Supplement 1: {} draws, seed {}); propagated: {}. The "
+        "plots of the deviation draw the band d ± U of dx, dy and dz.",
+        r.uncertainty.coverage_factor, r.uncertainty.draws, r.uncertainty.seed,
+        r.uncertainty.sources));
   if (r.stride > 1)
     page.add_note(fmt::format(
         "{} points in all; drawn: every {}th and the largest |d| of each stretch of {} ({} "

@@ -61,6 +61,33 @@ void append(PredictedPath& r, const Kept& k) {
   for (std::size_t m = 0; m < k.d.size(); ++m) r.deviation_um[m].push_back(k.d[m]);
 }
 
+// The uncertainty of the kept points (their indices ascend) and of the
+// summary figures: the program predicted again with the draws.
+void add_uncertainty(PredictedPath& r, const machine::Machine& machine, const std::string& text,
+                     const pipeline::PathOptions& path, const PredictPathOptions& o) {
+  pipeline::PredictOptions po;
+  po.models = o.models;
+  po.input = pipeline::PredictInput::program;
+  po.path = path;
+  pipeline::UncertaintyOptions uo;
+  uo.draws = o.uncertainty_draws;
+  uo.seed = o.seed;
+  std::istringstream program(text);
+  r.u_um.assign(o.models.size(), {});
+  std::size_t point = 0, kept = 0;
+  const pipeline::UncertainPrediction p = pipeline::predict_with_uncertainty(
+      program, r.program, machine, po, uo, {},
+      [&](const model::EvalPoint&, std::size_t, const std::vector<model::Deviation>&,
+          const std::vector<double>&, const std::vector<Eigen::Vector3d>& u) {
+        if (kept < r.index.size() && r.index[kept] == point) {
+          for (std::size_t m = 0; m < u.size(); ++m) r.u_um[m].push_back(u[m]);
+          ++kept;
+        }
+        ++point;
+      });
+  r.uncertainty = p.uncertainty;
+}
+
 }  // namespace
 
 PredictedPath predict_program(const machine::Machine& machine, std::istream& in,
@@ -152,6 +179,8 @@ PredictedPath predict_program(const machine::Machine& machine, std::istream& in,
     r.cutting_stats.push_back(stats(models.cutting_stats()[i]));
     r.rapid_stats.push_back(stats(models.rapid_stats()[i]));
   }
+
+  if (o.uncertainty_draws > 0) add_uncertainty(r, machine, text, po, o);
 
   // Source text of the lines the kept points come from.
   for (std::size_t l : r.line) r.source.emplace(l, std::string());

@@ -37,3 +37,14 @@ file(WRITE ${WORK}/bad.csv "# axis: X\n# component: EXX\n# units: arcsec\ntarget
 refused_untouched(1 "arcsec for EXX"
                   "bad.csv:3:10 \\[units\\]: error: EXX is linear but the unit arcsec is angular"
                   ${WORK}/out.csv ${ABBE} import laser ${WORK}/bad.csv -o ${WORK}/out.csv)
+
+# Several components in one file (one section each): every component in the
+# runs file and in the table.
+run(${ABBE} import laser ${DATA}/three-components.csv -o ${WORK}/three-runs.csv
+    --table ${WORK}/three-table.csv)
+expect_file_matches(${WORK}/three-runs.csv
+  "\nX,EXX,0,1,up,0\n.*\nX,EBX,200,1,up,[34][0-9.]*\n.*\nY,EYY,0,2,up,1\\.9[0-9]*\n$"
+  "unexpected runs file of three-components.csv")
+expect_file_matches(${WORK}/three-table.csv
+  "^axis,component,position_mm,direction,value,uncertainty\nX,EXX,0,fwd,.*\nX,EBX,200,mean,[45][0-9.]*,[01][0-9.]*\n.*Y,EYY,0,mean,[12][0-9.]*,"
+  "unexpected table of three-components.csv")

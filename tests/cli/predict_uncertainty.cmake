@@ -88,5 +88,44 @@ expect(1 "no uncertainty in the machine file"
        "machine.yaml \\[uncertainty\\]: error: --uncertainty: nothing to propagate"
        --machine ${plain} --uncertainty 10)
 expect(2 "one draw" "--uncertainty" --machine ${umachine} --uncertainty 1)
-expect(2 "with --align" "--uncertainty with --align is not implemented yet"
-       --machine ${umachine} --uncertainty 10 --align best-fit)
+expect(2 "--align datums without its datum sets" "--align datums needs --datum-primary"
+       --machine ${umachine} --uncertainty 10 --align datums)
+expect(2 "a datum set without --align datums" "--datum-primary needs --align datums"
+       --machine ${umachine} --uncertainty 10 --align best-fit --datum-primary 2-31)
+
+# With --align: the aligned columns, then u_dx,u_dy,u_dz, then u_adx,u_ady,
+# u_adz; the absolute u are those without --align (the same draws), the
+# deviations and aligned deviations those of plain --align.
+run(al.csv ${program} --machine ${umachine} --uncertainty 10 --seed 3 --align best-fit)
+run(u.csv ${program} --machine ${umachine} --uncertainty 10 --seed 3)
+run(plain_al.csv ${program} --machine ${umachine} --align best-fit)
+file(STRINGS ${WORK}/al.csv al_rows)
+file(STRINGS ${WORK}/u.csv u_rows)
+file(STRINGS ${WORK}/plain_al.csv pa_rows)
+list(GET al_rows 0 header)
+if(NOT header STREQUAL "x,y,z,px,py,pz,dx,dy,dz,d,adx,ady,adz,ad,u_dx,u_dy,u_dz,u_adx,u_ady,u_adz,line")
+  message(FATAL_ERROR "--uncertainty --align header: ${header}")
+endif()
+list(LENGTH al_rows nal)
+list(LENGTH pa_rows npa)
+if(NOT nal EQUAL npa)
+  message(FATAL_ERROR "${nal} rows with --uncertainty --align, ${npa} with --align")
+endif()
+math(EXPR last "${nal} - 1")
+string(REPEAT "[^,]*," 10 f10)
+string(REPEAT "[^,]*," 4 f4)
+string(REPEAT "[^,]*," 3 f3)
+foreach(i RANGE 1 ${last})
+  list(GET al_rows ${i} r)
+  list(GET u_rows ${i} ru)
+  list(GET pa_rows ${i} rp)
+  # x..d (10) and adx..ad (4), then u (3), u aligned (3), line.
+  string(REGEX REPLACE "^(${f10})(${f4})(${f3})(${f3})([^,]*)$" "\\1\\2\\5" r_plain "${r}")
+  string(REGEX REPLACE "^(${f10})(${f4})(${f3})(${f3})([^,]*)$" "\\1\\3\\5" r_u "${r}")
+  if(NOT r_plain STREQUAL rp)
+    message(FATAL_ERROR "row ${i}: '${r}' is not --align's '${rp}' with u columns")
+  endif()
+  if(NOT r_u STREQUAL ru)
+    message(FATAL_ERROR "row ${i}: '${r}' does not carry the u of '${ru}'")
+  endif()
+endforeach()

@@ -8,11 +8,9 @@
 // cutting points are aligned by a best fit — the true part and each
 // predicted part on their own, as a CMM would — and compared.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
-#include <filesystem>
 #include <fstream>
 
 #include "abbe/gcode/program.hpp"
@@ -22,8 +20,8 @@
 #include "abbe/pipeline/part_alignment.hpp"
 #include "abbe/sim/laser_campaign.hpp"
 #include "abbe/sim/real_conventions.hpp"
-#include "abbe/sim/text_file.hpp"
 #include "truth_toolpath.hpp"
+#include "written_machine.hpp"
 
 namespace abbe {
 namespace {
@@ -58,14 +56,7 @@ Fixture make_fixture(const Campaign& c) {
     rc.seed = 3;
     sim::apply_real_conventions(g, result, rc);
   }
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("abbe_aligned_vs_truth_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  sim::write_text_file_atomically((dir / "errors.csv").string(), sim::table_to_csv(result));
-  sim::write_text_file_atomically((dir / "machine.yaml").string(),
-                                  sim::machine_to_yaml(g, result, "errors.csv"));
-  machine::Machine m = machine::Machine::load((dir / "machine.yaml").string());
-  std::filesystem::remove_all(dir);
+  machine::Machine m = test::written_machine(g, result, "aligned_vs_truth");
   return {std::move(g), std::move(m)};
 }
 

@@ -6,11 +6,9 @@
 // path) must be at least 90 % smaller in RMS than the truth deviation along
 // the original program.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -21,7 +19,7 @@
 #include "abbe/model/error_model.hpp"
 #include "abbe/path/fragmenter.hpp"
 #include "abbe/sim/laser_campaign.hpp"
-#include "abbe/sim/text_file.hpp"
+#include "written_machine.hpp"
 
 namespace abbe {
 namespace {
@@ -37,14 +35,7 @@ TEST(CompensateTruth, NinetyPercentLessRmsDeviation) {
   o.angular_scale = 1.0;
   const sim::GeneratedMachine g = sim::generate_machine(o);
   const sim::CampaignResult result = sim::run_campaign(g);
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("abbe_compensate_truth_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  sim::write_text_file_atomically((dir / "errors.csv").string(), sim::table_to_csv(result));
-  sim::write_text_file_atomically((dir / "machine.yaml").string(),
-                                  sim::machine_to_yaml(g, result, "errors.csv"));
-  const machine::Machine m = machine::Machine::load((dir / "machine.yaml").string());
-  std::filesystem::remove_all(dir);
+  const machine::Machine m = test::written_machine(g, result, "compensate_truth");
   const model::ErrorModel em(m, model::ModelKind::ae_arm);
 
   gcode::InterpreterConfig config;

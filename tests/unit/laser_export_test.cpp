@@ -101,10 +101,12 @@ struct Refusal {
 
 class LaserExportRefuses : public ::testing::TestWithParam<Refusal> {};
 
+// Read as a file of sections (one section: as read_laser_export reads it).
 TEST_P(LaserExportRefuses, NamesFileLineColumnAndField) {
   const Refusal& r = GetParam();
   try {
-    read(r.text);
+    std::istringstream in(r.text);
+    read_laser_exports(in, "laser.csv");
     FAIL() << "accepted:\n" << r.text;
   } catch (const InputError& e) {
     EXPECT_EQ(e.where().file, "laser.csv");
@@ -154,6 +156,27 @@ INSTANTIATE_TEST_SUITE_P(
         Refusal{
             "# axis: X\n# component: EXX\n# units: um\n# environment compensation: maybe\n" + kRows,
             4, 29, "environment compensation", "not one of automatic, manual, off"}));
+
+// Every rule is checked in every section, at the line of the whole file: a
+// second section after a good first one (lines 1-6).
+const std::string kFirst =
+    "# axis: X\n# component: EXX\n# units: um\n"
+    "target,run,direction,reading\n0,1,up,1\n0,2,up,2\n";
+
+INSTANTIATE_TEST_SUITE_P(
+    Sections, LaserExportRefuses,
+    ::testing::Values(
+        // The second section's unit does not fit its component (the first's would).
+        Refusal{kFirst + "# axis: X\n# component: EBX\n# units: um\n" + kRows, 9, 10, "units",
+                "EBX is angular but the unit um is linear"},
+        Refusal{kFirst + "# axis: Y\n# component: EYY\n# units: arcsec\n" + kRows, 9, 10, "units",
+                "EYY is linear but the unit arcsec is angular"},
+        // Metadata the first section gave is not inherited.
+        Refusal{kFirst + "# component: EYY\n# units: um\n" + kRows, 0, 0, "axis", "# axis:"},
+        Refusal{kFirst + "# axis: Y\n# component: EYY\n# units: um\n" + kRows + "0,1,up,2\n", 12, 3,
+                "run", "already on line 11"},
+        Refusal{kFirst + "# axis: X\n# component: EXX\n# units: mm\n" + kRows, 8, 0, "component",
+                "EXX is already the component of an earlier section"}));
 
 // The runs file is what `abbe iso230` reads: its per-target means and s are
 // those of the table written beside it (mean, s/√n).

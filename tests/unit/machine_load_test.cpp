@@ -80,6 +80,19 @@ TEST_P(MachineRejects, NamesFileLineAndField) {
   abbe::testing::expect_machine_rejected(replace(kGood, b.from, b.to), b.line, b.field, b.says);
 }
 
+}  // namespace
+}  // namespace abbe::machine
+
+namespace abbe::testing {
+TEST_P(AppendedKeyRejects, NamesFileLineAndField) {
+  const AppendedKey& b = GetParam();
+  expect_machine_rejected(kMinimalMachine + b.key, b.line, b.field, b.says);
+}
+}  // namespace abbe::testing
+
+namespace abbe::machine {
+namespace {
+
 INSTANTIATE_TEST_SUITE_P(
     Cases, MachineRejects,
     ::testing::Values(

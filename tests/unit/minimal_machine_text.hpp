@@ -54,4 +54,17 @@ inline void expect_machine_rejected(const std::string& text, std::size_t line,
   }
 }
 
+// A key appended to kMinimalMachine that must be refused (the machine
+// file's optional sections). The parametrised test AppendedKeyRejects
+// (machine_load_test.cpp) runs expect_machine_rejected on each; the sections'
+// tests instantiate it with their cases.
+struct AppendedKey {
+  std::string key;  // appended to kMinimalMachine
+  std::size_t line;
+  std::string field;
+  std::string says;
+};
+
+class AppendedKeyRejects : public ::testing::TestWithParam<AppendedKey> {};
+
 }  // namespace abbe::testing

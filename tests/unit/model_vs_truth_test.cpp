@@ -3,10 +3,8 @@
 // follow a smooth truth to 0.05 µm, at 0.5 mm the interpolation error is a
 // few nm), evaluated at every fragmented point of both thesis toolpaths.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <Eigen/Geometry>  // cross()
-#include <filesystem>
 #include <fstream>
 
 #include "abbe/gcode/program.hpp"
@@ -14,8 +12,8 @@
 #include "abbe/model/error_model.hpp"
 #include "abbe/path/fragmenter.hpp"
 #include "abbe/sim/laser_campaign.hpp"
-#include "abbe/sim/text_file.hpp"
 #include "truth_toolpath.hpp"
+#include "written_machine.hpp"
 
 namespace abbe {
 namespace {
@@ -37,14 +35,7 @@ Fixture make_fixture(double angular_scale, const std::string& name, double spaci
   o.angular_scale = angular_scale;
   sim::GeneratedMachine g = sim::generate_machine(o);
   const sim::CampaignResult result = sim::run_campaign(g);
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("abbe_model_vs_truth_" + name + "_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  sim::write_text_file_atomically((dir / "errors.csv").string(), sim::table_to_csv(result));
-  sim::write_text_file_atomically((dir / "machine.yaml").string(),
-                                  sim::machine_to_yaml(g, result, "errors.csv"));
-  machine::Machine m = machine::Machine::load((dir / "machine.yaml").string());
-  std::filesystem::remove_all(dir);
+  machine::Machine m = test::written_machine(g, result, "model_vs_truth_" + name);
   return {std::move(g), std::move(m)};
 }
 

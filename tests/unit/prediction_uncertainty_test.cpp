@@ -16,6 +16,7 @@
 #include "abbe/pipeline/predict.hpp"
 #include "minimal_machine_text.hpp"
 #include "model_test_machines.hpp"
+#include "uncertainty_test_machines.hpp"
 
 namespace abbe::pipeline {
 namespace {
@@ -23,19 +24,14 @@ namespace {
 using machine::Machine;
 using machine::MachineSpec;
 
-struct Row {
-  Eigen::Vector3d p;
-  Eigen::Vector3d e;
-  Eigen::Vector3d u;
-};
+using Row = test::McRow;
+using test::McRun;
 
-struct McRun {
-  UncertainPrediction prediction;
-  std::vector<Row> rows;
-};
-
+// Without --align (the overload without AlignOptions is the one `predict
+// --uncertainty` calls: its rows are those of the aligned one with none).
 McRun run(const Machine& m, const std::string& points_csv, std::size_t draws,
           std::uint64_t seed = 1, model::ModelKind kind = model::ModelKind::ae_arm) {
+  McRun r = test::run_points(m, points_csv, draws, seed, kind, AlignOptions{});
   PredictOptions po;
   po.models = {kind};
   po.input = PredictInput::points;
@@ -43,53 +39,22 @@ McRun run(const Machine& m, const std::string& points_csv, std::size_t draws,
   uo.draws = draws;
   uo.seed = seed;
   std::istringstream in(points_csv);
-  McRun r;
-  r.prediction = predict_with_uncertainty(
+  std::size_t i = 0;
+  predict_with_uncertainty(
       in, "points.csv", m, po, uo, {},
-      [&](const model::EvalPoint& p, std::size_t, const std::vector<model::Deviation>& devs,
+      [&](const model::EvalPoint&, std::size_t, const std::vector<model::Deviation>& devs,
           const std::vector<double>&, const std::vector<Eigen::Vector3d>& u) {
-        r.rows.push_back({p.p, devs[0].e_um, u[0]});
+        EXPECT_EQ(r.rows.at(i).e, devs[0].e_um);
+        EXPECT_EQ(r.rows.at(i).u, u[0]);
+        ++i;
       });
+  EXPECT_EQ(i, r.rows.size());
   return r;
 }
 
-// A table with every component of every axis (values of a few µm/µrad) and
-// per-target uncertainties; reflectors away from the points.
-std::string full_table(bool with_u, double u_target) {
-  std::string csv = with_u ? "axis,component,position_mm,direction,value,uncertainty\n"
-                           : std::string(test::kHeader);
-  int k = 0;
-  for (char a : {'X', 'Y', 'Z'})
-    for (char d : {'X', 'Y', 'Z', 'A', 'B', 'C'})
-      for (int i = 0; i <= 6; ++i, ++k) {
-        const double v = 3.0 * std::sin(0.7 * k);
-        csv += fmt::format("{},E{}{},{},mean,{:.6f}", a, d, a, -1200.0 + 400.0 * i, v);
-        if (with_u) csv += fmt::format(",{}", u_target);
-        csv += "\n";
-      }
-  return csv;
-}
-
-MachineSpec full_spec(bool with_u, double u_target) {
-  MachineSpec spec =
-      test::spec_with("w X' b Y Z t", full_table(with_u, u_target),
-                      Eigen::Vector3d(-500, -250, -280), 130.0, Eigen::Vector3d(-800, -256, -478));
-  spec.squareness = {14.0, -24.0, 13.0};
-  return spec;
-}
-
-const char* kPoints =
-    "x,y,z\n-100,-50,-30\n-300,-200,-250\n-650,-420,-120\n-900,-10,-400\n-480,-333,-333\n"
-    "-20,-590,-10\n-777,-111,-222\n-250,-250,-250\n";
-
-void set_all_sources(machine::CampaignUncertainty& u) {
-  u.given = true;
-  u.laser_constant_um = 0.2;
-  u.laser_ppm = 1.0;
-  u.component.fill(0.3);
-  u.reflector_mm = 2.0;
-  u.squareness_urad = {1.0, 1.5, 0.5};
-}
+using test::full_spec;
+using test::kPoints;
+using test::set_all_sources;
 
 TEST(PredictionUncertainty, ZeroInputUncertaintyGivesZero) {
   MachineSpec spec = full_spec(true, 0.0);
@@ -138,19 +103,10 @@ TEST(PredictionUncertainty, DoublingTheDrawsChangesULessThanFivePercent) {
   const Machine m(spec);
   const McRun a = run(m, kPoints, 2000);
   const McRun b = run(m, kPoints, 4000);
-  double worst = 0.0;
-  for (std::size_t i = 0; i < a.rows.size(); ++i)
-    for (int c = 0; c < 3; ++c) {
-      ASSERT_GT(b.rows[i].u[c], 0.01);
-      worst = std::max(worst, std::abs(a.rows[i].u[c] / b.rows[i].u[c] - 1.0));
-    }
-  EXPECT_LT(worst, 0.05);
-  for (std::size_t f = 0; f < kUncertainFigures; ++f) {
-    const double ua = a.prediction.uncertainty.models[0].all.figures[f].u;
-    const double ub = b.prediction.uncertainty.models[0].all.figures[f].u;
-    ASSERT_GT(ub, 0.0);
-    EXPECT_LT(std::abs(ua / ub - 1.0), 0.05) << "figure " << f;
-  }
+  auto u = [](const Row& r) { return r.u; };
+  test::expect_converged(test::column(a.rows, u), test::column(b.rows, u),
+                         a.prediction.uncertainty.models[0].all,
+                         b.prediction.uncertainty.models[0].all);
 }
 
 // A linear case by hand: e_x = EXX(s_x) interpolated between two targets
@@ -221,13 +177,9 @@ TEST(PredictionUncertainty, SeededAndReproducible) {
   const McRun a = run(m, kPoints, 50, 7);
   const McRun b = run(m, kPoints, 50, 7);
   const McRun c = run(m, kPoints, 50, 8);
-  bool differs = false;
-  for (std::size_t i = 0; i < a.rows.size(); ++i) {
-    EXPECT_EQ(a.rows[i].u, b.rows[i].u);
-    differs = differs || a.rows[i].u != c.rows[i].u;
-  }
-  EXPECT_TRUE(differs);
-  EXPECT_EQ(summary_json(a.prediction), summary_json(b.prediction));
+  auto u = [](const Row& r) { return r.u; };
+  test::expect_seeded(test::column(a.rows, u), test::column(b.rows, u), test::column(c.rows, u),
+                      summary_json(a.prediction), summary_json(b.prediction));
 }
 
 TEST(PredictionUncertainty, NothingToPropagateIsAnError) {
@@ -260,37 +212,27 @@ TEST(PredictionUncertainty, SummaryStatesTheCoverageFactor) {
 // Bad uncertainty values are refused with the file, line and field.
 const std::string& kDir = abbe::testing::kMachinesDir;
 const std::string& kMachine = abbe::testing::kMinimalMachine;
-
-struct BadU {
-  std::string key;  // appended to kMachine
-  std::size_t line;
-  std::string field;
-  std::string says;
-};
-
-class UncertaintyKeyRejects : public ::testing::TestWithParam<BadU> {};
-
-TEST_P(UncertaintyKeyRejects, NamesFileLineAndField) {
-  const BadU& b = GetParam();
-  abbe::testing::expect_machine_rejected(kMachine + b.key, b.line, b.field, b.says);
-}
+using abbe::testing::AppendedKey;
+using abbe::testing::AppendedKeyRejects;
 
 INSTANTIATE_TEST_SUITE_P(
-    Cases, UncertaintyKeyRejects,
-    ::testing::Values(
-        BadU{"uncertainty: {reflector_mm: -1}\n", 22, "uncertainty.reflector_mm", "negative"},
-        BadU{"uncertainty: {reflector_mm: .nan}\n", 22, "uncertainty.reflector_mm", "finite"},
-        BadU{"uncertainty:\n  laser: {constant_um: 0.1, ppm: -0.5}\n", 23, "uncertainty.laser.ppm",
-             "negative"},
-        BadU{"uncertainty:\n  laser: {constant_um: .inf}\n", 23, "uncertainty.laser.constant_um",
-             "finite"},
-        BadU{"uncertainty:\n  components: {EXX: 0.1, EYX: -2}\n", 23, "uncertainty.components.EYX",
-             "negative"},
-        BadU{"uncertainty:\n  components: {EC0Y: 0.1}\n", 23, "uncertainty.components.EC0Y",
-             "not a component name"},
-        BadU{"uncertainty:\n  squareness: {EC0Y: -1}\n", 23, "uncertainty.squareness.EC0Y",
-             "negative"},
-        BadU{"uncertainty:\n  laser_ppm: 1\n", 23, "uncertainty.laser_ppm", "unknown key"}));
+    Uncertainty, AppendedKeyRejects,
+    ::testing::Values(AppendedKey{"uncertainty: {reflector_mm: -1}\n", 22,
+                                  "uncertainty.reflector_mm", "negative"},
+                      AppendedKey{"uncertainty: {reflector_mm: .nan}\n", 22,
+                                  "uncertainty.reflector_mm", "finite"},
+                      AppendedKey{"uncertainty:\n  laser: {constant_um: 0.1, ppm: -0.5}\n", 23,
+                                  "uncertainty.laser.ppm", "negative"},
+                      AppendedKey{"uncertainty:\n  laser: {constant_um: .inf}\n", 23,
+                                  "uncertainty.laser.constant_um", "finite"},
+                      AppendedKey{"uncertainty:\n  components: {EXX: 0.1, EYX: -2}\n", 23,
+                                  "uncertainty.components.EYX", "negative"},
+                      AppendedKey{"uncertainty:\n  components: {EC0Y: 0.1}\n", 23,
+                                  "uncertainty.components.EC0Y", "not a component name"},
+                      AppendedKey{"uncertainty:\n  squareness: {EC0Y: -1}\n", 23,
+                                  "uncertainty.squareness.EC0Y", "negative"},
+                      AppendedKey{"uncertainty:\n  laser_ppm: 1\n", 23, "uncertainty.laser_ppm",
+                                  "unknown key"}));
 
 TEST(PredictionUncertainty, GoodKeysParse) {
   const Machine m = Machine::parse(kMachine +

@@ -24,6 +24,8 @@ namespace {
 
 const std::string& kDir = abbe::testing::kMachinesDir;
 const std::string& kMachine = abbe::testing::kMinimalMachine;
+using abbe::testing::AppendedKey;
+using abbe::testing::AppendedKeyRejects;
 
 TEST(ReferenceConventions, OldFilesAreAbsolute) {
   const Machine m = Machine::parse(kMachine, "m.yaml", kDir);
@@ -72,40 +74,27 @@ TEST(ReferenceConventions, WhatEachConventionLeavesFree) {
             std::string::npos);
 }
 
-struct BadConvention {
-  std::string key;
-  std::size_t line;
-  std::string field, says;
-};
-
-class ConventionKeyRejects : public ::testing::TestWithParam<BadConvention> {};
-
-TEST_P(ConventionKeyRejects, NamesFileLineAndField) {
-  const BadConvention& b = GetParam();
-  abbe::testing::expect_machine_rejected(kMachine + b.key, b.line, b.field, b.says);
-}
-
 INSTANTIATE_TEST_SUITE_P(
-    Cases, ConventionKeyRejects,
+    Conventions, AppendedKeyRejects,
     ::testing::Values(
-        BadConvention{"conventions:\n  EXX: {reference_mm: -990, slope_removed: true}\n", 23,
-                      "conventions.EXX.slope_removed", "positioning component"},
-        BadConvention{"conventions:\n  EXX: {reference_mm: -990, relative: true}\n", 23,
-                      "conventions.EXX.relative", "unknown key"},
-        BadConvention{"conventions:\n  EBX: {reference_mm: -990}\n", 23, "conventions.EBX.relative",
-                      "relative: true"},
-        BadConvention{"conventions:\n  EYX: {slope_removed: true}\n", 23,
-                      "conventions.EYX.reference_mm", "missing key"},
-        BadConvention{"conventions:\n  EYX: {reference_mm: 50}\n", 23,
-                      "conventions.EYX.reference_mm", "outside the measured range"},
-        BadConvention{"conventions:\n  EYX: {reference_mm: .nan}\n", 23,
-                      "conventions.EYX.reference_mm", "finite"},
-        BadConvention{"conventions:\n  EYX: {reference_mm: 0, slope_removed: maybe}\n", 23,
-                      "conventions.EYX.slope_removed", "not true or false"},
-        BadConvention{"conventions:\n  squareness: measured\n", 23, "conventions.squareness",
-                      "same_reference or independent"},
-        BadConvention{"conventions:\n  EC0Y: {reference_mm: 0}\n", 23, "conventions.EC0Y",
-                      "not a component name"}));
+        AppendedKey{"conventions:\n  EXX: {reference_mm: -990, slope_removed: true}\n", 23,
+                    "conventions.EXX.slope_removed", "positioning component"},
+        AppendedKey{"conventions:\n  EXX: {reference_mm: -990, relative: true}\n", 23,
+                    "conventions.EXX.relative", "unknown key"},
+        AppendedKey{"conventions:\n  EBX: {reference_mm: -990}\n", 23, "conventions.EBX.relative",
+                    "relative: true"},
+        AppendedKey{"conventions:\n  EYX: {slope_removed: true}\n", 23,
+                    "conventions.EYX.reference_mm", "missing key"},
+        AppendedKey{"conventions:\n  EYX: {reference_mm: 50}\n", 23, "conventions.EYX.reference_mm",
+                    "outside the measured range"},
+        AppendedKey{"conventions:\n  EYX: {reference_mm: .nan}\n", 23,
+                    "conventions.EYX.reference_mm", "finite"},
+        AppendedKey{"conventions:\n  EYX: {reference_mm: 0, slope_removed: maybe}\n", 23,
+                    "conventions.EYX.slope_removed", "not true or false"},
+        AppendedKey{"conventions:\n  squareness: measured\n", 23, "conventions.squareness",
+                    "same_reference or independent"},
+        AppendedKey{"conventions:\n  EC0Y: {reference_mm: 0}\n", 23, "conventions.EC0Y",
+                    "not a component name"}));
 
 // The property: tables that differ only by the free constant (zeroed EXX,
 // EZY; relative ECY) and slope (EYX, with EC0Y + 1000·κ; relative EBY with

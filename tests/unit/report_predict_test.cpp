@@ -17,23 +17,14 @@
 #include "abbe/report/html_page.hpp"
 #include "abbe/report/predict_section.hpp"
 #include "abbe/report/predicted_path.hpp"
+#include "rect_program.hpp"
 
 namespace abbe::report {
 namespace {
 
 const std::string kMachine = std::string(ABBE_TEST_DATA_DIR) + "/machines/sample.yaml";
 
-// A rectangle at z = -280 with G43 H1 (200 mm), 5 mm steps, 300 × 200 mm.
-const char* kProgram =
-    "G17 G21 G90 G94\n"
-    "G43 H1\n"
-    "G0 X-350 Y-150 Z-270\n"
-    "G1 Z-280 F300\n"
-    "G1 X-650 F1000\n"
-    "G1 Y-350\n"
-    "G1 X-350\n"
-    "G1 Y-150\n"
-    "M30\n";
+const char* const kProgram = test::kRectProgram;
 
 TEST(ReportPredict, StatisticsMatchTheModelPointByPoint) {
   const machine::Machine m = machine::Machine::load(kMachine);

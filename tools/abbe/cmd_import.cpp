@@ -4,6 +4,7 @@
 // exports) into the ISO 230-2 runs file and component-table rows.
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "abbe/io/atomic_file.hpp"
 #include "abbe/io/ballbar.hpp"
@@ -22,9 +23,10 @@ struct ImportOptions {
   std::string table;  // laser: also the component-table rows
 };
 
-// laser: a laser-calibration export -> the ISO 230-2 runs file (and --table).
+// laser: a laser-calibration export (one or more components) -> the ISO
+// 230-2 runs file (and --table).
 int run_import_laser(const ImportOptions& o) {
-  const io::LaserExport data = io::load_laser_export(o.input);
+  const std::vector<io::LaserExport> data = io::load_laser_exports(o.input);
   if (!o.table.empty()) io::write_file_atomically(o.table, io::laser_table_csv(data));
   io::write_file_atomically(o.output, io::laser_runs_csv(data));
   return kOk;

@@ -87,21 +87,27 @@ void finish_outputs(const PredictOptions& o, pipeline::PredictionWriter* writer,
   std::fputs(table.c_str(), points_on_stdout ? stderr : stdout);
 }
 
+// The --align and --datum-* options; false (after a message) when --align
+// datums lacks one of the datum sets.
+bool align_options(const PredictOptions& o, pipeline::AlignOptions& ao) {
+  ao.method = pipeline::parse_align_method(o.align);
+  if (ao.method != pipeline::AlignMethod::datums) return true;
+  for (int k = 0; k < 3; ++k)
+    if (o.datum[k].empty()) {
+      fmt::print(stderr, "abbe predict: --align datums needs {}\n", kDatumOption[k]);
+      return false;
+    }
+  ao.primary = pipeline::LineSet::parse(o.datum[0], kDatumOption[0]);
+  ao.secondary = pipeline::LineSet::parse(o.datum[1], kDatumOption[1]);
+  ao.tertiary = pipeline::LineSet::parse(o.datum[2], kDatumOption[2]);
+  return true;
+}
+
 int run_predict_aligned(const PredictOptions& o, const GlobalOptions& g,
                         const machine::Machine& machine, const pipeline::PredictOptions& po,
                         pipeline::PathFormat format) {
   pipeline::AlignOptions ao;
-  ao.method = pipeline::parse_align_method(o.align);
-  if (ao.method == pipeline::AlignMethod::datums) {
-    for (int k = 0; k < 3; ++k)
-      if (o.datum[k].empty()) {
-        fmt::print(stderr, "abbe predict: --align datums needs {}\n", kDatumOption[k]);
-        return kUsage;
-      }
-    ao.primary = pipeline::LineSet::parse(o.datum[0], kDatumOption[0]);
-    ao.secondary = pipeline::LineSet::parse(o.datum[1], kDatumOption[1]);
-    ao.tertiary = pipeline::LineSet::parse(o.datum[2], kDatumOption[2]);
-  }
+  if (!align_options(o, ao)) return kUsage;
   InputStream input(o.input, "the input");
   PointsOutput points = open_points(o, format, po.models, true);
   auto& writer = points.writer;
@@ -122,22 +128,30 @@ int run_predict_aligned(const PredictOptions& o, const GlobalOptions& g,
   return kOk;
 }
 
-// predict --uncertainty N: the points are written after the draws.
+// predict --uncertainty N [--align …]: the points are written after the draws.
 int run_predict_uncertain(const PredictOptions& o, const GlobalOptions& g,
                           const machine::Machine& machine, const pipeline::PredictOptions& po,
                           pipeline::PathFormat format) {
   pipeline::UncertaintyOptions uo;
   uo.draws = o.uncertainty;
   uo.seed = o.seed;
+  pipeline::AlignOptions ao;
+  if (!align_options(o, ao)) return kUsage;
   InputStream input(o.input, "the input");
-  PointsOutput points = open_points(o, format, po.models, false, true);
+  PointsOutput points =
+      open_points(o, format, po.models, ao.method != pipeline::AlignMethod::none, true);
   auto& writer = points.writer;
   Progress progress("predict --uncertainty", o.uncertainty, !g.quiet, "draws");
   const pipeline::UncertainPrediction prediction = pipeline::predict_with_uncertainty(
-      input.stream(), o.input, machine, po, uo, {},
+      input.stream(), o.input, machine, po, uo, ao, {},
       [&](const model::EvalPoint& p, std::size_t line, const std::vector<model::Deviation>& devs,
-          const std::vector<double>& norms, const std::vector<Eigen::Vector3d>& u) {
-        if (writer) writer->write_uncertain(p, line, devs, norms, u);
+          const std::vector<double>& norms, const std::vector<Eigen::Vector3d>& aligned,
+          const std::vector<Eigen::Vector3d>& u, const std::vector<Eigen::Vector3d>& u_aligned) {
+        if (!writer) return;
+        if (ao.method == pipeline::AlignMethod::none)
+          writer->write_uncertain(p, line, devs, norms, u);
+        else
+          writer->write_uncertain(p, line, devs, norms, aligned, u, u_aligned);
       },
       [&](std::size_t done) {
         if (progress.active()) progress.update(done);
@@ -163,17 +177,13 @@ int run_predict(const PredictOptions& o, const GlobalOptions& g) {
   if (!o.extend.empty())
     po.extension = std::make_shared<const diagnose::OverlayExtension>(
         diagnose::Overlay::load(o.extend), machine);
-  if (o.uncertainty > 0 && o.align != "none") {
-    fmt::print(stderr, "abbe predict: --uncertainty with --align is not implemented yet\n");
-    return kUsage;
-  }
-  if (o.uncertainty > 0) return run_predict_uncertain(o, g, machine, po, format);
-  if (o.align != "none") return run_predict_aligned(o, g, machine, po, format);
   for (int k = 0; k < 3; ++k)
-    if (!o.datum[k].empty()) {
+    if (!o.datum[k].empty() && o.align != "datums") {
       fmt::print(stderr, "abbe predict: {} needs --align datums\n", kDatumOption[k]);
       return kUsage;
     }
+  if (o.uncertainty > 0) return run_predict_uncertain(o, g, machine, po, format);
+  if (o.align != "none") return run_predict_aligned(o, g, machine, po, format);
 
   InputStream input(o.input, "the input");
   PointsOutput points = open_points(o, format, po.models, false);
@@ -248,10 +258,12 @@ const CommandRegistrar registrar(
                      "--align datums: source lines of the secondary (line) points");
       sub.add_option("--datum-tertiary", o->datum[2],
                      "--align datums: source lines of the tertiary (point) points");
-      sub.add_option("--uncertainty", o->uncertainty,
-                     "Also propagate the campaign's uncertainty (machine file `uncertainty`, table "
-                     "column `uncertainty`) by Monte Carlo with N draws: u_dx,u_dy,u_dz per point, "
-                     "U (k = 2) of the summary")
+      sub.add_option(
+             "--uncertainty", o->uncertainty,
+             "Also propagate the campaign's uncertainty (machine file `uncertainty`, table "
+             "column `uncertainty`) by Monte Carlo with N draws: u_dx,u_dy,u_dz per point, "
+             "U (k = 2) of the summary; with --align, also of the deviation after the set-up "
+             "(redone in every draw)")
           ->check(CLI::Range(std::size_t{2}, std::size_t{1000000}));
       sub.add_option("--seed", o->seed, "--uncertainty: seed of the draws (same seed, same output)")
           ->capture_default_str();

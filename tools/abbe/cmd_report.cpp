@@ -49,6 +49,8 @@ struct ReportOptions {
   double tool_length = -1.0;
   std::size_t max_points = 5000;
   gcode::DialectOptions dialect;
+  std::size_t uncertainty = 0;  // report predict: Monte Carlo draws (0: none)
+  std::uint64_t seed = 1;
 };
 
 std::vector<model::ModelKind> parse_models(const std::string& m) {
@@ -110,6 +112,8 @@ int run_report_predict(const ReportOptions& o, const GlobalOptions& g) {
   po.step = o.step;
   po.max_points = o.max_points;
   po.dialect = o.dialect;
+  po.uncertainty_draws = o.uncertainty;
+  po.seed = o.seed;
   InputStream input(o.input, "the NC program");
   std::istream* in = &input.stream();
   Progress progress("report: predict", Progress::file_size(o.input), !g.quiet);
@@ -242,6 +246,14 @@ const CommandRegistrar registrar(
           ->capture_default_str();
       predict->add_option("--max-points", o->max_points, "Most points drawn (thinned beyond)")
           ->check(CLI::Range(16, 1000000))
+          ->capture_default_str();
+      predict
+          ->add_option("--uncertainty", o->uncertainty,
+                       "Also propagate the campaign's uncertainty by Monte Carlo with N draws "
+                       "(as `abbe predict --uncertainty`): the band ± U (k = 2) in the deviation "
+                       "plots, the summary figures ± U")
+          ->check(CLI::Range(std::size_t{2}, std::size_t{1000000}));
+      predict->add_option("--seed", o->seed, "--uncertainty: seed of the draws")
           ->capture_default_str();
       predict->add_option("-o,--output", o->output, "HTML file (written atomically), - for stdout")
           ->required();

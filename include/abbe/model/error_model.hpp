@@ -61,6 +61,11 @@ class ErrorModel {
   ErrorModel with_extension(std::shared_ptr<const ErrorExtension> extension) const;
   const ErrorExtension* extension() const { return extension_.get(); }
 
+  // The model `kind` of the same machine (and extension) as this one,
+  // sharing its geometry and resampled tables, which do not depend on the
+  // model: several models of one machine are built at the cost of one.
+  ErrorModel as_kind(ModelKind kind) const;
+
   // The component errors of every axis at the point (also left in data.errors).
   void lookup(const EvalPoint& point, ModelData& data) const;
 

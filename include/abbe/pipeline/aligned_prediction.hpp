@@ -19,6 +19,7 @@
 #include "abbe/pipeline/part_alignment.hpp"
 #include "abbe/pipeline/predict.hpp"
 #include "abbe/pipeline/prediction_summary.hpp"
+#include "abbe/pipeline/stored_prediction.hpp"
 
 namespace abbe::pipeline {
 
@@ -65,6 +66,34 @@ struct PartAlignmentSummary {
   std::size_t datum_points[3] = {0, 0, 0};
   std::vector<ModelAlignment> models;
 };
+
+// The part of a stored prediction and its set-up: the cutting points (every
+// point of a CSV of points), the datum sets among them, and the alignment of
+// one model's deviations. Used once by predict_aligned and once per draw by
+// predict_with_uncertainty with --align.
+class PartSetup {
+ public:
+  PartSetup(const StoredPrediction& stored, const AlignOptions& align, std::string file);
+  // The set-up of the part whose points deviate by e_um[i] (µm, one per stored
+  // point): its rigid motion and the statistics over the part before and after
+  // alignment. Throws abbe::InputError (naming the input file and the
+  // alignment option) when the part or a datum set does not define it.
+  ModelAlignment align(model::ModelKind kind, const std::vector<Eigen::Vector3d>& e_um) const;
+  const std::vector<std::size_t>& part() const { return part_; }
+  // The summary of the alignment, without models.
+  PartAlignmentSummary summary() const;
+
+ private:
+  const StoredPrediction& stored_;
+  AlignMethod method_;
+  std::string file_;
+  std::vector<std::size_t> part_;  // indices of the stored points
+  DatumIndices datums_;            // indices into part_
+  Eigen::Vector3d centroid_ = Eigen::Vector3d::Zero();
+};
+
+// The deviations of model m at every stored point, µm.
+std::vector<Eigen::Vector3d> deviations_um(const StoredPrediction& stored, std::size_t m);
 
 struct AlignedPrediction {
   PredictionSummary summary;

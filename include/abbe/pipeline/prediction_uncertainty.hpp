@@ -6,7 +6,9 @@
 // (GUM Supplement 1): N seeded draws of the campaign
 // (machine::draw_campaign), each evaluated at the same points by the same
 // ModelSet as the plain prediction (docs/models.md, "Uncertainty of the
-// prediction").
+// prediction"). With --align, every draw's part is set up again (best fit or
+// datums), so that the uncertainty of the deviation after alignment is given
+// beside the absolute one.
 #include <Eigen/Core>
 #include <array>
 #include <cstddef>
@@ -19,6 +21,7 @@
 #include "abbe/machine/machine.hpp"
 #include "abbe/model/error_model.hpp"
 #include "abbe/model/model_kind.hpp"
+#include "abbe/pipeline/aligned_prediction.hpp"
 #include "abbe/pipeline/predict.hpp"
 #include "abbe/pipeline/prediction_summary.hpp"
 
@@ -50,6 +53,7 @@ struct GroupUncertainty {
 struct ModelUncertainty {
   model::ModelKind kind = model::ModelKind::ae_arm;
   GroupUncertainty all, cutting, rapid;  // cutting and rapid: programs only
+  GroupUncertainty aligned;              // the part after its set-up (--align only)
 };
 
 struct PredictionUncertainty {
@@ -63,6 +67,7 @@ struct PredictionUncertainty {
 struct UncertainPrediction {
   PredictionSummary summary;  // the same as predict's
   PredictionUncertainty uncertainty;
+  PartAlignmentSummary alignment;  // the same as predict_aligned's; method none without --align
 };
 
 // Every point, after the draws: the models' deviations and |e| (those of the
@@ -70,6 +75,14 @@ struct UncertainPrediction {
 using UncertainSink = std::function<void(
     const model::EvalPoint& point, std::size_t line, const std::vector<model::Deviation>& devs,
     const std::vector<double>& norms_um, const std::vector<Eigen::Vector3d>& u_um)>;
+
+// Every point of an aligned prediction, after the draws: as UncertainSink,
+// with the deviations after alignment (those of predict_aligned) and their
+// standard uncertainties (the part set up again in every draw), µm.
+using AlignedUncertainSink = std::function<void(
+    const model::EvalPoint& point, std::size_t line, const std::vector<model::Deviation>& devs,
+    const std::vector<double>& norms_um, const std::vector<Eigen::Vector3d>& aligned_um,
+    const std::vector<Eigen::Vector3d>& u_um, const std::vector<Eigen::Vector3d>& u_aligned_um)>;
 
 // Throws abbe::InputError on bad input, and (field "uncertainty", naming the
 // machine file) when the machine gives no uncertainty to propagate.
@@ -81,14 +94,25 @@ UncertainPrediction predict_with_uncertainty(
     const PredictionSink& progress, const UncertainSink& sink,
     const std::function<void(std::size_t)>& draw_done = {});
 
+// The same with the part's set-up (`predict --uncertainty N --align …`): the
+// alignment of predict_aligned (same errors for a part or datum set that does
+// not define it), redone in every draw. The absolute u are those of the
+// call above with the same seed.
+UncertainPrediction predict_with_uncertainty(
+    std::istream& in, const std::string& file, const machine::Machine& machine,
+    const PredictOptions& options, const UncertaintyOptions& uncertainty, const AlignOptions& align,
+    const PredictionSink& progress, const AlignedUncertainSink& sink,
+    const std::function<void(std::size_t)>& draw_done = {});
+
 // The summary JSON of `summary_json` with an "uncertainty" member: method,
 // draws, seed, coverage_factor, sources, models[{model, all{points,
 // max_abs_dx_um{value, u, U, interval_95[low, high]}, …}, cutting{…},
-// rapid{…}}].
+// rapid{…}}]. Aligned: the "alignment" member of predict_aligned's summary
+// too, and per model "aligned"{…} (the part after its set-up).
 std::string summary_json(const UncertainPrediction& prediction);
 
-// summary_table followed by the table of the figures with their expanded
-// uncertainty.
+// summary_table (predict_aligned's when aligned) followed by the table of the
+// figures with their expanded uncertainty.
 std::string summary_table(const UncertainPrediction& prediction);
 
 }  // namespace abbe::pipeline

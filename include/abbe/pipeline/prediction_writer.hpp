@@ -12,6 +12,8 @@
 // keys in the model's object).
 // With `uncertainty` (abbe predict --uncertainty N), each model's columns end
 // with the standard uncertainties u_dx,u_dy,u_dz (µm; JSON: the same keys).
+// With both (--uncertainty N --align …), the uncertainties of the deviation
+// after alignment follow: u_adx,u_ady,u_adz.
 #include <fmt/format.h>
 
 #include <array>
@@ -47,6 +49,13 @@ class PredictionWriter {
                        const std::vector<model::Deviation>& devs,
                        const std::vector<double>& norms_um,
                        const std::vector<Eigen::Vector3d>& u_um);
+  // One row of an aligned prediction with uncertainty (both flags set).
+  void write_uncertain(const model::EvalPoint& point, std::size_t line,
+                       const std::vector<model::Deviation>& devs,
+                       const std::vector<double>& norms_um,
+                       const std::vector<Eigen::Vector3d>& aligned_um,
+                       const std::vector<Eigen::Vector3d>& u_um,
+                       const std::vector<Eigen::Vector3d>& u_aligned_um);
   // Writes the trailer (JSON: `summary_json` as the "summary" member) and
   // hands on what is buffered.
   void finish(std::string_view summary_json);
@@ -65,13 +74,14 @@ class PredictionWriter {
   std::vector<model::ModelKind> kinds_;
   std::vector<bool> second_order_;  // per model: writes dx2, dy2, dz2
   ByteSink sink_;
-  std::vector<std::string> json_keys_;       // `, "<model>": {"px": ` per model
-  std::size_t row_max_ = 192;                // bytes an in-place row may take
-  std::vector<Eigen::Vector3d> pred_;        // predicted tool tip per model, mm
-  bool aligned_ = false;                     // adx,ady,adz,ad columns
-  std::vector<Eigen::Vector3d> aligned_um_;  // of the row being written
-  bool uncertain_ = false;                   // u_dx,u_dy,u_dz columns
-  std::vector<Eigen::Vector3d> u_um_;        // of the row being written
+  std::vector<std::string> json_keys_;         // `, "<model>": {"px": ` per model
+  std::size_t row_max_ = 192;                  // bytes an in-place row may take
+  std::vector<Eigen::Vector3d> pred_;          // predicted tool tip per model, mm
+  bool aligned_ = false;                       // adx,ady,adz,ad columns
+  std::vector<Eigen::Vector3d> aligned_um_;    // of the row being written
+  bool uncertain_ = false;                     // u_dx,u_dy,u_dz columns
+  std::vector<Eigen::Vector3d> u_um_;          // of the row being written
+  std::vector<Eigen::Vector3d> u_aligned_um_;  // u_adx,u_ady,u_adz: both flags
   fmt::memory_buffer buf_;
   std::size_t points_ = 0;
   std::array<char, 24> line_text_{};

@@ -30,6 +30,14 @@ struct Series {
   std::vector<std::string> hover;
 };
 
+// The area between two curves, filled (translucent, no outline) under the
+// series: e.g. a value ± its expanded uncertainty.
+struct Band {
+  std::string name;    // legend text; empty: not in the legend
+  std::string colour;  // "#rrggbb"
+  std::vector<double> x, lo, hi;
+};
+
 // A direction drawn as an arrow in the plot's corner, e.g. the X, Y and Z
 // axes of a 3-D projection (dx, dy in data units, only the direction counts).
 struct DirectionKey {
@@ -42,6 +50,7 @@ struct LinePlot {
   std::string title;
   AxisSpec x, y;
   std::vector<Series> series;
+  std::vector<Band> bands;  // drawn first, in the legend after the series
   bool equal_scale = false;  // 1 data unit = the same length on both axes
   std::vector<DirectionKey> directions;
   std::size_t max_hover_targets = 2000;

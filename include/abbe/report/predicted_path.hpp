@@ -20,6 +20,7 @@
 #include "abbe/gcode/interpreter.hpp"
 #include "abbe/machine/machine.hpp"
 #include "abbe/model/model_kind.hpp"
+#include "abbe/pipeline/prediction_uncertainty.hpp"
 
 namespace abbe::report {
 
@@ -34,6 +35,9 @@ struct PredictPathOptions {
   // verify`). 0: every motion counts (as `abbe predict`).
   double min_reversal_mm = 0.0;
   gcode::DialectOptions dialect;  // how the program is written
+  // Monte Carlo draws of the campaign's uncertainty (0: none) and their seed.
+  std::size_t uncertainty_draws = 0;
+  std::uint64_t seed = 1;
   // Called now and then with the bytes of the input consumed so far.
   std::function<void(std::uint64_t)> progress;
 };
@@ -66,6 +70,12 @@ struct PredictedPath {
   // Per model, the points of cutting moves and of rapids (as `abbe predict`).
   std::vector<ModelPathStats> cutting_stats, rapid_stats;
   std::map<std::size_t, std::string> source;  // text of the source lines of kept points
+  // With uncertainty_draws: per model the standard uncertainties of dx, dy,
+  // dz at the kept points (µm), and the summary figures with their
+  // uncertainty; both empty without.
+  std::vector<std::vector<Eigen::Vector3d>> u_um;  // [model][kept point]
+  pipeline::PredictionUncertainty uncertainty;
+  bool has_uncertainty() const { return !u_um.empty(); }
 };
 
 // Streams the program through parser, interpreter, fragmenter and the error
