@@ -75,13 +75,9 @@ MeasuredData read_ballbar(std::istream& in, const std::string& file) {
   std::optional<Circle> last;
   double last_angle = 0.0, clock = 0.0;
   while (csv.next()) {
-    auto field = [&](int k) -> std::optional<CsvField> {  // trimmed, unquoted; nullopt: empty
-      const int c = col[static_cast<std::size_t>(k)];
-      if (c < 0) return std::nullopt;
-      const CsvField& f =
-          csv.field(static_cast<std::size_t>(c), kNames[static_cast<std::size_t>(k)]);
-      if (f.text.empty()) return std::nullopt;
-      return f;
+    auto field = [&](int k) {  // trimmed, unquoted; nullopt: no column or empty
+      const auto i = static_cast<std::size_t>(k);
+      return csv.present_field(col[i], kNames[i]);
     };
     auto required = [&](int k) -> CsvField {
       auto f = field(k);

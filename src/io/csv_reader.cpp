@@ -215,6 +215,13 @@ const CsvField& CsvReader::field(std::size_t index, std::string_view name) const
   return fields_[index];
 }
 
+std::optional<CsvField> CsvReader::present_field(int index, std::string_view name) const {
+  if (index < 0) return std::nullopt;
+  const CsvField& f = field(static_cast<std::size_t>(index), name);
+  if (f.text.empty()) return std::nullopt;
+  return f;
+}
+
 std::optional<double> CsvReader::number(const CsvField& f, std::string_view name) const {
   if (f.text.empty()) return std::nullopt;
   const auto v = parse_csv_number(f.text);

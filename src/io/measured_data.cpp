@@ -40,13 +40,9 @@ MeasuredData read_measured_data(std::istream& in, const std::string& file) {
     csv.fail(1, "header", "a `dn` column needs the normal columns nx, ny, nz");
 
   while (csv.next()) {
-    auto text = [&](int k) -> std::optional<CsvField> {  // trimmed, unquoted
-      const int c = col[static_cast<std::size_t>(k)];
-      if (c < 0) return std::nullopt;
-      const CsvField& f =
-          csv.field(static_cast<std::size_t>(c), kNames[static_cast<std::size_t>(k)]);
-      if (f.text.empty()) return std::nullopt;
-      return f;
+    auto text = [&](int k) {  // trimmed, unquoted; nullopt: no column or empty
+      const auto i = static_cast<std::size_t>(k);
+      return csv.present_field(col[i], kNames[i]);
     };
     auto number = [&](int k) -> std::optional<double> {
       auto f = text(k);

@@ -621,6 +621,21 @@ struct Rates {
   int n_un = 0, un_ambiguous = 0, un_wrong = 0;  // "ambiguous" here: ambiguous or nothing named
   int n_null = 0, null_clean = 0;
   int gain_ok = 0, n_gain = 0;
+
+  // Counts a null case; its tag for the log.
+  std::string add_null(Verdict v) {
+    ++n_null;
+    const bool clean = v == Verdict::none;
+    null_clean += clean ? 1 : 0;
+    return clean ? "null ok" : "null NAMED";
+  }
+  // Counts a case whose effect the design can name; its tag for the log.
+  std::string add_identifiable(Verdict v) {
+    ++n_id;
+    id_right += v == Verdict::right ? 1 : 0;
+    id_wrong += v == Verdict::wrong ? 1 : 0;
+    return v == Verdict::right ? "right" : v == Verdict::wrong ? "WRONG" : "missed";
+  }
 };
 
 Rates sweep(Design design) {
@@ -637,17 +652,9 @@ Rates sweep(Design design) {
     const Case c = run_case(design, h, seed);
     std::string tag;
     if (h.shape == Shape::none) {
-      ++r.n_null;
-      const bool clean = c.verdict == Verdict::none;
-      r.null_clean += clean ? 1 : 0;
-      tag = clean ? "null ok" : "null NAMED";
+      tag = r.add_null(c.verdict);
     } else if (identifiable(design, h) && c.oracle >= kResolvable) {
-      ++r.n_id;
-      r.id_right += c.verdict == Verdict::right ? 1 : 0;
-      r.id_wrong += c.verdict == Verdict::wrong ? 1 : 0;
-      tag = c.verdict == Verdict::right   ? "right"
-            : c.verdict == Verdict::wrong ? "WRONG"
-                                          : "missed";
+      tag = r.add_identifiable(c.verdict);
       ++r.n_gain;
       r.gain_ok += c.gain_ok ? 1 : 0;
     } else {
@@ -742,16 +749,9 @@ TEST(DiagnoseDesigns, GridWithOutliers) {
     independent_ok += iok ? 1 : 0;
     std::string tag;
     if (h.shape == Shape::none) {
-      ++r.n_null;
-      r.null_clean += c.verdict == Verdict::none ? 1 : 0;
-      tag = c.verdict == Verdict::none ? "null ok" : "null NAMED";
+      tag = r.add_null(c.verdict);
     } else if (c.oracle >= kResolvable) {
-      ++r.n_id;
-      r.id_right += c.verdict == Verdict::right ? 1 : 0;
-      r.id_wrong += c.verdict == Verdict::wrong ? 1 : 0;
-      tag = c.verdict == Verdict::right   ? "right"
-            : c.verdict == Verdict::wrong ? "WRONG"
-                                          : "missed";
+      tag = r.add_identifiable(c.verdict);
     } else {
       ++r.n_un;
       r.un_wrong += c.verdict == Verdict::wrong ? 1 : 0;

@@ -63,6 +63,10 @@ class CsvReader {
   // The field at header index `index` of the current record, or a failure
   // naming `name` when the record is shorter.
   const CsvField& field(std::size_t index, std::string_view name) const;
+  // The field at header index `index` (as columns() gives it: −1 for a
+  // column the header does not have), nullopt when there is no such column
+  // or the field is empty; a failure naming `name` when the record is shorter.
+  std::optional<CsvField> present_field(int index, std::string_view name) const;
   // The field as a finite number (a leading '+' allowed); nullopt when it is
   // empty; a failure naming `name` and the column when it is not a number.
   std::optional<double> number(const CsvField& f, std::string_view name) const;
