@@ -123,6 +123,7 @@ std::string report_json(const Diagnosis& d) {
     e["shared_fraction"] = st.shared_fraction;
     e["description"] = t.description();
     e["ambiguous_with"] = st.ambiguous_with;
+    if (!st.separate_by.empty()) e["separate_by"] = st.separate_by;
     // Not a name: the design cannot tell this effect from its alternatives
     // (ambiguous), or its uncertainty exceeds its value (not_significant).
     e["status"] = status_of(st);
@@ -206,6 +207,8 @@ std::string report_text(const Diagnosis& d) {
         for (const auto& x : st.ambiguous_with) a += (a.empty() ? "" : "; ") + x;
         s += fmt::format("  {:<14} AMBIGUOUS (not a name: this design cannot tell it from): {}\n",
                          "", a);
+        if (!st.separate_by.empty())
+          s += fmt::format("  {:<14} to tell them apart: {}\n", "", st.separate_by);
       }
     }
   }

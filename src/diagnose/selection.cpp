@@ -8,6 +8,7 @@
 #include <numeric>
 #include <random>
 
+#include "abbe/diagnose/separation.hpp"
 #include "abbe/diagnose/statistics.hpp"
 #include "abbe/io/units.hpp"
 
@@ -178,6 +179,7 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
   Mat X(n, 0);
   std::vector<Term> chosen;
   std::vector<std::vector<std::string>> ambiguous;
+  std::vector<std::string> separations;  // per chosen term: what would tell it from its rivals
   for (const Term& t : cs.datum) {
     const Mat C = term_columns(pb, t);
     // Invisible in these data: the measured directions see (almost) none of
@@ -192,6 +194,7 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     X = std::move(Xn);
     chosen.push_back(t);
     ambiguous.emplace_back();
+    separations.emplace_back();
   }
   const std::size_t n_datum = chosen.size();
   const Mat Qd = Q;  // the datum's span
@@ -469,6 +472,7 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     Mat C;
     double d_pick = 0.0;
     std::vector<std::string> amb;
+    std::string separation;
     if (best_named &&
         (!have_generic || combination_wins || best_named->d >= o.name_ratio * g_best_d)) {
       pick = best_named->c->term;
@@ -476,20 +480,24 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
       d_pick = best_named->d;
       // Ambiguity: near-equal candidates whose fitted contributions coincide.
       const Vec fb = contribution(*best_named->c);
+      std::vector<Term> rivals;
       // Parsimony: an alternative that costs more (columns, plus the cost of
       // a period or time constant found by search) and explains no more is
       // not a rival explanation of the same structure.
       for (const Score& s : scores) {
         if (&s == best_named || s.d < 0.9 * best_named->d) continue;
         if (cost(s.c->term) > cost(best_named->c->term)) continue;
-        if (abs_correlation(fb, contribution(*s.c)) > o.ambiguous_corr)
+        if (abs_correlation(fb, contribution(*s.c)) > o.ambiguous_corr) {
           amb.push_back(s.c->term.label());
+          rivals.push_back(s.c->term);
+        }
       }
       for (double period : best_named->c->aliases) {
         Term alias = pick;
         alias.period_mm = period;
         amb.push_back(alias.label());
       }
+      separation = separating_measurement(pick, rivals, best_named->c->aliases);
     } else if (have_generic) {
       pick = g_best;
       C = term_columns(pb, pick);
@@ -544,6 +552,7 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
       C = best_named->c->C;
       d_pick = best_named->d;
       amb.clear();
+      separation.clear();
       Xn.resize(n, X.cols() + C.cols());
       Xn << X, C;
       cv = cross_validated_sse(pb, Xn, y, folds, o.folds);
@@ -568,6 +577,7 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     }
     chosen.push_back(pick);
     ambiguous.push_back(amb);
+    separations.push_back(separation);
     // A chosen fixed candidate cannot be chosen again.
     named.erase(std::remove_if(named.begin(), named.end(),
                                [&](const Cached& c) { return c.term.label() == pick.label(); }),
@@ -660,6 +670,7 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
       st.explained_fraction = of > 0.0 ? drop / of : 0.0;
       st.unique_fraction = st.explained_fraction;
       st.ambiguous_with = ambiguous[i];
+      if (!st.ambiguous_with.empty()) st.separate_by = separations[i];
       col += k;
       if (i < n_datum) {
         res.datum.push_back(std::move(st));

@@ -115,6 +115,9 @@ TEST(DiagnoseDemo, OnePassCannotTellTimeFromZ) {
   bool scale_z = false;
   for (const std::string& a : first.ambiguous_with) scale_z = scale_z || a == "scale Z";
   EXPECT_TRUE(scale_z) << first.term.label() << " has no alternative scale Z";
+  // And it says what would tell them apart: time taken apart from Z.
+  EXPECT_NE(first.separate_by.find("another order or after a pause"), std::string::npos)
+      << first.separate_by;
 }
 
 }  // namespace

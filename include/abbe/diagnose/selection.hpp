@@ -77,6 +77,8 @@ struct SelectedTerm {
   // parameter) is not below the value: not a name (diagnosis.cpp).
   bool significant = true;
   std::vector<std::string> ambiguous_with;
+  // With ambiguous_with: what measurement would tell them apart (separation.hpp).
+  std::string separate_by;
 };
 
 struct SelectionResult {
