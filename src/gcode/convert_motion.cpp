@@ -123,10 +123,15 @@ Eigen::Vector3d motion_end(ExecState& st, const BlockPlan& b) {
   return end;
 }
 
+void note_motion_code(ExecState& st, int motion) {
+  if (!is_cycle(motion)) st.cycle_initial_level_set = false;
+  if (motion >= gcode_id(0) && motion <= gcode_id(3)) st.fanuc_group01 = motion;
+}
+
 void convert_motion(ExecState& st, const BlockPlan& b, const Emit& emit) {
   const int motion = b.motion;
   if (motion == -1) return;
-  if (!is_cycle(motion)) st.cycle_initial_level_set = false;
+  note_motion_code(st, motion);
   const Eigen::Vector3d end = motion_end(st, b);
   if (motion == gcode_id(0) || motion == gcode_id(1)) {
     convert_straight(st, b, end, emit);
@@ -137,7 +142,6 @@ void convert_motion(ExecState& st, const BlockPlan& b, const Emit& emit) {
   } else if (motion == gcode_id(80)) {
     st.motion_mode = st.config.dialect.dialect == Dialect::fanuc ? st.fanuc_group01 : gcode_id(80);
   }
-  if (motion >= gcode_id(0) && motion <= gcode_id(3)) st.fanuc_group01 = motion;
 }
 
 Motion straight_motion(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& end) {

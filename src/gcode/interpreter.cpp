@@ -334,16 +334,23 @@ void Interpreter::execute_evaluated(const Block& written, std::string_view raw_l
     detail::check_comp_block(st, b);
   }
 
-  // The plain straight block (most of a CAM program) goes from its end
-  // point to the sink directly; what it skips acts only on codes, words or
-  // compensation states it cannot have.
+  // convert, in rs274ngc's order of execution. Every step before the motion
+  // acts only on a code of its group (G or M); a block whose only G code is
+  // a motion code and that has no M code (most of a CAM program) needs only
+  // its F, S, T words and the motion.
+  constexpr std::uint32_t kMotionGroup = 1U << static_cast<unsigned>(GGroup::motion);
+  const bool modes = (codes.g_mask & ~kMotionGroup) != 0 || codes.m_mask != 0;
+  if (!modes && (codes.has('F') || codes.has('S') || codes.has('T')))
+    detail::convert_feed_speed_tool(st, b);
+
+  // The plain straight block goes from its end point to the sink directly;
+  // what it skips acts only on codes, words or compensation states it
+  // cannot have.
   if (plain && (b.motion == gcode_id(0) || b.motion == gcode_id(1)) && st.comp.queue.empty() &&
       !st.comp.exit_pending) {
-    if (codes.has('F') || codes.has('S') || codes.has('T')) detail::convert_feed_speed_tool(st, b);
-    st.cycle_initial_level_set = false;
+    detail::note_motion_code(st, b.motion);
     const Eigen::Vector3d end = detail::motion_end(st, b);
     Motion m = detail::straight_motion(st, b, end);
-    st.fanuc_group01 = b.motion;
     st.pos = end;
     detail::stamp_motion(st, m, block.line, 0);
     detail::deliver_motion(m, block, ctx, sink);
@@ -370,12 +377,6 @@ void Interpreter::execute_evaluated(const Block& written, std::string_view raw_l
   };
   const detail::Emit emit = detail::make_hook(emit_motion);
 
-  // convert, in rs274ngc's order of execution. Every step before the motion
-  // acts only on a code of its group (G or M); a block whose only G code is
-  // a motion code and that has no M code (most of a CAM program) needs only
-  // its F, S, T words and the motion.
-  constexpr std::uint32_t kMotionGroup = 1U << static_cast<unsigned>(GGroup::motion);
-  const bool modes = (codes.g_mask & ~kMotionGroup) != 0 || codes.m_mask != 0;
   if (modes) {
     detail::convert_feed_mode(st, b);
     detail::convert_feed_speed_tool(st, b);
@@ -391,8 +392,6 @@ void Interpreter::execute_evaluated(const Block& written, std::string_view raw_l
     detail::convert_setup(st, b);
     detail::convert_home(st, b, emit);
     detail::convert_axis_offsets(st, b);
-  } else if (codes.has('F') || codes.has('S') || codes.has('T')) {
-    detail::convert_feed_speed_tool(st, b);
   }
   detail::convert_motion(st, b, emit);
   if (modes) detail::convert_stop(st, b);

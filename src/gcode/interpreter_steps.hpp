@@ -219,6 +219,10 @@ void comp_arc(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& end,
 void comp_flush(ExecState& st);
 void comp_enqueue_dwell(ExecState& st, const Motion& m);
 
+// What every motion code leaves behind before it is converted: a motion
+// other than a canned cycle ends the cycles' initial level; G0-G3 stay the
+// Fanuc group-01 code that G80 returns to.
+void note_motion_code(ExecState& st, int motion);
 // The end point of the block's motion in the program frame (rs274ngc's
 // find_ends: axis words, G90/G91, G53, polar words).
 Eigen::Vector3d motion_end(ExecState& st, const BlockPlan& b);
