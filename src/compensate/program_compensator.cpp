@@ -207,12 +207,18 @@ class Compensator final : public detail::CycleHost {
     pos_after_ = interp_.program_position();
     // Fragment every motion (keeps the direction state as in predict).
     points_.assign(motions_.size(), {});
+    std::size_t block_points = 0;
     for (std::size_t i = 0; i < motions_.size(); ++i) {
       const Vector3d start = motions_[i].start;
       try {
         fragmenter_.add(motions_[i], [&](const path::PathPoint& pp) {
           last_point_dir_ = pp.dir;
           if (points_[i].empty() && pp.p == start && (pp.p - motions_[i].end).norm() > 0.0) return;
+          if (++block_points > o_.max_block_points)
+            throw gcode::MotionRefused(fmt::format(
+                "the block's motions need more than {} path points at step {} mm (compensate "
+                "holds one block in memory; a larger --step takes it)",
+                o_.max_block_points, o_.step));
           points_[i].push_back(pp);
         });
       } catch (const gcode::MotionRefused& e) {

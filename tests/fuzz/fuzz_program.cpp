@@ -22,6 +22,10 @@
 
 namespace {
 
+constexpr std::size_t kMotionBudget = 200'000;
+constexpr std::size_t kPointBudget = 1'000'000;
+struct OverBudget {};
+
 void check(bool ok) {
   if (!ok) __builtin_trap();
 }
@@ -110,22 +114,35 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   // The whole front end: parser, control flow and interpreter. Loops are
   // bounded by a small limit so that an input spends its time on variety,
   // not on one long loop (the limit itself is what a hang would defeat).
+  // Programs that expand into more motions or path points than the budgets
+  // below (a canned cycle with L 70000 inside a loop, a 10 km move) are
+  // valid but slow; the input is dropped there, as the loop limit does.
   std::istringstream in(text);
   abbe::gcode::InterpreterConfig config;
   config.dialect.loop_limit = 10'000;
+  std::size_t motions = 0;
   try {
-    abbe::gcode::run_program(in, "fuzz.nc", config, [](const abbe::gcode::Motion&) {});
+    abbe::gcode::run_program(in, "fuzz.nc", config, [&](const abbe::gcode::Motion&) {
+      if (++motions > kMotionBudget) throw OverBudget{};
+    });
   } catch (const abbe::InputError&) {
     return 0;  // compensate would refuse it at the same line
+  } catch (const OverBudget&) {
+    return 0;
   }
 
   // Through the fragmenter, as `abbe path` with the sample machine.
   const Machines& m = machines();
+  std::size_t points = 0;
   try {
     std::istringstream again(text);
     abbe::pipeline::run_path(again, "fuzz.nc", config_of(m.sample), abbe::pipeline::PathOptions{},
-                             [](const abbe::path::PathPoint&) {});
+                             [&](const abbe::path::PathPoint&) {
+                               if (++points > kPointBudget) throw OverBudget{};
+                             });
   } catch (const abbe::InputError&) {
+  } catch (const OverBudget&) {
+    return 0;
   }
 
   // compensate_program: all-zero tables change nothing; the sample machine

@@ -240,6 +240,26 @@ TEST(CompensateProgram, RefusesBackBoringByName) {
   }
 }
 
+TEST(CompensateProgram, RefusesABlockOverThePointBudgetAtItsLine) {
+  // A drilling cycle repeated 400 times: 400 holes of 7 mm depth, two points
+  // each at step 5 mm (plus the moves between them) is over a budget of 1000
+  // points; with the budget raised it is compensated.
+  const std::string program =
+      "G21 G90\nG0 X-100 Y-100 Z-200 F100 S1000 M3\nG91 G81 X0.1 Y0 Z-5 R-2 L400\nG80\nM2\n";
+  CompensateOptions o;
+  o.max_block_points = 1000;
+  try {
+    compensate_text(program, "many.nc", kSample, o);
+    FAIL() << "a block over the point budget was compensated";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().line, 3u);
+    EXPECT_NE(std::string(e.what()).find("more than 1000 path points"), std::string::npos)
+        << e.what();
+  }
+  o.max_block_points = 100'000;
+  EXPECT_EQ(lines_of(compensate_text(program, "many.nc", kSample, o).text).size(), 5u);
+}
+
 // 2 000 blocks keep the Debug test short; a 4 000-block run is in
 // tests/cli/compensate.cmake (cli_compensate_generated), 1 M blocks in
 // docs/compensation.md.

@@ -42,6 +42,11 @@ struct CompensateOptions {
   double min_segment = 0.01;
   bool spread_takeups = false;
   bool renumber = false;  // give inserted pieces N numbers (previous N + piece index)
+  // Compensate holds the path points of one block in memory: a block whose
+  // motions need more points than this at `step` (a canned cycle with a large
+  // L, a typo in a coordinate) is refused at its line rather than exhausting
+  // memory.
+  std::size_t max_block_points = 1'000'000;
   // Written as comment lines at the top of the output (compensate/provenance.hpp).
   std::optional<Provenance> provenance;
   SolverOptions solver;
