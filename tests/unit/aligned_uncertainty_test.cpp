@@ -25,7 +25,6 @@ namespace {
 using machine::Machine;
 using machine::MachineSpec;
 
-using Row = test::McRow;
 using test::McRun;
 
 McRun run(const Machine& m, const std::string& points_csv, std::size_t draws, std::uint64_t seed,
@@ -78,7 +77,7 @@ TEST(AlignedUncertainty, RigidBodyOnlyUncertaintyLeavesTheAlignedPartCertain) {
   for (const AlignOptions& align : {best_fit_options(), datum_options()}) {
     const McRun r = run(m, block_points(), 200, 1, align);
     ASSERT_EQ(r.rows.size(), 20u);
-    for (const Row& row : r.rows) {
+    for (const test::McRow& row : r.rows) {
       EXPECT_GT(row.u.norm(), 0.02) << to_string(align.method);
       EXPECT_LT(row.u_aligned.maxCoeff(), 1e-6) << to_string(align.method);
     }
@@ -143,7 +142,7 @@ TEST(AlignedUncertainty, DoublingTheDrawsChangesAlignedULessThanFivePercent) {
   const Machine m(spec);
   const McRun a = run(m, test::kPoints, 2000, 1, best_fit_options());
   const McRun b = run(m, test::kPoints, 4000, 1, best_fit_options());
-  auto u = [](const Row& r) { return r.u_aligned; };
+  auto u = [](const test::McRow& r) { return r.u_aligned; };
   test::expect_converged(test::column(a.rows, u), test::column(b.rows, u),
                          a.prediction.uncertainty.models[0].aligned,
                          b.prediction.uncertainty.models[0].aligned);
@@ -156,7 +155,7 @@ TEST(AlignedUncertainty, SeededAndReproducible) {
   const McRun a = run(m, block_points(), 40, 7, datum_options());
   const McRun b = run(m, block_points(), 40, 7, datum_options());
   const McRun c = run(m, block_points(), 40, 8, datum_options());
-  auto u = [](const Row& r) { return r.u_aligned; };
+  auto u = [](const test::McRow& r) { return r.u_aligned; };
   test::expect_seeded(test::column(a.rows, u), test::column(b.rows, u), test::column(c.rows, u),
                       summary_json(a.prediction), summary_json(b.prediction));
 }
