@@ -113,12 +113,15 @@ bool is_plain_block(const ExecState& st, const BlockCodes& c) {
   constexpr auto bit = [](char letter) { return 1U << BlockCodes::letter_index(letter); };
   constexpr std::uint32_t kPlainLetters =
       bit('X') | bit('Y') | bit('Z') | bit('F') | bit('S') | bit('T');
-  if ((c.g_mask & ~kMotionGroup) != 0 || c.m_mask != 0 || (c.letter_mask & ~kPlainLetters) != 0 ||
-      st.comp.side != 0)
+  constexpr std::uint32_t kArcLetters = bit('I') | bit('J') | bit('K') | bit('R') | bit('P');
+  if ((c.g_mask & ~kMotionGroup) != 0 || c.m_mask != 0 ||
+      (c.letter_mask & ~(kPlainLetters | kArcLetters)) != 0 || st.comp.side != 0)
     return false;
   const CodeWord* code = c.group(GGroup::motion);
   const int motion = code ? code->code : c.has_axis_word() ? st.motion_mode : -1;
-  return motion == -1 || motion == gcode_id(0) || motion == gcode_id(1);
+  if (motion == gcode_id(2) || motion == gcode_id(3)) return true;
+  return (c.letter_mask & kArcLetters) == 0 &&
+         (motion == -1 || motion == gcode_id(0) || motion == gcode_id(1));
 }
 
 BlockPlan plan_plain_block(const ModalState& st, const BlockCodes& c, const BlockContext& ctx) {
@@ -343,13 +346,20 @@ void Interpreter::execute_evaluated(const Block& written, std::string_view raw_l
   if (!modes && (codes.has('F') || codes.has('S') || codes.has('T')))
     detail::convert_feed_speed_tool(st, b);
 
-  // The plain straight block goes from its end point to the sink directly;
-  // what it skips acts only on codes, words or compensation states it
-  // cannot have.
-  if (plain && (b.motion == gcode_id(0) || b.motion == gcode_id(1)) && st.comp.queue.empty() &&
-      !st.comp.exit_pending) {
+  // The plain block's one motion goes from its end point to the sink
+  // directly; what it skips acts only on codes, words or compensation
+  // states it cannot have.
+  if (plain && b.motion != -1 && st.comp.queue.empty() && !st.comp.exit_pending) {
     detail::note_motion_code(st, b.motion);
     const Eigen::Vector3d end = detail::motion_end(st, b);
+    if (b.motion == gcode_id(2) || b.motion == gcode_id(3)) {
+      auto emit_arc = [&](Motion& m) {
+        detail::stamp_motion(st, m, block.line, 0);
+        detail::deliver_motion(m, block, ctx, sink);
+      };
+      detail::convert_arc(st, b, end, detail::make_hook(emit_arc));
+      return;
+    }
     Motion m = detail::straight_motion(st, b, end);
     st.pos = end;
     detail::stamp_motion(st, m, block.line, 0);

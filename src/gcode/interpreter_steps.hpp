@@ -174,10 +174,13 @@ const char* plane_name(Plane plane);
 
 // check: the motion of the block and the word-use rules.
 BlockPlan plan_block(const ModalState& st, const BlockCodes& codes, const BlockContext& ctx);
-// A plain block (most of a CAM program): at most a G0 or G1 code, no M
-// code, only X Y Z F S T words, cutter compensation off. Nothing that
-// plan_block, check_rotary_words or check_comp_block refuse can occur in
-// it, so plan_plain_block only finds its motion (as plan_block does).
+// A plain block (most of a CAM program): no G code but a motion code, no M
+// code, cutter compensation off, and either a straight move (G0/G1, or
+// none) with only X Y Z F S T words, or an arc (G2/G3) with only X Y Z I J
+// K R P F S T words. Nothing that plan_block, check_rotary_words or
+// check_comp_block refuse can occur in it (the arc's I J K R P are the
+// words G2/G3 use), so plan_plain_block only finds its motion (as
+// plan_block does).
 bool is_plain_block(const ExecState& st, const BlockCodes& codes);
 BlockPlan plan_plain_block(const ModalState& st, const BlockCodes& codes, const BlockContext& ctx);
 // check: rotary words A, B, C that do not move (warned once), or an error.

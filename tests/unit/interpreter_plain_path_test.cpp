@@ -1,6 +1,7 @@
-// The interpreter's plain-block path (a block with at most G0/G1, no M code
-// and only X Y Z F S T words goes from its end point to the sink without the
-// mode steps) must give exactly what the general path gives. The general
+// The interpreter's plain-block path (a block with no G code but a motion
+// code, no M code, and only X Y Z F S T words for G0/G1 or X Y Z I J K R P
+// F S T for G2/G3, goes from its end point to the sink without the mode
+// steps) must give exactly what the general path gives. The general
 // path is forced by adding G97 to every block: a code of its own modal group
 // (spindle speed mode) that changes no motion, so the block is no longer
 // plain but means the same. Motions are compared field by field, bit for
@@ -197,6 +198,42 @@ TEST(InterpreterPlainPath, SameMotionsAsTheGeneralPathOnRandomPrograms) {
     ASSERT_GT(plain.motions.size(), 100u);
     expect_same_runs(plain, general, "seed " + std::to_string(seed));
   }
+}
+
+TEST(InterpreterPlainPath, SameMotionsAndRefusalsOnArcBlocks) {
+  // Arcs in every plane and format, modal and explicit, with turns, in
+  // inverse time and incremental centres, and the arc words' refusals.
+  const std::vector<std::string> programs = {
+      "G0 X0 Y0 Z0\nG2 X10 Y0 R5 F100\nG3 X0 Y0 R-5\n",
+      "G0 X0 Y0 Z0\nG2 X10 Y0 I5 J0 F100\nX0 Y0 I-5 J0\nG3 X10 Y0 I5 J0 Z-2 S900 T2\n",
+      "G0 X0 Y0 Z0\nG2 X10 Y0 I5 J0 P3 F100\n",
+      "G0 X0 Y0 Z0\nG3 I5 J0 F100\n",
+      "G18 G0 X0 Y0 Z0\nG2 X10 Z0 I5 K0 F100\nG19 G3 Y10 Z0 J5 K0\n",
+      "G91.1 G0 X0 Y0 Z0\nG90.1 G2 X10 Y0 I5 J0 F100\nG91.1 G2 X0 Y0 I-5 J0\n",
+      "G91 G0 X1 Y1 Z1\nG2 X10 Y0 I5 J0 F100\nG3 X-10 Y0 R5\n",
+      "G0 X0 Y0 Z0\nG93\nG2 X10 Y0 I5 J0 F2\nG3 X0 Y0 I-5 J0 F3\n",
+      "G20 G0 X0 Y0 Z0\nG2 X1 Y0 I0.5 J0 F10\n",
+      "G0 X0 Y0 Z0\nG1 X5 I3 F100\n",
+      "G0 X0 Y0 Z0\nG1 X5 F100\nX6 R2\n",
+      "G0 X0 Y0 Z0\nG2 X10 Y0 R5 I5 F100\n",
+      "G0 X0 Y0 Z0\nG2 X10 Y0 I5 K1 F100\n",
+      "G0 X0 Y0 Z0\nG2 X10 Y0 F100\n",
+      "G0 X0 Y0 Z0\nG2 X10 Y0 I5 J0 P0.5 F100\n",
+      "G0 X0 Y0 Z0\nG2 X10 Y0 I5 J0 F100\nI5 J0\n",
+      "G0 X0 Y0 Z0\nG2 X10 Y0 I5 J0\n",
+      "G0 X0 Y0 Z0\nG2 X10 Y0 I3 J0 F100\n",
+      "G0 X0 Y0 Z0\nG2 X10 Y0 R2 F100\n",
+      "G0 X0 Y0 Z0\nG0 X10 Y0 I5\n",
+      "G0 X0 Y0 Z0\nG2 X1e8 Y0 I5e7 J0 F100\n",
+  };
+  int refused = 0;
+  for (const std::string& text : programs) {
+    const ProgramRun plain = run(text, false);
+    const ProgramRun general = run(text, true);
+    expect_same_runs(plain, general, text);
+    refused += !plain.error.empty();
+  }
+  EXPECT_GE(refused, 10);  // the refusals above are compared, not only the motions
 }
 
 TEST(InterpreterPlainPath, TheComparisonSeesADifference) {
