@@ -9,6 +9,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "abbe/io/input_error.hpp"
 #include "text_block_reader.hpp"
@@ -240,6 +241,56 @@ TEST(Parser, NumbersConvertLikeStrtod) {
     const Block b = parse("X" + text);
     ASSERT_EQ(b.words.size(), 1U) << text;
     EXPECT_EQ(b.words[0].value, std::strtod(text.c_str(), nullptr)) << text;
+  }
+}
+
+TEST(Parser, NumbersConvertLikeStrtodInsideALine) {
+  // Numbers of every length followed by more of the line, several in one
+  // line, must convert as alone.
+  std::mt19937_64 rng(7);
+  for (int i = 0; i < 20000; ++i) {
+    std::string line;
+    std::vector<std::string> texts;
+    for (int w = 0; w < 3; ++w) {
+      std::string text = (rng() % 2) ? "-" : "";
+      const int n_int = static_cast<int>(rng() % 22);
+      const int n_frac = static_cast<int>(rng() % 26);
+      for (int k = 0; k < n_int; ++k) text += static_cast<char>('0' + rng() % 10);
+      if (n_frac > 0 || n_int == 0) text += '.';
+      for (int k = 0; k < std::max(n_frac, n_int == 0 ? 1 : 0); ++k)
+        text += static_cast<char>('0' + rng() % 10);
+      line += std::string(1, "XYZ"[w]) + text + (rng() % 2 ? " " : "");
+      texts.push_back(text);
+    }
+    line += "(a comment after the numbers)";
+    const Block b = parse(line);
+    ASSERT_EQ(b.words.size(), 3U) << line;
+    for (std::size_t w = 0; w < 3; ++w)
+      EXPECT_EQ(b.words[w].value, std::strtod(texts[w].c_str(), nullptr)) << line;
+  }
+}
+
+TEST(Parser, ANumberEndsAtTheFirstByteThatIsNotADigit) {
+  // Every byte value after "12": a digit continues the number, '.' starts
+  // the fraction, anything else ends it (or the line is refused).
+  for (int c = 0; c < 256; ++c) {
+    const std::string line = "X12" + std::string(1, static_cast<char>(c)) + "45678901 Y2";
+    double value = 0.0;
+    try {
+      const Block b = parse(line);
+      ASSERT_FALSE(b.words.empty());
+      value = b.words[0].value;
+    } catch (const InputError&) {
+      EXPECT_FALSE(c >= '0' && c <= '9') << c;
+      EXPECT_NE(c, '.');
+      continue;
+    }
+    if (c >= '0' && c <= '9')
+      EXPECT_EQ(value, std::strtod(line.substr(1, 11).c_str(), nullptr)) << c;
+    else if (c == '.')
+      EXPECT_EQ(value, 12.45678901);
+    else
+      EXPECT_EQ(value, 12.0) << c;
   }
 }
 
