@@ -119,7 +119,8 @@ bool is_plain_block(const ExecState& st, const BlockCodes& c) {
     return false;
   const CodeWord* code = c.group(GGroup::motion);
   const int motion = code ? code->code : c.has_axis_word() ? st.motion_mode : -1;
-  if (motion == gcode_id(2) || motion == gcode_id(3)) return true;
+  // rs274ngc: the move just after G40 must be straight (check_comp_block).
+  if (motion == gcode_id(2) || motion == gcode_id(3)) return !st.comp.exit_pending;
   return (c.letter_mask & kArcLetters) == 0 &&
          (motion == -1 || motion == gcode_id(0) || motion == gcode_id(1));
 }
@@ -176,7 +177,7 @@ void stamp_motion(const ExecState& st, Motion& m, std::size_t line, std::uint32_
   m.tool = st.selected_tool;
 }
 
-void deliver_motion(Motion& m, const Block& block, const BlockContext& ctx,
+void deliver_motion(ExecState& st, Motion& m, const Block& block, const BlockContext& ctx,
                     const MotionSink& sink) {
   double far = std::max(m.start.cwiseAbs().maxCoeff(), m.end.cwiseAbs().maxCoeff());
   if (m.kind == MotionKind::arc) far = std::max(far, m.center.cwiseAbs().maxCoeff());
@@ -184,6 +185,7 @@ void deliver_motion(Motion& m, const Block& block, const BlockContext& ctx,
     ctx.fail(motion_anchor(block), fmt::format("the motion reaches a coordinate of {:g} mm, "
                                                "beyond the bound of ±{:g} mm",
                                                far, kMaxCoordinateMm));
+  ++st.delivered;
   try {
     sink(m);
   } catch (const MotionRefused& e) {
@@ -217,6 +219,7 @@ const Block& Interpreter::block_read() const {
   return state_->read_block ? *state_->read_block : kNone;
 }
 bool Interpreter::program_ended() const { return state_->ended; }
+std::size_t Interpreter::motions_delivered() const { return state_->delivered; }
 bool Interpreter::inch() const { return state_->inch; }
 bool Interpreter::incremental() const { return state_->incremental; }
 bool Interpreter::arc_centre_absolute() const { return state_->arc_centre_absolute; }
@@ -272,7 +275,10 @@ void Interpreter::execute(const Block& written, std::string_view raw_line, const
 void Interpreter::finish(const MotionSink& sink) {
   detail::ExecState& st = *state_;
   if (st.comp.queue.empty()) return;
-  auto deliver = [&](Motion& m) { sink(m); };
+  auto deliver = [&](Motion& m) {
+    ++st.delivered;
+    sink(m);
+  };
   st.deliver = detail::make_hook(deliver);
   detail::comp_flush(st);
   st.deliver = {};
@@ -355,7 +361,7 @@ void Interpreter::execute_evaluated(const Block& written, std::string_view raw_l
     if (b.motion == gcode_id(2) || b.motion == gcode_id(3)) {
       auto emit_arc = [&](Motion& m) {
         detail::stamp_motion(st, m, block.line, 0);
-        detail::deliver_motion(m, block, ctx, sink);
+        detail::deliver_motion(st, m, block, ctx, sink);
       };
       detail::convert_arc(st, b, end, detail::make_hook(emit_arc));
       return;
@@ -363,12 +369,12 @@ void Interpreter::execute_evaluated(const Block& written, std::string_view raw_l
     Motion m = detail::straight_motion(st, b, end);
     st.pos = end;
     detail::stamp_motion(st, m, block.line, 0);
-    detail::deliver_motion(m, block, ctx, sink);
+    detail::deliver_motion(st, m, block, ctx, sink);
     return;
   }
 
   std::uint32_t sub = 0;
-  auto deliver = [&](Motion& m) { detail::deliver_motion(m, block, ctx, sink); };
+  auto deliver = [&](Motion& m) { detail::deliver_motion(st, m, block, ctx, sink); };
   st.deliver = detail::make_hook(deliver);
   auto stamp = [&](Motion& m) { detail::stamp_motion(st, m, block.line, sub++); };
   st.stamp = detail::make_hook(stamp);

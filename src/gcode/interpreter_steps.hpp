@@ -86,6 +86,7 @@ MotionHook make_hook(F& f) {
 // The modal state with the configuration it is read against.
 struct ExecState : ModalState {
   InterpreterConfig config;
+  std::size_t delivered = 0;  // motions handed to a sink
   std::string file;
   Block adapted;  // the block in RS274/NGC when the program is in another dialect
   const Block* read_block = nullptr;  // what the last execute() read
@@ -238,7 +239,8 @@ void stamp_motion(const ExecState& st, Motion& m, std::size_t line, std::uint32_
 // Hands a finished motion to the sink: a coordinate beyond the bound, or a
 // sink's MotionRefused, is an InputError at the block's first axis, centre
 // or radius word.
-void deliver_motion(Motion& m, const Block& block, const BlockContext& ctx, const MotionSink& sink);
+void deliver_motion(ExecState& st, Motion& m, const Block& block, const BlockContext& ctx,
+                    const MotionSink& sink);
 
 // The motion kinds of convert_motion (end: the end point in the program frame).
 void convert_straight(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& end,

@@ -115,7 +115,10 @@ class Runner {
   }
 
   // Motions cutter radius compensation still holds back at the end.
-  void finish() { interpreter_.finish(counting_sink_); }
+  void finish() {
+    interpreter_.finish(sink_);
+    stats_.motions = interpreter_.motions_delivered();
+  }
 
   void run(std::istream& in, const std::string& file) {
     BlockReader reader(in, file);
@@ -176,7 +179,7 @@ class Runner {
         }
       }
     }
-    interpreter_.execute_evaluated(block, text, counting_sink_);
+    interpreter_.execute_evaluated(block, text, sink_);
   }
 
   const StoredLine& line_at(const Place& at) const { return *at.source->lines[at.index]; }
@@ -533,10 +536,6 @@ class Runner {
   const MotionSink& sink_;
   ProgramStats& stats_;
   std::size_t current_line_ = 0;  // line of the block being executed (#<_line>)
-  MotionSink counting_sink_ = [this](const Motion& m) {
-    ++stats_.motions;
-    sink_(m);
-  };
   ParameterStore parameters_;
   Source main_;
   std::vector<std::unique_ptr<Source>> sub_files_;

@@ -224,7 +224,9 @@ TEST(InterpreterPlainPath, SameMotionsAndRefusalsOnArcBlocks) {
       "G0 X0 Y0 Z0\nG2 X10 Y0 I3 J0 F100\n",
       "G0 X0 Y0 Z0\nG2 X10 Y0 R2 F100\n",
       "G0 X0 Y0 Z0\nG0 X10 Y0 I5\n",
-      "G0 X0 Y0 Z0\nG2 X1e8 Y0 I5e7 J0 F100\n",
+      "G0 X0 Y0 Z0\nG2 X100000000 Y0 I50000000 J0 F100\n",
+      "G0 X-9 F1\nG41.1 D4 G1 X0\nG40\nG2 X1 Y1 R1\n",
+      "G0 X-9 Y-10 F1\nG41.1 D4 G1 X0 Y0\nG3 X10 Y0 I5 J0\nG40 G1 X20\nG3 X10 Y0 R5\n",
   };
   int refused = 0;
   for (const std::string& text : programs) {

@@ -284,3 +284,27 @@ TEST(Errors, LineByLineCallersAndTheFanucDialectRefuseThemByName) {
 }
 
 }  // namespace
+
+namespace {
+
+// run_program's count of motions is the number of sink calls, with the
+// motions cutter compensation still holds at the end, those of a
+// subroutine called in a loop, and a canned cycle's several motions.
+TEST(ProgramStats, MotionsAreTheSinkCalls) {
+  const std::vector<std::string> programs = {
+      "G21 G0 X0 Y-10 F100\nG41.1 D4 G1 X0 Y0\nG3 X10 Y0 I5 J0\nG1 Y-10\n",
+      "o<p> sub\nG1 X#1 F100\no<p> endsub\n#2=0\no1 while [#2 LT 5]\no<p> call [#2]\n#2=[#2+1]\n"
+      "o1 endwhile\nM2\n",
+      "G21 G0 X0 Y0 Z10\nG81 X5 Y5 Z-2 R2 F100\nX10\nG80\nG4 P1\nM2\n",
+  };
+  for (const std::string& program : programs) {
+    std::istringstream in(program);
+    std::size_t calls = 0;
+    const abbe::gcode::ProgramStats stats =
+        abbe::gcode::run_program(in, "t.ngc", InterpreterConfig{}, [&](const Motion&) { ++calls; });
+    EXPECT_GT(calls, 3u) << program;
+    EXPECT_EQ(stats.motions, calls) << program;
+  }
+}
+
+}  // namespace

@@ -108,8 +108,9 @@ class Interpreter {
   // -1 when it has none.
   int non_modal_read() const;
 
-  bool program_ended() const;        // M2 / M30 seen
-  Eigen::Vector3d position() const;  // current tool tip, mm
+  bool program_ended() const;             // M2 / M30 seen
+  std::size_t motions_delivered() const;  // motions handed to the sinks so far
+  Eigen::Vector3d position() const;       // current tool tip, mm
 
   // Modal state after the last executed block (for post-processors that
   // write coordinates back in the program's own frame and units).
