@@ -78,7 +78,7 @@ void parse_line(std::string_view line, std::size_t line_number, const std::strin
   x3::parse(first, last, x3::with<ast::line_tag>(parsed)[grammar::line()], parsed);
   // Comment strings beyond this line's comments are dropped only now, so
   // that the kept ones reuse their capacity.
-  block.comments.resize(parsed.n_comments);
+  if (block.comments.size() != parsed.n_comments) block.comments.resize(parsed.n_comments);
   if (first != last)
     throw detail::explain_parse_stop(line, static_cast<std::size_t>(first - line.data()), parsed,
                                      line_number, file);

@@ -143,7 +143,15 @@ class Runner {
   void execute(Block& block, std::string_view text, const std::string& file) {
     ++stats_.lines;
     current_line_ = block.line;
-    if (block.has_code()) {
+    if (block.has_code()) evaluate_codes(block, text, file);
+    interpreter_.execute_evaluated(block, text, sink_);
+  }
+
+  // The block's computed word values and parameter settings. Out of line:
+  // a CAM program's plain blocks have none.
+  [[gnu::noinline]] void evaluate_codes(Block& block, std::string_view text,
+                                        const std::string& file) {
+    {
       const CodeSite s{file, block.line, text};
       for (const WordExpression& w : block.word_expressions)
         block.words[w.word].value = evaluate(block, w.code, parameters_, s);
@@ -179,7 +187,6 @@ class Runner {
         }
       }
     }
-    interpreter_.execute_evaluated(block, text, sink_);
   }
 
   const StoredLine& line_at(const Place& at) const { return *at.source->lines[at.index]; }
