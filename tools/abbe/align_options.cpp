@@ -11,10 +11,11 @@ const char* const kDatumOption[3] = {"--datum-primary", "--datum-secondary", "--
 
 }  // namespace
 
-void add_align_options(CLI::App& sub, AlignCliOptions& o) {
+void add_align_options(CLI::App& sub, AlignCliOptions& o, const char* align_help) {
   sub.add_option("--align", o.align,
-                 "Also report the deviation after the part's set-up: best-fit (least squares "
-                 "over the cutting points) or datums (3-2-1, --datum-*)")
+                 align_help ? align_help
+                            : "Also report the deviation after the part's set-up: best-fit (least "
+                              "squares over the cutting points) or datums (3-2-1, --datum-*)")
       ->check(CLI::IsMember({"none", "best-fit", "datums"}))
       ->capture_default_str();
   sub.add_option("--datum-primary", o.datum[0],

@@ -1,5 +1,5 @@
 #pragma once
-// The part's set-up options of predict and report predict: --align
+// The part's set-up options of predict, report predict and compensate: --align
 // none|best-fit|datums and the three datum sets --datum-primary,
 // --datum-secondary, --datum-tertiary (source lines, docs/models.md, "The
 // part").
@@ -15,7 +15,8 @@ struct AlignCliOptions {
   std::string datum[3];  // --datum-primary/secondary/tertiary: source lines
 };
 
-void add_align_options(CLI::App& sub, AlignCliOptions& o);
+// `align_help`: what --align does in the command (default: predict's text).
+void add_align_options(CLI::App& sub, AlignCliOptions& o, const char* align_help = nullptr);
 
 // The alignment the options ask for; false after a message on stderr
 // ("abbe COMMAND: …", a usage error) when --align datums lacks a datum set
