@@ -61,9 +61,34 @@ void append(PredictedPath& r, const Kept& k) {
   for (std::size_t m = 0; m < k.d.size(); ++m) r.deviation_um[m].push_back(k.d[m]);
 }
 
-// The uncertainty of the kept points (their indices ascend) and of the
-// summary figures: the program predicted again with the draws.
-void add_uncertainty(PredictedPath& r, const machine::Machine& machine, const std::string& text,
+// Picks the kept points out of a second prediction of every point: their
+// indices ascend, so one counter walks both.
+class KeptPoints {
+ public:
+  explicit KeptPoints(const std::vector<std::size_t>& index) : index_(index) {}
+  // Whether the next point of the second prediction is a kept one.
+  bool next() {
+    const bool kept = kept_ < index_.size() && index_[kept_] == point_;
+    ++point_;
+    if (kept) ++kept_;
+    return kept;
+  }
+
+ private:
+  const std::vector<std::size_t>& index_;
+  std::size_t point_ = 0, kept_ = 0;
+};
+
+void push_all(std::vector<std::vector<Eigen::Vector3d>>& to,
+              const std::vector<Eigen::Vector3d>& values) {
+  for (std::size_t m = 0; m < values.size(); ++m) to[m].push_back(values[m]);
+}
+
+// The u and the deviation after alignment of the kept points, and the
+// uncertainty of the summary figures and the set-up: the program predicted
+// again with the draws (predict_with_uncertainty) and/or the part's set-up
+// (predict_aligned).
+void add_second_pass(PredictedPath& r, const machine::Machine& machine, const std::string& text,
                      const pipeline::PathOptions& path, const PredictPathOptions& o) {
   pipeline::PredictOptions po;
   po.models = o.models;
@@ -72,20 +97,45 @@ void add_uncertainty(PredictedPath& r, const machine::Machine& machine, const st
   pipeline::UncertaintyOptions uo;
   uo.draws = o.uncertainty_draws;
   uo.seed = o.seed;
+  const bool aligned = o.align.method != pipeline::AlignMethod::none;
+  const bool uncertain = o.uncertainty_draws > 0;
+  if (uncertain) r.u_um.assign(o.models.size(), {});
+  if (aligned) r.aligned_um.assign(o.models.size(), {});
+  if (aligned && uncertain) r.u_aligned_um.assign(o.models.size(), {});
   std::istringstream program(text);
-  r.u_um.assign(o.models.size(), {});
-  std::size_t point = 0, kept = 0;
-  const pipeline::UncertainPrediction p = pipeline::predict_with_uncertainty(
-      program, r.program, machine, po, uo, {},
-      [&](const model::EvalPoint&, std::size_t, const std::vector<model::Deviation>&,
-          const std::vector<double>&, const std::vector<Eigen::Vector3d>& u) {
-        if (kept < r.index.size() && r.index[kept] == point) {
-          for (std::size_t m = 0; m < u.size(); ++m) r.u_um[m].push_back(u[m]);
-          ++kept;
-        }
-        ++point;
-      });
-  r.uncertainty = p.uncertainty;
+  KeptPoints kept(r.index);
+  if (!aligned) {
+    r.uncertainty =
+        pipeline::predict_with_uncertainty(
+            program, r.program, machine, po, uo, {},
+            [&](const model::EvalPoint&, std::size_t, const std::vector<model::Deviation>&,
+                const std::vector<double>&, const std::vector<Eigen::Vector3d>& u) {
+              if (kept.next()) push_all(r.u_um, u);
+            })
+            .uncertainty;
+  } else if (!uncertain) {
+    r.alignment =
+        pipeline::predict_aligned(
+            program, r.program, machine, po, o.align, {},
+            [&](const model::EvalPoint&, std::size_t, const std::vector<model::Deviation>&,
+                const std::vector<double>&, const std::vector<Eigen::Vector3d>& a) {
+              if (kept.next()) push_all(r.aligned_um, a);
+            })
+            .alignment;
+  } else {
+    pipeline::UncertainPrediction p = pipeline::predict_with_uncertainty(
+        program, r.program, machine, po, uo, o.align, {},
+        [&](const model::EvalPoint&, std::size_t, const std::vector<model::Deviation>&,
+            const std::vector<double>&, const std::vector<Eigen::Vector3d>& a,
+            const std::vector<Eigen::Vector3d>& u, const std::vector<Eigen::Vector3d>& ua) {
+          if (!kept.next()) return;
+          push_all(r.aligned_um, a);
+          push_all(r.u_um, u);
+          push_all(r.u_aligned_um, ua);
+        });
+    r.uncertainty = std::move(p.uncertainty);
+    r.alignment = std::move(p.alignment);
+  }
 }
 
 }  // namespace
@@ -180,7 +230,8 @@ PredictedPath predict_program(const machine::Machine& machine, std::istream& in,
     r.rapid_stats.push_back(stats(models.rapid_stats()[i]));
   }
 
-  if (o.uncertainty_draws > 0) add_uncertainty(r, machine, text, po, o);
+  if (o.uncertainty_draws > 0 || o.align.method != pipeline::AlignMethod::none)
+    add_second_pass(r, machine, text, po, o);
 
   // Source text of the lines the kept points come from.
   for (std::size_t l : r.line) r.source.emplace(l, std::string());

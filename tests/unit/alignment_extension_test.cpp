@@ -1,6 +1,8 @@
 // AlignmentExtension and program_setup (compensate --align): the extended
 // model predicts exactly the deviation left after the part's set-up, and a
-// machine with rigid-body-only errors leaves nothing to correct.
+// machine with rigid-body-only errors leaves nothing to correct, with a best
+// fit or with datums (compensate --align datums: the set-up of predict
+// --align datums).
 #include "abbe/pipeline/alignment_extension.hpp"
 
 #include <gtest/gtest.h>
@@ -20,10 +22,25 @@ const char* kProgram =
     "G17 G21 G90 G94\nT1 M6\nG43 H1\nG0 X-350 Y-150\nG0 Z-270\nG1 Z-280 F300\nG1 X-650 F1000\n"
     "G1 Y-350\nG1 X-350\nG1 Y-150\nG0 Z-200\n";
 
-pipeline::ModelAlignment setup_of(const machine::Machine& m) {
-  std::istringstream program(kProgram);
+pipeline::AlignOptions best_fit() {
   pipeline::AlignOptions ao;
   ao.method = pipeline::AlignMethod::best_fit;
+  return ao;
+}
+
+// The rectangle's bottom (lines 7–10), its first side (line 7), line 8.
+pipeline::AlignOptions datums() {
+  pipeline::AlignOptions ao;
+  ao.method = pipeline::AlignMethod::datums;
+  ao.primary = pipeline::LineSet::parse("7-10", "--datum-primary");
+  ao.secondary = pipeline::LineSet::parse("7", "--datum-secondary");
+  ao.tertiary = pipeline::LineSet::parse("8", "--datum-tertiary");
+  return ao;
+}
+
+pipeline::ModelAlignment setup_of(const machine::Machine& m,
+                                  const pipeline::AlignOptions& ao = best_fit()) {
+  std::istringstream program(kProgram);
   return pipeline::program_setup(program, "<test>", m, model::ModelKind::ae_arm, {}, ao);
 }
 
@@ -57,11 +74,32 @@ TEST(AlignmentExtension, ExtendedModelPredictsTheAlignedDeviation) {
 TEST(AlignmentExtension, RigidOnlyMachineLeavesNothingToCorrect) {
   const machine::Machine m =
       machine::Machine::load(std::string(ABBE_TEST_DATA_DIR) + "/align/rigid-only.yaml");
-  const pipeline::ModelAlignment a = setup_of(m);
-  EXPECT_GT(a.absolute.max_um, 1.0);
-  // ae-arm is first order: θ × arm is a linearised rotation, which the exact
-  // best fit removes up to θ²·arm ≈ (17 µrad)²·500 mm ≈ 1e-4 µm (measured 2.6e-5).
-  EXPECT_LT(a.aligned.max_um, 1e-3);
+  for (const pipeline::AlignOptions& ao : {best_fit(), datums()}) {
+    const pipeline::ModelAlignment a = setup_of(m, ao);
+    EXPECT_GT(a.absolute.max_um, 1.0);
+    // ae-arm is first order: θ × arm is a linearised rotation, which the exact
+    // alignment removes up to θ²·arm ≈ (17 µrad)²·500 mm ≈ 1e-4 µm (measured 2.6e-5).
+    EXPECT_LT(a.aligned.max_um, 1e-3);
+  }
+}
+
+// compensate --align datums corrects what predict --align datums leaves: the
+// same set-up (rigid motion and figures), not the best fit's.
+TEST(AlignmentExtension, DatumSetUpIsThatOfPredictAlign) {
+  const machine::Machine m =
+      machine::Machine::load(std::string(ABBE_TEST_DATA_DIR) + "/machines/sample.yaml");
+  const pipeline::ModelAlignment a = setup_of(m, datums());
+  pipeline::PredictOptions po;
+  std::istringstream program(kProgram);
+  const pipeline::AlignedPrediction p =
+      pipeline::predict_aligned(program, "<test>", m, po, datums(), {}, {});
+  ASSERT_EQ(p.alignment.models.size(), 1u);
+  const pipeline::ModelAlignment& b = p.alignment.models.front();
+  EXPECT_EQ(a.motion.rotation, b.motion.rotation);
+  EXPECT_EQ(a.motion.translation_mm, b.motion.translation_mm);
+  EXPECT_EQ(a.aligned.max_um, b.aligned.max_um);
+  const pipeline::ModelAlignment fit = setup_of(m);
+  EXPECT_GT((a.rotation_urad - fit.rotation_urad).norm(), 0.1);
 }
 
 }  // namespace

@@ -20,6 +20,7 @@
 #include "abbe/pipeline/aligned_prediction.hpp"
 #include "abbe/pipeline/alignment_extension.hpp"
 #include "abbe/pipeline/interpreter_setup.hpp"
+#include "align_options.hpp"
 #include "command.hpp"
 #include "dialect_option.hpp"
 #include "input_stream.hpp"
@@ -38,7 +39,7 @@ struct CompensateCliOptions {
   bool in_place = false;
   bool allow_unconverged = false;
   gcode::DialectOptions dialect;
-  std::string align = "none";  // best-fit: correct only what the part's set-up leaves
+  AlignCliOptions align;  // correct only what the part's set-up leaves
   SetupOptions setup;
 };
 
@@ -48,10 +49,11 @@ bool same_file(const std::string& a, const std::string& b) {
   return std::filesystem::weakly_canonical(a, ec) == std::filesystem::weakly_canonical(b, ec);
 }
 
-// --align best-fit: the model predicts what remains after the part's set-up
-// (pipeline/alignment_extension.hpp); returns the line the summary reports.
-std::string align_model(const CompensateCliOptions& o, const machine::Machine& machine,
-                        model::ErrorModel& model) {
+// --align best-fit|datums: the model predicts what remains after the part's
+// set-up (pipeline/alignment_extension.hpp); returns the line the summary
+// reports.
+std::string align_model(const CompensateCliOptions& o, const pipeline::AlignOptions& ao,
+                        const machine::Machine& machine, model::ErrorModel& model) {
   if (!o.m.extend.empty())
     throw InputError({"<command line>", 0, 0, "--align", ""},
                      "--align with --extend is not supported yet");
@@ -61,8 +63,6 @@ std::string align_model(const CompensateCliOptions& o, const machine::Machine& m
                      std::string("cannot open the input: ") + std::strerror(errno));
   pipeline::PathOptions path;
   path.dialect = o.dialect;
-  pipeline::AlignOptions ao;
-  ao.method = pipeline::parse_align_method(o.align);
   const pipeline::ModelAlignment a =
       pipeline::program_setup(first, o.input, machine, model.kind(), path, ao);
   model = model.with_extension(std::make_shared<const pipeline::AlignmentExtension>(a.motion));
@@ -70,7 +70,7 @@ std::string align_model(const CompensateCliOptions& o, const machine::Machine& m
       "  --align {}: the set-up takes out a rotation ({:.3f}, {:.3f}, {:.3f}) µrad and a shift "
       "({:.4f}, {:.4f}, {:.4f}) µm of the part's centroid; predicted part max |e| {:.4f} µm, "
       "{:.4f} µm after the set-up (corrected)\n",
-      o.align, a.rotation_urad.x(), a.rotation_urad.y(), a.rotation_urad.z(),
+      o.align.align, a.rotation_urad.x(), a.rotation_urad.y(), a.rotation_urad.z(),
       a.centroid_shift_um.x(), a.centroid_shift_um.y(), a.centroid_shift_um.z(), a.absolute.max_um,
       a.aligned.max_um);
 }
@@ -88,9 +88,12 @@ int run_compensate(CompensateCliOptions o, const GlobalOptions& g) {
     throw InputError({"<command line>", 0, 0, "-o", ""},
                      "the output is the input: give --in-place to replace it");
   }
+  pipeline::AlignOptions ao;
+  if (!align_options(o.align, "compensate", ao)) return kUsage;
   const machine::Machine machine = machine::Machine::load(o.m.machine);
   model::ErrorModel model = make_model(o.m, machine);
-  const std::string setup_text = o.align == "none" ? "" : align_model(o, machine, model);
+  const std::string setup_text =
+      ao.method == pipeline::AlignMethod::none ? "" : align_model(o, ao, machine, model);
   gcode::InterpreterConfig config = pipeline::interpreter_config(machine);
   config.dialect = o.dialect;
   apply_setup_options(o.setup, config);
@@ -187,11 +190,10 @@ const CommandRegistrar registrar(
                    "Compensate points outside the machine's travel (counted) instead of refusing "
                    "the program");
       sub.add_flag("--in-place", o->in_place, "Replace the input (atomically)");
-      sub.add_option("--align", o->align,
-                     "best-fit: correct only what remains after the part's set-up (a best fit "
-                     "of the predicted part over the cutting points)")
-          ->check(CLI::IsMember({"none", "best-fit"}))
-          ->capture_default_str();
+      add_align_options(sub, o->align,
+                        "Correct only what remains after the part's set-up: best-fit (a best fit "
+                        "of the predicted part over the cutting points) or datums (3-2-1, "
+                        "--datum-*)");
       sub.add_flag("--allow-unconverged", o->allow_unconverged,
                    "Write the output even if some points did not converge");
       const GlobalOptions* gp = &g;

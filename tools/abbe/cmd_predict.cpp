@@ -21,6 +21,7 @@
 #include "abbe/pipeline/prediction_summary.hpp"
 #include "abbe/pipeline/prediction_uncertainty.hpp"
 #include "abbe/pipeline/prediction_writer.hpp"
+#include "align_options.hpp"
 #include "command.hpp"
 #include "dialect_option.hpp"
 #include "input_stream.hpp"
@@ -45,14 +46,11 @@ struct PredictOptions {
   bool points = false;  // input is a CSV of points even without the .csv extension
   bool summary_only = false;
   gcode::DialectOptions dialect;
-  std::string align = "none";  // the part's set-up (docs/models.md, "The part")
-  std::string datum[3];        // --datum-primary/secondary/tertiary: source lines
+  AlignCliOptions align;  // the part's set-up (docs/models.md, "The part")
   SetupOptions setup;
   std::size_t uncertainty = 0;  // Monte Carlo draws (0: no uncertainty)
   std::uint64_t seed = 1;       // of the draws
 };
-
-const char* const kDatumOption[3] = {"--datum-primary", "--datum-secondary", "--datum-tertiary"};
 
 // predict --align: the points are written after the alignment is known.
 // The points output (none with --summary-only): the file and its writer.
@@ -87,27 +85,9 @@ void finish_outputs(const PredictOptions& o, pipeline::PredictionWriter* writer,
   std::fputs(table.c_str(), points_on_stdout ? stderr : stdout);
 }
 
-// The --align and --datum-* options; false (after a message) when --align
-// datums lacks one of the datum sets.
-bool align_options(const PredictOptions& o, pipeline::AlignOptions& ao) {
-  ao.method = pipeline::parse_align_method(o.align);
-  if (ao.method != pipeline::AlignMethod::datums) return true;
-  for (int k = 0; k < 3; ++k)
-    if (o.datum[k].empty()) {
-      fmt::print(stderr, "abbe predict: --align datums needs {}\n", kDatumOption[k]);
-      return false;
-    }
-  ao.primary = pipeline::LineSet::parse(o.datum[0], kDatumOption[0]);
-  ao.secondary = pipeline::LineSet::parse(o.datum[1], kDatumOption[1]);
-  ao.tertiary = pipeline::LineSet::parse(o.datum[2], kDatumOption[2]);
-  return true;
-}
-
 int run_predict_aligned(const PredictOptions& o, const GlobalOptions& g,
                         const machine::Machine& machine, const pipeline::PredictOptions& po,
-                        pipeline::PathFormat format) {
-  pipeline::AlignOptions ao;
-  if (!align_options(o, ao)) return kUsage;
+                        pipeline::PathFormat format, const pipeline::AlignOptions& ao) {
   InputStream input(o.input, "the input");
   PointsOutput points = open_points(o, format, po.models, true);
   auto& writer = points.writer;
@@ -131,12 +111,10 @@ int run_predict_aligned(const PredictOptions& o, const GlobalOptions& g,
 // predict --uncertainty N [--align …]: the points are written after the draws.
 int run_predict_uncertain(const PredictOptions& o, const GlobalOptions& g,
                           const machine::Machine& machine, const pipeline::PredictOptions& po,
-                          pipeline::PathFormat format) {
+                          pipeline::PathFormat format, const pipeline::AlignOptions& ao) {
   pipeline::UncertaintyOptions uo;
   uo.draws = o.uncertainty;
   uo.seed = o.seed;
-  pipeline::AlignOptions ao;
-  if (!align_options(o, ao)) return kUsage;
   InputStream input(o.input, "the input");
   PointsOutput points =
       open_points(o, format, po.models, ao.method != pipeline::AlignMethod::none, true);
@@ -177,13 +155,11 @@ int run_predict(const PredictOptions& o, const GlobalOptions& g) {
   if (!o.extend.empty())
     po.extension = std::make_shared<const diagnose::OverlayExtension>(
         diagnose::Overlay::load(o.extend), machine);
-  for (int k = 0; k < 3; ++k)
-    if (!o.datum[k].empty() && o.align != "datums") {
-      fmt::print(stderr, "abbe predict: {} needs --align datums\n", kDatumOption[k]);
-      return kUsage;
-    }
-  if (o.uncertainty > 0) return run_predict_uncertain(o, g, machine, po, format);
-  if (o.align != "none") return run_predict_aligned(o, g, machine, po, format);
+  pipeline::AlignOptions ao;
+  if (!align_options(o.align, "predict", ao)) return kUsage;
+  if (o.uncertainty > 0) return run_predict_uncertain(o, g, machine, po, format, ao);
+  if (ao.method != pipeline::AlignMethod::none)
+    return run_predict_aligned(o, g, machine, po, format, ao);
 
   InputStream input(o.input, "the input");
   PointsOutput points = open_points(o, format, po.models, false);
@@ -247,17 +223,7 @@ const CommandRegistrar registrar(
                      std::string("Add the effects of an overlay written by `abbe diagnose "
                                  "--overlay`") +
                          kOverlayDomainHelp);
-      sub.add_option("--align", o->align,
-                     "Also report the deviation after the part's set-up: best-fit (least squares "
-                     "over the cutting points) or datums (3-2-1, --datum-*)")
-          ->check(CLI::IsMember({"none", "best-fit", "datums"}))
-          ->capture_default_str();
-      sub.add_option("--datum-primary", o->datum[0],
-                     "--align datums: source lines of the primary (plane) points, e.g. 12-30,45");
-      sub.add_option("--datum-secondary", o->datum[1],
-                     "--align datums: source lines of the secondary (line) points");
-      sub.add_option("--datum-tertiary", o->datum[2],
-                     "--align datums: source lines of the tertiary (point) points");
+      add_align_options(sub, o->align);
       sub.add_option(
              "--uncertainty", o->uncertainty,
              "Also propagate the campaign's uncertainty (machine file `uncertainty`, table "

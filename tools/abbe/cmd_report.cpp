@@ -28,6 +28,7 @@
 #include "abbe/report/map_section.hpp"
 #include "abbe/report/predict_section.hpp"
 #include "abbe/report/predicted_path.hpp"
+#include "align_options.hpp"
 #include "command.hpp"
 #include "dialect_option.hpp"
 #include "input_stream.hpp"
@@ -51,6 +52,7 @@ struct ReportOptions {
   gcode::DialectOptions dialect;
   std::size_t uncertainty = 0;  // report predict: Monte Carlo draws (0: none)
   std::uint64_t seed = 1;
+  AlignCliOptions align;  // report predict: the part's set-up
 };
 
 std::vector<model::ModelKind> parse_models(const std::string& m) {
@@ -114,6 +116,7 @@ int run_report_predict(const ReportOptions& o, const GlobalOptions& g) {
   po.dialect = o.dialect;
   po.uncertainty_draws = o.uncertainty;
   po.seed = o.seed;
+  if (!align_options(o.align, "report predict", po.align)) return kUsage;
   InputStream input(o.input, "the NC program");
   std::istream* in = &input.stream();
   Progress progress("report: predict", Progress::file_size(o.input), !g.quiet);
@@ -251,10 +254,12 @@ const CommandRegistrar registrar(
           ->add_option("--uncertainty", o->uncertainty,
                        "Also propagate the campaign's uncertainty by Monte Carlo with N draws "
                        "(as `abbe predict --uncertainty`): the band ± U (k = 2) in the deviation "
-                       "plots, the summary figures ± U")
+                       "plots, the summary figures ± U; with --align also of the deviation after "
+                       "the set-up")
           ->check(CLI::Range(std::size_t{2}, std::size_t{1000000}));
       predict->add_option("--seed", o->seed, "--uncertainty: seed of the draws")
           ->capture_default_str();
+      add_align_options(*predict, o->align);
       predict->add_option("-o,--output", o->output, "HTML file (written atomically), - for stdout")
           ->required();
       predict->footer(

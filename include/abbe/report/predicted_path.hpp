@@ -38,6 +38,9 @@ struct PredictPathOptions {
   // Monte Carlo draws of the campaign's uncertainty (0: none) and their seed.
   std::size_t uncertainty_draws = 0;
   std::uint64_t seed = 1;
+  // The part's set-up (`--align best-fit|datums`, as `abbe predict --align`):
+  // method none draws the absolute deviation only.
+  pipeline::AlignOptions align;
   // Called now and then with the bytes of the input consumed so far.
   std::function<void(std::uint64_t)> progress;
 };
@@ -76,10 +79,23 @@ struct PredictedPath {
   std::vector<std::vector<Eigen::Vector3d>> u_um;  // [model][kept point]
   pipeline::PredictionUncertainty uncertainty;
   bool has_uncertainty() const { return !u_um.empty(); }
+  // With align: per model the deviation after the part's set-up at the kept
+  // points (those of `abbe predict --align`, µm) and the set-up (its rigid
+  // motion, the part's figures before and after); with uncertainty_draws
+  // too, their standard uncertainties (the part set up again in every draw)
+  // and `uncertainty.models[m].aligned`. All empty without align.
+  std::vector<std::vector<Eigen::Vector3d>> aligned_um;    // [model][kept point]
+  std::vector<std::vector<Eigen::Vector3d>> u_aligned_um;  // [model][kept point]
+  pipeline::PartAlignmentSummary alignment;
+  bool has_alignment() const { return !aligned_um.empty(); }
 };
 
 // Streams the program through parser, interpreter, fragmenter and the error
-// models. Throws abbe::InputError on bad input (file, line, column).
+// models; with uncertainty draws or an alignment, predicts the program a
+// second time (predict_with_uncertainty, predict_aligned) for the u and the
+// deviation after the set-up of the kept points. Throws abbe::InputError on
+// bad input (file, line, column) and on a part or datum set that does not
+// define the alignment.
 PredictedPath predict_program(const machine::Machine& machine, std::istream& in,
                               const std::string& file, const PredictPathOptions& options);
 
