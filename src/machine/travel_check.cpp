@@ -10,21 +10,18 @@ constexpr double kSlackMm = 1e-6;
 constexpr char kAxis[3] = {'X', 'Y', 'Z'};
 }  // namespace
 
-bool TravelCheck::add(const Eigen::Vector3d& tip, double tool_length, std::size_t line) {
-  ++points_;
-  const Eigen::Vector3d s = tip + Eigen::Vector3d(0.0, 0.0, tool_length);
-  bool inside = true;
+TravelCheck::TravelCheck(const std::array<Travel, 3>& travel) : travel_(travel) {
   for (std::size_t a = 0; a < 3; ++a) {
-    const double v = s[static_cast<Eigen::Index>(a)];
-    if (v >= travel_[a].min - kSlackMm && v <= travel_[a].max + kSlackMm) continue;
-    ++per_axis_[a];
-    inside = false;
+    lo_[a] = travel_[a].min - kSlackMm;
+    hi_[a] = travel_[a].max + kSlackMm;
   }
-  if (!inside) {
-    ++outside_;
-    if (lines_.size() < 5 && (lines_.empty() || lines_.back() != line)) lines_.push_back(line);
-  }
-  return inside;
+}
+
+void TravelCheck::add_outside(const Eigen::Vector3d& s, std::size_t line) {
+  for (std::size_t a = 0; a < 3; ++a)
+    if (!inside(a, s[static_cast<Eigen::Index>(a)])) ++per_axis_[a];
+  ++outside_;
+  if (lines_.size() < 5 && (lines_.empty() || lines_.back() != line)) lines_.push_back(line);
 }
 
 std::string TravelCheck::text() const {
@@ -44,7 +41,7 @@ std::string TravelCheck::describe(const Eigen::Vector3d& tip, double tool_length
   std::string out;
   for (std::size_t a = 0; a < 3; ++a) {
     const double v = s[static_cast<Eigen::Index>(a)];
-    if (v >= travel_[a].min - kSlackMm && v <= travel_[a].max + kSlackMm) continue;
+    if (inside(a, v)) continue;
     out += fmt::format("{}{} axis at {:.4f} mm, travel [{:g}, {:g}] mm", out.empty() ? "" : "; ",
                        kAxis[a], v, travel_[a].min, travel_[a].max);
   }

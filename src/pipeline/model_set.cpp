@@ -5,19 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "abbe/io/input_error.hpp"
-
 namespace abbe::pipeline {
-
-void ModelStats::add(const Eigen::Vector3d& e_um, double d_um, std::size_t line) {
-  max_abs_um = max_abs_um.cwiseMax(e_um.cwiseAbs());
-  sum_d2 += d_um * d_um;
-  if (d_um > max_um || points == 0) {
-    max_um = d_um;
-    max_line = line;
-  }
-  ++points;
-}
 
 double ModelStats::rms_um() const {
   return points ? std::sqrt(sum_d2 / static_cast<double>(points)) : 0.0;
@@ -39,23 +27,11 @@ ModelSet::ModelSet(const machine::Machine& machine, std::vector<model::ModelKind
   rapid_.resize(kinds_.size());
 }
 
-void ModelSet::evaluate(const model::EvalPoint& point, const std::string& file, std::size_t line,
-                        bool rapid) {
-  for (std::size_t i = 0; i < models_.size(); ++i) {
-    try {
-      deviations_[i] = models_[i].evaluate(point, data_[i]);
-    } catch (const InputError& e) {
-      throw InputError({file, line, 0, e.where().field, ""},
-                       fmt::format("at the point ({:.4f}, {:.4f}, {:.4f}) mm: {}", point.p.x(),
-                                   point.p.y(), point.p.z(), e.message()));
-    }
-  }
-  for (std::size_t i = 0; i < models_.size(); ++i) {
-    norms_[i] = deviations_[i].e_um.norm();
-    stats_[i].add(deviations_[i].e_um, norms_[i], line);
-    (rapid ? rapid_ : cutting_)[i].add(deviations_[i].e_um, norms_[i], line);
-  }
-  ++points_;
+void ModelSet::rethrow_at(const InputError& e, const model::EvalPoint& point,
+                          const std::string& file, std::size_t line) {
+  throw InputError({file, line, 0, e.where().field, ""},
+                   fmt::format("at the point ({:.4f}, {:.4f}, {:.4f}) mm: {}", point.p.x(),
+                               point.p.y(), point.p.z(), e.message()));
 }
 
 std::size_t ModelSet::out_of_range_lookups(std::size_t model) const {

@@ -67,10 +67,6 @@ PredictionWriter::PredictionWriter(PathFormat format, std::vector<model::ModelKi
   }
 }
 
-void PredictionWriter::write(const model::EvalPoint& p, std::size_t line, const ModelSet& models) {
-  write_row(p, line, models.deviations(), models.norms_um());
-}
-
 void PredictionWriter::write(const model::EvalPoint& p, std::size_t line,
                              const std::vector<model::Deviation>& devs,
                              const std::vector<double>& norms,

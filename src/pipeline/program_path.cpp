@@ -41,13 +41,4 @@ PathRun run_path(std::istream& in, const std::string& file,
   return run;
 }
 
-model::EvalPoint eval_point(const path::PathPoint& point) {
-  model::EvalPoint p;
-  p.p = point.p;
-  p.tool_length = point.tool_length;
-  p.dir = point.dir;
-  p.time = point.time;
-  return p;
-}
-
 }  // namespace abbe::pipeline

@@ -17,9 +17,16 @@ namespace abbe::machine {
 
 class TravelCheck {
  public:
-  explicit TravelCheck(const std::array<Travel, 3>& travel) : travel_(travel) {}
-  // Returns true if the point is inside on every axis.
-  bool add(const Eigen::Vector3d& tip, double tool_length, std::size_t line);
+  explicit TravelCheck(const std::array<Travel, 3>& travel);
+  // Returns true if the point is inside on every axis. Inline (it runs once
+  // per path point); a point outside is counted out of line.
+  bool add(const Eigen::Vector3d& tip, double tool_length, std::size_t line) {
+    ++points_;
+    const double z = tip.z() + tool_length;
+    if (inside(0, tip.x()) && inside(1, tip.y()) && inside(2, z)) return true;
+    add_outside(Eigen::Vector3d(tip.x(), tip.y(), z), line);
+    return false;
+  }
 
   std::size_t points() const { return points_; }    // points checked
   std::size_t outside() const { return outside_; }  // points outside on any axis
@@ -32,7 +39,12 @@ class TravelCheck {
   std::string describe(const Eigen::Vector3d& tip, double tool_length) const;
 
  private:
+  void add_outside(const Eigen::Vector3d& s, std::size_t line);
+  // Whether axis position v lies within the travel of axis a (with the slack).
+  bool inside(std::size_t a, double v) const { return v >= lo_[a] && v <= hi_[a]; }
+
   std::array<Travel, 3> travel_;
+  std::array<double, 3> lo_{}, hi_{};  // the travel widened by the slack
   std::size_t points_ = 0, outside_ = 0;
   std::array<std::size_t, 3> per_axis_{0, 0, 0};
   std::vector<std::size_t> lines_;

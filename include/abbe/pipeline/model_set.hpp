@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "abbe/io/input_error.hpp"
 #include "abbe/machine/machine.hpp"
 #include "abbe/model/error_extension.hpp"
 #include "abbe/model/error_model.hpp"
@@ -22,7 +23,16 @@ struct ModelStats {
   double sum_d2 = 0.0;       // µm²
   double max_um = 0.0;       // of |e|
   std::size_t max_line = 0;  // source line of the largest |e| (first one)
-  void add(const Eigen::Vector3d& e_um, double d_um, std::size_t line);
+  // Inline: it runs twice per point and model (all points, and cutting or rapid).
+  void add(const Eigen::Vector3d& e_um, double d_um, std::size_t line) {
+    max_abs_um = max_abs_um.cwiseMax(e_um.cwiseAbs());
+    sum_d2 += d_um * d_um;
+    if (d_um > max_um || points == 0) {
+      max_um = d_um;
+      max_line = line;
+    }
+    ++points;
+  }
   double rms_um() const;
 };
 
@@ -37,8 +47,27 @@ class ModelSet {
   // re-thrown at `file`:`line`, naming the point.
   // `rapid`: the point lies on a rapid (else on a cutting move, or it is a
   // point of a CSV); counted in rapid_stats() or cutting_stats() as well.
+  // Inline: it runs once per point, and the models' calls are opaque.
   void evaluate(const model::EvalPoint& point, const std::string& file, std::size_t line,
-                bool rapid = false);
+                bool rapid = false) {
+    const std::size_t n = models_.size();
+    model::Deviation* const devs = deviations_.data();
+    for (std::size_t i = 0; i < n; ++i) {
+      try {
+        devs[i] = models_[i].evaluate(point, data_[i]);
+      } catch (const InputError& e) {
+        rethrow_at(e, point, file, line);
+      }
+    }
+    ModelStats* const group = (rapid ? rapid_ : cutting_).data();
+    for (std::size_t i = 0; i < n; ++i) {
+      const double norm = devs[i].e_um.norm();
+      norms_[i] = norm;
+      stats_[i].add(devs[i].e_um, norm, line);
+      group[i].add(devs[i].e_um, norm, line);
+    }
+    ++points_;
+  }
 
   std::size_t size() const { return kinds_.size(); }
   const std::vector<model::ModelKind>& kinds() const { return kinds_; }
@@ -53,6 +82,10 @@ class ModelSet {
   std::size_t points() const { return points_; }
 
  private:
+  // A model's error at `file`:`line`, naming the point.
+  [[noreturn]] static void rethrow_at(const InputError& e, const model::EvalPoint& point,
+                                      const std::string& file, std::size_t line);
+
   std::vector<model::ModelKind> kinds_;
   std::vector<model::ErrorModel> models_;
   std::vector<model::ModelData> data_;

@@ -37,7 +37,9 @@ class PredictionWriter {
   PredictionWriter& operator=(const PredictionWriter&) = delete;
 
   // One row: the point, its source line and the models' last evaluation.
-  void write(const model::EvalPoint& point, std::size_t line, const ModelSet& models);
+  void write(const model::EvalPoint& point, std::size_t line, const ModelSet& models) {
+    write_row(point, line, models.deviations(), models.norms_um());
+  }
   // One row of an aligned prediction: per model the deviation, |e| and the
   // deviation after alignment (µm).
   void write(const model::EvalPoint& point, std::size_t line,

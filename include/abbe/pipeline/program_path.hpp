@@ -39,7 +39,14 @@ struct PathRun {
 PathRun run_path(std::istream& in, const std::string& file, const gcode::InterpreterConfig& config,
                  const PathOptions& options, const path::PointSink& sink);
 
-// The point the error models evaluate at a path point.
-model::EvalPoint eval_point(const path::PathPoint& point);
+// The point the error models evaluate at a path point (inline: once per point).
+inline model::EvalPoint eval_point(const path::PathPoint& point) {
+  model::EvalPoint p;
+  p.p = point.p;
+  p.tool_length = point.tool_length;
+  p.dir = point.dir;
+  p.time = point.time;
+  return p;
+}
 
 }  // namespace abbe::pipeline
