@@ -347,6 +347,10 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
       const Cached* c = nullptr;
       double d = -1.0;
       double thr = 0.0;
+      // A partner in a combination (below): significant, its estimate at
+      // least at the practical floor; the minimum-effect test is for a new
+      // structure, and the combination explains one already above it.
+      double thr_part = 0.0;
     };
     std::vector<Score> scores;
     auto consider = [&](const Cached& c) {
@@ -354,8 +358,8 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
       if (d <= 0.0) return;
       const int k = c.term.columns();
       const double s2 = std::max(rr - d, 1e-300) / std::max(dof_base - k, 1.0);
-      scores.push_back(
-          {&c, d, s2 * std::max(chi2_upper_quantile(k, o.alpha / tests_named), practical(k))});
+      const double chi2 = chi2_upper_quantile(k, o.alpha / tests_named);
+      scores.push_back({&c, d, s2 * std::max(chi2, practical(k)), s2 * std::max(chi2, lambda)});
     };
     for (const Cached& c : named) consider(c);
     for (const Cached& c : scanned) consider(c);
@@ -447,14 +451,15 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
         int tried = 0;
         for (const Score& s : scores) {
           if (++tried > 40) break;  // the 40 largest: a partner explains something alone
-          if (!(s.d > s.thr) || std::find(combo.begin(), combo.end(), &s) != combo.end()) continue;
+          if (!(s.d > s.thr_part) || std::find(combo.begin(), combo.end(), &s) != combo.end())
+            continue;
           const Eigen::Index k0 = Cc.cols(), k1 = s.c->C.cols();
           Mat Cj(n, k0 + k1), QtCj(QtCc.rows(), k0 + k1), CtCj(k0 + k1, k0 + k1);
           Cj << Cc, s.c->C;
           QtCj << QtCc, s.c->QtC;
           CtCj = Cj.transpose() * Cj;
           const double dj = delta_rss(Cj, CtCj, QtCj, r);
-          if (dj - d_combo > s.thr && dj > d_add) {
+          if (dj - d_combo > s.thr_part && dj > d_add) {
             add = &s;
             d_add = dj;
           }
