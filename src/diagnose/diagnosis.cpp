@@ -18,18 +18,14 @@ struct RobustFit {
   double threshold = 0.0;
 };
 
-RobustFit robust_fit(const Problem& pb, const DiagnoseOptions& o) {
-  RobustFit f;
+// From the outliers `drop` (and their threshold): select, flag again
+// against the selected model, until the set stays the same.
+RobustFit converge(const Problem& pb, const DiagnoseOptions& o, std::vector<std::uint32_t> drop,
+                   double threshold) {
   const OutlierOptions& oo = o.outliers;
-  if (oo.enabled && pb.obs.size() >= 20) {
-    CandidateSet datum_only;
-    datum_only.datum = build_candidates(pb, o.candidates).datum;
-    SelectionOptions quiet = o.selection;
-    quiet.on_step = nullptr;
-    const SelectionResult first = select_effects(pb, datum_only, quiet);
-    f.threshold = std::max(oo.k * robust_sigma(first.residual), oo.min_threshold_um);
-    f.drop = points_beyond(pb, first.residual, f.threshold);
-  }
+  RobustFit f;
+  f.drop = std::move(drop);
+  f.threshold = threshold;
   for (int pass = 0;; ++pass) {
     f.work = without_points(pb, f.drop);
     f.sel = select_effects(f.work, build_candidates(f.work, o.candidates), o.selection);
@@ -41,6 +37,32 @@ RobustFit robust_fit(const Problem& pb, const DiagnoseOptions& o) {
     f.drop = std::move(again);
   }
   return f;
+}
+
+RobustFit robust_fit(const Problem& pb, const DiagnoseOptions& o) {
+  const OutlierOptions& oo = o.outliers;
+  if (!oo.enabled || pb.obs.size() < 20) return converge(pb, o, {}, 0.0);
+  SelectionOptions quiet = o.selection;
+  quiet.on_step = nullptr;
+  CandidateSet datum_only;
+  datum_only.datum = build_candidates(pb, o.candidates).datum;
+  const SelectionResult first = select_effects(pb, datum_only, quiet);
+  const double threshold = std::max(oo.k * robust_sigma(first.residual), oo.min_threshold_um);
+  RobustFit f = converge(pb, o, points_beyond(pb, first.residual, threshold), threshold);
+  if (f.drop.empty() || !oo.group_check) return f;
+  // A coherent group that a catalogue effect explains is structure, not
+  // gross error: e.g. the points of an axis run the other way lie a whole
+  // reversal off, and without them the reversal cannot be seen. Selected
+  // with every point, the model then leaves fewer points beyond the
+  // threshold; the flagging restarts from there and its result is kept
+  // when it leaves out fewer points.
+  const SelectionResult all = select_effects(pb, build_candidates(pb, o.candidates), quiet);
+  const double t_all = std::max(oo.k * robust_sigma(all.residual), oo.min_threshold_um);
+  std::vector<std::uint32_t> left =
+      points_beyond(pb, residual_after(pb, all.datum, all.terms), t_all);
+  if (left.size() >= f.drop.size()) return f;
+  RobustFit g = converge(pb, o, std::move(left), t_all);
+  return g.drop.size() < f.drop.size() ? g : f;
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 
 #include <Eigen/Cholesky>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 #include <random>
@@ -235,6 +236,7 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
   // Subsample for the period scan.
   const std::size_t stride = std::max<std::size_t>(1, (np + o.scan_points - 1) / o.scan_points);
 
+  std::array<double, 64> practical_cache{};  // per column count (n is fixed)
   for (int step = 0; step < o.max_terms; ++step) {
     if (o.on_step) o.on_step(step);
     const double rr = r.squaredNorm();
@@ -242,8 +244,18 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     if (dof_base < 4.0) break;
     Mat R, W;
     point_sums(pb, r, R, W);
-    // ΔRSS ≥ n·(f·σ̂)²: the practical floor in units of σ̂².
-    const double practical = static_cast<double>(n) * o.min_effect_rms * o.min_effect_rms;
+    // The practical floor in units of σ̂²: an effect that removes exactly
+    // n·(f·σ̂)² would give ΔRSS/σ̂² ~ χ²_k(λ = n·f²) (its noise adds k and
+    // scatters it); the candidate must exceed that distribution's upper α
+    // quantile, so that its effect is shown above the floor, not only
+    // estimated there (min_effect_test; else ΔRSS ≥ n·f²·σ̂²).
+    const double lambda = static_cast<double>(n) * o.min_effect_rms * o.min_effect_rms;
+    auto practical = [&](int k) {
+      if (!o.min_effect_test) return lambda;
+      double& q = practical_cache[static_cast<std::size_t>(std::min(k, 63))];
+      if (q <= 0.0) q = noncentral_chi2_upper_quantile(k, lambda, o.alpha);
+      return q;
+    };
 
     // Searched families: pick the parameter by a quick projection, then
     // evaluate the best of each family exactly.
@@ -335,6 +347,10 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
       const Cached* c = nullptr;
       double d = -1.0;
       double thr = 0.0;
+      // A partner in a combination (below): significant, its estimate at
+      // least at the practical floor; the minimum-effect test is for a new
+      // structure, and the combination explains one already above it.
+      double thr_part = 0.0;
     };
     std::vector<Score> scores;
     auto consider = [&](const Cached& c) {
@@ -342,8 +358,8 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
       if (d <= 0.0) return;
       const int k = c.term.columns();
       const double s2 = std::max(rr - d, 1e-300) / std::max(dof_base - k, 1.0);
-      scores.push_back(
-          {&c, d, s2 * std::max(chi2_upper_quantile(k, o.alpha / tests_named), practical)});
+      const double chi2 = chi2_upper_quantile(k, o.alpha / tests_named);
+      scores.push_back({&c, d, s2 * std::max(chi2, practical(k)), s2 * std::max(chi2, lambda)});
     };
     for (const Cached& c : named) consider(c);
     for (const Cached& c : scanned) consider(c);
@@ -409,7 +425,7 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
         const int k = g.term.columns();
         const double s2 = std::max(rr - d, 1e-300) / std::max(dof_base - k, 1.0);
         const double thr =
-            s2 * std::max(chi2_upper_quantile(k, o.alpha / tests_generic), practical);
+            s2 * std::max(chi2_upper_quantile(k, o.alpha / tests_generic), practical(k));
         if (d > thr && d - thr > g_best_excess) {
           g_best_excess = d - thr;
           g_best_d = d;
@@ -435,14 +451,15 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
         int tried = 0;
         for (const Score& s : scores) {
           if (++tried > 40) break;  // the 40 largest: a partner explains something alone
-          if (!(s.d > s.thr) || std::find(combo.begin(), combo.end(), &s) != combo.end()) continue;
+          if (!(s.d > s.thr_part) || std::find(combo.begin(), combo.end(), &s) != combo.end())
+            continue;
           const Eigen::Index k0 = Cc.cols(), k1 = s.c->C.cols();
           Mat Cj(n, k0 + k1), QtCj(QtCc.rows(), k0 + k1), CtCj(k0 + k1, k0 + k1);
           Cj << Cc, s.c->C;
           QtCj << QtCc, s.c->QtC;
           CtCj = Cj.transpose() * Cj;
           const double dj = delta_rss(Cj, CtCj, QtCj, r);
-          if (dj - d_combo > s.thr && dj > d_add) {
+          if (dj - d_combo > s.thr_part && dj > d_add) {
             add = &s;
             d_add = dj;
           }

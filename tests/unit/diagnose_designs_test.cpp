@@ -707,10 +707,16 @@ void check(const Rates& r, const Floor& f) {
 // with 40 and with 200 seeds (docs/diagnosis.md), less a margin of about one
 // case in ten. They hold what the engine does today; where they are looser
 // than the issue's targets (grid and plate) the table says so.
+// With the practical floor as a test (min_effect_test) the plate's wrong
+// names and false names in null data fell, and with the outlier group
+// check (group_check) the toolpath's reversals came back
+// (docs/diagnosis.md): the plate's and the toolpath's floors rose. The
+// grid's unidentifiable wrong-name ceiling stays 0.3 (5/20 at 200 seeds,
+// as before these changes: one aliased pitch less, one more).
 TEST(DiagnoseDesigns, Grid) { check(sweep(Design::grid), {0.85, 0.05, 0.3, 0.9, 0.9}); }
-TEST(DiagnoseDesigns, Plane) { check(sweep(Design::plane), {0.7, 0.3, 0.15, 0.75, 0.9}); }
-TEST(DiagnoseDesigns, Toolpath) { check(sweep(Design::toolpath), {0.8, 0.1, 0.05, 0.9, 0.9}); }
-TEST(DiagnoseDesigns, Ballbar) { check(sweep(Design::ballbar), {0.8, 0.1, 0.05, 0.9, 0.9}); }
+TEST(DiagnoseDesigns, Plane) { check(sweep(Design::plane), {0.8, 0.1, 0.05, 0.95, 0.9}); }
+TEST(DiagnoseDesigns, Toolpath) { check(sweep(Design::toolpath), {0.85, 0.1, 0.05, 0.9, 0.95}); }
+TEST(DiagnoseDesigns, Ballbar) { check(sweep(Design::ballbar), {0.8, 0.1, 0.03, 0.9, 0.9}); }
 TEST(DiagnoseDesigns, Diagonals) { check(sweep(Design::diagonals), {0.0, 0.05, 0.1, 0.9, 0.0}); }
 
 // Gross outliers (issue 16): 2 % of the grid's points 20–50 µm off in one

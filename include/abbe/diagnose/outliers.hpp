@@ -25,6 +25,11 @@ struct OutlierOptions {
   // Never flag below this (µm): data without noise have a robust σ of
   // rounding errors, and nothing that small is a gross outlier.
   double min_threshold_um = 0.01;
+  // When points were flagged: select once more with every point and
+  // restart the flagging from what that model leaves beyond the threshold;
+  // keep the result that leaves out fewer points (a coherent group that a
+  // catalogue effect explains, e.g. a reversal, is not gross error).
+  bool group_check = true;
 };
 
 struct Outlier {

@@ -35,6 +35,12 @@ struct SelectionOptions {
   // points make it "significant"; e.g. the interpolation error of noisy
   // laser tables on a dense grid).
   double min_effect_rms = 0.3;
+  // The practical floor as a test at level `alpha`: the candidate's ΔRSS/σ̂²
+  // must exceed the upper α quantile of χ²_k(λ = n·min_effect_rms²), what
+  // an effect exactly at the floor would give with the noise on it (on a
+  // small design, e.g. a 117-hole plate, a point estimate at the floor is
+  // often noise on a smaller structure); false: ΔRSS ≥ n·min_effect_rms²·σ̂².
+  bool min_effect_test = true;
   // A cyclic period is ambiguous when another peak of the periodogram (not a
   // neighbour) reaches this share of the best peak's power (aliasing).
   double alias_power = 0.9;
