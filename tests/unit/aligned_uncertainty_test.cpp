@@ -16,6 +16,7 @@
 #include "abbe/machine/machine.hpp"
 #include "abbe/pipeline/aligned_prediction.hpp"
 #include "abbe/pipeline/prediction_uncertainty.hpp"
+#include "align_test_options.hpp"
 #include "model_test_machines.hpp"
 #include "uncertainty_test_machines.hpp"
 
@@ -32,11 +33,7 @@ McRun run(const Machine& m, const std::string& points_csv, std::size_t draws, st
   return test::run_points(m, points_csv, draws, seed, model::ModelKind::ae_arm, align);
 }
 
-AlignOptions best_fit_options() {
-  AlignOptions a;
-  a.method = AlignMethod::best_fit;
-  return a;
-}
+AlignOptions best_fit_options() { return test::best_fit_alignment(); }
 
 // The faces of a block as CSV points (header on line 1): the bottom z = −400
 // (lines 2–10), the front y = −500 (lines 11–16), the left x = −900 (lines
@@ -52,14 +49,7 @@ std::string block_points() {
   return csv;
 }
 
-AlignOptions datum_options() {
-  AlignOptions a;
-  a.method = AlignMethod::datums;
-  a.primary = LineSet::parse("2-10", "--datum-primary");
-  a.secondary = LineSet::parse("11-16", "--datum-secondary");
-  a.tertiary = LineSet::parse("17-18", "--datum-tertiary");
-  return a;
-}
+AlignOptions datum_options() { return test::datum_alignment("2-10", "11-16", "17-18"); }
 
 // ae-arm with constant angles of every axis: e = Σ θ × (P − M), so the
 // uncertainty of the reflector points M moves every point by the same

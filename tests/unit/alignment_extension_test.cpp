@@ -12,6 +12,7 @@
 
 #include "abbe/machine/machine.hpp"
 #include "abbe/model/error_model.hpp"
+#include "align_test_options.hpp"
 
 namespace abbe {
 namespace {
@@ -22,21 +23,10 @@ const char* kProgram =
     "G17 G21 G90 G94\nT1 M6\nG43 H1\nG0 X-350 Y-150\nG0 Z-270\nG1 Z-280 F300\nG1 X-650 F1000\n"
     "G1 Y-350\nG1 X-350\nG1 Y-150\nG0 Z-200\n";
 
-pipeline::AlignOptions best_fit() {
-  pipeline::AlignOptions ao;
-  ao.method = pipeline::AlignMethod::best_fit;
-  return ao;
-}
+pipeline::AlignOptions best_fit() { return test::best_fit_alignment(); }
 
 // The rectangle's bottom (lines 7–10), its first side (line 7), line 8.
-pipeline::AlignOptions datums() {
-  pipeline::AlignOptions ao;
-  ao.method = pipeline::AlignMethod::datums;
-  ao.primary = pipeline::LineSet::parse("7-10", "--datum-primary");
-  ao.secondary = pipeline::LineSet::parse("7", "--datum-secondary");
-  ao.tertiary = pipeline::LineSet::parse("8", "--datum-tertiary");
-  return ao;
-}
+pipeline::AlignOptions datums() { return test::datum_alignment("7-10", "7", "8"); }
 
 pipeline::ModelAlignment setup_of(const machine::Machine& m,
                                   const pipeline::AlignOptions& ao = best_fit()) {

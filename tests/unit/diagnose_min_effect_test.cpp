@@ -16,6 +16,7 @@
 #include "abbe/diagnose/candidates.hpp"
 #include "abbe/diagnose/selection.hpp"
 #include "abbe/diagnose/statistics.hpp"
+#include "diagnose_test_problem.hpp"
 
 namespace abbe::diagnose {
 namespace {
@@ -49,16 +50,8 @@ Problem plate(double rms_in_sigma, std::uint64_t seed) {
       pb.points.push_back(pc);
       pb.lines.push_back(pb.points.size() + 1);
     }
-  pb.y = Eigen::Map<Eigen::VectorXd>(y.data(), static_cast<Eigen::Index>(y.size()));
-  pb.sets = {"plate"};
-  pb.direction_present = {true, true, true};
   const Eigen::Vector3d lo(-700.0, -450.0, -230.0), hi(-100.0, -50.0, -230.0);
-  for (int v = 0; v < 3; ++v) {
-    pb.var_lo[static_cast<std::size_t>(v)] = lo[v];
-    pb.var_hi[static_cast<std::size_t>(v)] = hi[v];
-  }
-  pb.travel_mid = 0.5 * (lo + hi);
-  pb.travel_half = (0.5 * (hi - lo)).cwiseMax(1e-9);
+  test::finish_problem(pb, y, "plate", {true, true, true}, lo, hi);
   return pb;
 }
 

@@ -14,6 +14,7 @@
 
 #include "abbe/diagnose/candidates.hpp"
 #include "abbe/diagnose/selection.hpp"
+#include "diagnose_test_problem.hpp"
 
 namespace abbe::diagnose {
 namespace {
@@ -47,15 +48,7 @@ Problem box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, const std::arr
         pb.points.push_back(pc);
         pb.lines.push_back(pb.points.size() + 1);
       }
-  pb.y = Eigen::Map<Eigen::VectorXd>(y.data(), static_cast<Eigen::Index>(y.size()));
-  pb.sets = {"box"};
-  pb.direction_present = {true, true, true};
-  for (int v = 0; v < 3; ++v) {
-    pb.var_lo[static_cast<std::size_t>(v)] = lo[v];
-    pb.var_hi[static_cast<std::size_t>(v)] = hi[v];
-  }
-  pb.travel_mid = 0.5 * (lo + hi);
-  pb.travel_half = (0.5 * (hi - lo)).cwiseMax(1e-9);
+  test::finish_problem(pb, y, "box", {true, true, true}, lo, hi);
   return pb;
 }
 

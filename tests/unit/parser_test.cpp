@@ -226,18 +226,25 @@ TEST(Parser, NumbersAreExact) {
   EXPECT_EQ(parse("X" + std::string(63, '0') + "1").words[0].value, 1.0);
 }
 
+// A random decimal text: a sign or none, 0-21 digits before the point and
+// 0-25 after it (at least one digit in all).
+std::string random_decimal(std::mt19937_64& rng) {
+  std::string text = (rng() % 2) ? "-" : "";
+  const int n_int = static_cast<int>(rng() % 22);
+  const int n_frac = static_cast<int>(rng() % 26);
+  for (int k = 0; k < n_int; ++k) text += static_cast<char>('0' + rng() % 10);
+  if (n_frac > 0 || n_int == 0) text += '.';
+  for (int k = 0; k < std::max(n_frac, n_int == 0 ? 1 : 0); ++k)
+    text += static_cast<char>('0' + rng() % 10);
+  return text;
+}
+
 TEST(Parser, NumbersConvertLikeStrtod) {
   // Random decimal texts of every length, with and without fraction; the
   // parser's value must be the correctly rounded double strtod gives.
   std::mt19937_64 rng(42);
   for (int i = 0; i < 20000; ++i) {
-    std::string text = (rng() % 2) ? "-" : "";
-    const int n_int = static_cast<int>(rng() % 22);
-    const int n_frac = static_cast<int>(rng() % 26);
-    for (int k = 0; k < n_int; ++k) text += static_cast<char>('0' + rng() % 10);
-    if (n_frac > 0 || n_int == 0) text += '.';
-    for (int k = 0; k < std::max(n_frac, n_int == 0 ? 1 : 0); ++k)
-      text += static_cast<char>('0' + rng() % 10);
+    const std::string text = random_decimal(rng);
     const Block b = parse("X" + text);
     ASSERT_EQ(b.words.size(), 1U) << text;
     EXPECT_EQ(b.words[0].value, std::strtod(text.c_str(), nullptr)) << text;
@@ -252,13 +259,7 @@ TEST(Parser, NumbersConvertLikeStrtodInsideALine) {
     std::string line;
     std::vector<std::string> texts;
     for (int w = 0; w < 3; ++w) {
-      std::string text = (rng() % 2) ? "-" : "";
-      const int n_int = static_cast<int>(rng() % 22);
-      const int n_frac = static_cast<int>(rng() % 26);
-      for (int k = 0; k < n_int; ++k) text += static_cast<char>('0' + rng() % 10);
-      if (n_frac > 0 || n_int == 0) text += '.';
-      for (int k = 0; k < std::max(n_frac, n_int == 0 ? 1 : 0); ++k)
-        text += static_cast<char>('0' + rng() % 10);
+      const std::string text = random_decimal(rng);
       line += std::string(1, "XYZ"[w]) + text + (rng() % 2 ? " " : "");
       texts.push_back(text);
     }

@@ -20,7 +20,9 @@
 #include "abbe/report/html_page.hpp"
 #include "abbe/report/predict_section.hpp"
 #include "abbe/report/predicted_path.hpp"
+#include "align_test_options.hpp"
 #include "rect_program.hpp"
+#include "report_test_prediction.hpp"
 
 namespace abbe::report {
 namespace {
@@ -32,34 +34,15 @@ const std::string kUncertainMachine =
 const char* const kProgram = test::kRectProgram;
 const std::vector<model::ModelKind> kModels{model::ModelKind::htm, model::ModelKind::ae_arm};
 
-pipeline::AlignOptions best_fit() {
-  pipeline::AlignOptions a;
-  a.method = pipeline::AlignMethod::best_fit;
-  return a;
-}
+pipeline::AlignOptions best_fit() { return test::best_fit_alignment(); }
 
 // The rectangle's bottom (lines 5–8, z = −280) is the primary plane, its
 // first side (line 5, along X) the secondary line, line 6 the tertiary point.
-pipeline::AlignOptions datums() {
-  pipeline::AlignOptions a;
-  a.method = pipeline::AlignMethod::datums;
-  a.primary = pipeline::LineSet::parse("5-8", "--datum-primary");
-  a.secondary = pipeline::LineSet::parse("5", "--datum-secondary");
-  a.tertiary = pipeline::LineSet::parse("6", "--datum-tertiary");
-  return a;
-}
+pipeline::AlignOptions datums() { return test::datum_alignment("5-8", "5", "6"); }
 
 PredictedPath predicted(const std::string& machine_file, const pipeline::AlignOptions& align,
                         std::size_t draws, std::size_t max_points = 20000) {
-  const machine::Machine m = machine::Machine::load(machine_file);
-  PredictPathOptions o;
-  o.models = kModels;
-  o.align = align;
-  o.uncertainty_draws = draws;
-  o.seed = 4;
-  o.max_points = max_points;
-  std::istringstream in(kProgram);
-  return predict_program(m, in, "rect.ngc", o);
+  return test::predict_rect(machine_file, align, draws, max_points);
 }
 
 std::string page_of(const PredictedPath& r) {

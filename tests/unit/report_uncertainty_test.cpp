@@ -20,6 +20,7 @@
 #include "abbe/report/predict_section.hpp"
 #include "abbe/report/predicted_path.hpp"
 #include "rect_program.hpp"
+#include "report_test_prediction.hpp"
 
 namespace abbe::report {
 namespace {
@@ -32,14 +33,7 @@ const char* const kProgram = test::kRectProgram;
 
 PredictedPath predicted(const std::string& machine_file, std::size_t draws,
                         std::size_t max_points = 20000) {
-  const machine::Machine m = machine::Machine::load(machine_file);
-  PredictPathOptions o;
-  o.models = {model::ModelKind::htm, model::ModelKind::ae_arm};
-  o.uncertainty_draws = draws;
-  o.seed = 4;
-  o.max_points = max_points;
-  std::istringstream in(kProgram);
-  return predict_program(m, in, "rect.ngc", o);
+  return test::predict_rect(machine_file, {}, draws, max_points);
 }
 
 // The page without its footer (which names abbe's version).

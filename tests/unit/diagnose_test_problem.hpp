@@ -1,0 +1,29 @@
+#pragma once
+// What every hand-made diagnosis Problem of the selection tests needs once
+// its points and observations are in: the observed values, its one set, the
+// measured directions and the travel box the candidates are normalised to.
+#include <Eigen/Core>
+#include <array>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "abbe/diagnose/residuals.hpp"
+
+namespace abbe::diagnose::test {
+
+inline void finish_problem(Problem& pb, const std::vector<double>& y, const std::string& set,
+                           const std::array<bool, 3>& directions, const Eigen::Vector3d& lo,
+                           const Eigen::Vector3d& hi) {
+  pb.y = Eigen::Map<const Eigen::VectorXd>(y.data(), static_cast<Eigen::Index>(y.size()));
+  pb.sets = {set};
+  pb.direction_present = directions;
+  for (int v = 0; v < 3; ++v) {
+    pb.var_lo[static_cast<std::size_t>(v)] = lo[v];
+    pb.var_hi[static_cast<std::size_t>(v)] = hi[v];
+  }
+  pb.travel_mid = 0.5 * (lo + hi);
+  pb.travel_half = (0.5 * (hi - lo)).cwiseMax(1e-9);
+}
+
+}  // namespace abbe::diagnose::test

@@ -1,0 +1,30 @@
+#pragma once
+// The report tests' prediction: the rectangle program (rect_program.hpp)
+// through predict_program with htm and ae-arm, seed 4, the given set-up,
+// Monte Carlo draws and cap on the points kept for the plots.
+#include <cstddef>
+#include <sstream>
+#include <string>
+
+#include "abbe/machine/machine.hpp"
+#include "abbe/pipeline/aligned_prediction.hpp"
+#include "abbe/report/predicted_path.hpp"
+#include "rect_program.hpp"
+
+namespace abbe::test {
+
+inline report::PredictedPath predict_rect(const std::string& machine_file,
+                                          const pipeline::AlignOptions& align, std::size_t draws,
+                                          std::size_t max_points) {
+  const machine::Machine m = machine::Machine::load(machine_file);
+  report::PredictPathOptions o;
+  o.models = {model::ModelKind::htm, model::ModelKind::ae_arm};
+  o.align = align;
+  o.uncertainty_draws = draws;
+  o.seed = 4;
+  o.max_points = max_points;
+  std::istringstream in(kRectProgram);
+  return report::predict_program(m, in, "rect.ngc", o);
+}
+
+}  // namespace abbe::test
