@@ -27,10 +27,8 @@
 namespace abbe::report {
 namespace {
 
-const std::string kPlainMachine = std::string(ABBE_TEST_DATA_DIR) + "/machines/sample.yaml";
-const std::string kUncertainMachine =
-    std::string(ABBE_SOURCE_DIR) + "/machines/sample/machine-uncertainty.yaml";
-
+using test::kPlainMachine;
+using test::kUncertainMachine;
 const char* const kProgram = test::kRectProgram;
 const std::vector<model::ModelKind> kModels{model::ModelKind::htm, model::ModelKind::ae_arm};
 

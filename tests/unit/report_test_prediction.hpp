@@ -1,5 +1,5 @@
 #pragma once
-// The report tests' prediction: the rectangle program (rect_program.hpp)
+// The report tests' machines and prediction: the rectangle program (rect_program.hpp)
 // through predict_program with htm and ae-arm, seed 4, the given set-up,
 // Monte Carlo draws and cap on the points kept for the plots.
 #include <cstddef>
@@ -12,6 +12,11 @@
 #include "rect_program.hpp"
 
 namespace abbe::test {
+
+// The sample machine without and with the campaign's uncertainty.
+inline const std::string kPlainMachine = std::string(ABBE_TEST_DATA_DIR) + "/machines/sample.yaml";
+inline const std::string kUncertainMachine =
+    std::string(ABBE_SOURCE_DIR) + "/machines/sample/machine-uncertainty.yaml";
 
 inline report::PredictedPath predict_rect(const std::string& machine_file,
                                           const pipeline::AlignOptions& align, std::size_t draws,

@@ -25,10 +25,8 @@
 namespace abbe::report {
 namespace {
 
-const std::string kPlainMachine = std::string(ABBE_TEST_DATA_DIR) + "/machines/sample.yaml";
-const std::string kUncertainMachine =
-    std::string(ABBE_SOURCE_DIR) + "/machines/sample/machine-uncertainty.yaml";
-
+using test::kPlainMachine;
+using test::kUncertainMachine;
 const char* const kProgram = test::kRectProgram;
 
 PredictedPath predicted(const std::string& machine_file, std::size_t draws,
