@@ -236,7 +236,7 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
   // Subsample for the period scan.
   const std::size_t stride = std::max<std::size_t>(1, (np + o.scan_points - 1) / o.scan_points);
 
-  std::array<double, 64> practical_cache{};  // per column count (n is fixed)
+  std::array<double, 64> practical_cache{};  // by column count
   for (int step = 0; step < o.max_terms; ++step) {
     if (o.on_step) o.on_step(step);
     const double rr = r.squaredNorm();
@@ -252,7 +252,11 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     const double lambda = static_cast<double>(n) * o.min_effect_rms * o.min_effect_rms;
     auto practical = [&](int k) {
       if (!o.min_effect_test) return lambda;
-      double& q = practical_cache[static_cast<std::size_t>(std::min(k, 63))];
+      // Cached per column count below 64 (n is fixed); a wider candidate
+      // (a large smooth family) gets its own quantile.
+      if (k >= static_cast<int>(practical_cache.size()))
+        return noncentral_chi2_upper_quantile(k, lambda, o.alpha);
+      double& q = practical_cache[static_cast<std::size_t>(k)];
       if (q <= 0.0) q = noncentral_chi2_upper_quantile(k, lambda, o.alpha);
       return q;
     };
