@@ -35,12 +35,16 @@ void reset(Block& block, std::size_t line_number) {
   block.n.reset();
   block.words.clear();
   block.checksum.reset();
-  block.code.clear();
-  block.names.clear();
-  block.word_expressions.clear();
-  block.settings.clear();
-  block.o.keyword = OKeyword::none;
-  block.o.args.clear();
+  // Expression parts exist only beside code, a name or an O-word (most
+  // lines of a CAM program have none: nothing to clear).
+  if (block.has_code()) {
+    block.code.clear();
+    block.names.clear();
+    block.word_expressions.clear();
+    block.settings.clear();
+    block.o.keyword = OKeyword::none;
+    block.o.args.clear();
+  }
 }
 
 std::string number_error_message(ast::NumberError error) {
