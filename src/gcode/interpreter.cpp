@@ -161,38 +161,6 @@ void check_rotary_words(ExecState& st, const BlockPlan& b) {
   }
 }
 
-// The word a refused motion is reported at: the first axis, centre or radius word.
-const Word* motion_anchor(const Block& block) {
-  for (const auto& w : block.words)
-    if (std::string_view("XYZIJKR@^").find(w.letter) != std::string_view::npos) return &w;
-  return block.words.empty() ? nullptr : &block.words.front();
-}
-
-void stamp_motion(const ExecState& st, Motion& m, std::size_t line, std::uint32_t sub) {
-  m.line = line;
-  m.sub = sub;
-  m.tool_length = st.g43 && st.tool_length_unknown ? std::numeric_limits<double>::quiet_NaN()
-                                                   : st.active_length_mm();
-  m.spindle = st.spindle;
-  m.tool = st.selected_tool;
-}
-
-void deliver_motion(ExecState& st, Motion& m, const Block& block, const BlockContext& ctx,
-                    const MotionSink& sink) {
-  double far = std::max(m.start.cwiseAbs().maxCoeff(), m.end.cwiseAbs().maxCoeff());
-  if (m.kind == MotionKind::arc) far = std::max(far, m.center.cwiseAbs().maxCoeff());
-  if (!(far <= kMaxCoordinateMm))
-    ctx.fail(motion_anchor(block), fmt::format("the motion reaches a coordinate of {:g} mm, "
-                                               "beyond the bound of ±{:g} mm",
-                                               far, kMaxCoordinateMm));
-  ++st.delivered;
-  try {
-    sink(m);
-  } catch (const MotionRefused& e) {
-    ctx.fail(motion_anchor(block), e.what());
-  }
-}
-
 }  // namespace detail
 
 Interpreter::Interpreter(InterpreterConfig config, std::string file)
@@ -356,20 +324,7 @@ void Interpreter::execute_evaluated(const Block& written, std::string_view raw_l
   // directly; what it skips acts only on codes, words or compensation
   // states it cannot have.
   if (plain && b.motion != -1 && st.comp.queue.empty() && !st.comp.exit_pending) {
-    detail::note_motion_code(st, b.motion);
-    const Eigen::Vector3d end = detail::motion_end(st, b);
-    if (b.motion == gcode_id(2) || b.motion == gcode_id(3)) {
-      auto emit_arc = [&](Motion& m) {
-        detail::stamp_motion(st, m, block.line, 0);
-        detail::deliver_motion(st, m, block, ctx, sink);
-      };
-      detail::convert_arc(st, b, end, detail::make_hook(emit_arc));
-      return;
-    }
-    Motion m = detail::straight_motion(st, b, end);
-    st.pos = end;
-    detail::stamp_motion(st, m, block.line, 0);
-    detail::deliver_motion(st, m, block, ctx, sink);
+    detail::convert_plain_motion(st, b, block, sink);
     return;
   }
 

@@ -241,6 +241,10 @@ void stamp_motion(const ExecState& st, Motion& m, std::size_t line, std::uint32_
 // or radius word.
 void deliver_motion(ExecState& st, Motion& m, const Block& block, const BlockContext& ctx,
                     const MotionSink& sink);
+// The one motion of a plain block (is_plain_block), with no motion held
+// back by cutter compensation: stamped and delivered.
+void convert_plain_motion(ExecState& st, const BlockPlan& b, const Block& block,
+                          const MotionSink& sink);
 
 // The motion kinds of convert_motion (end: the end point in the program frame).
 void convert_straight(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& end,
