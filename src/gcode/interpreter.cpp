@@ -265,8 +265,8 @@ void Interpreter::leave_call(std::size_t line, std::string_view raw_line) {
   }
 }
 
-void Interpreter::execute_evaluated(const Block& written, std::string_view raw_line,
-                                    const MotionSink& sink) {
+ABBE_HOT void Interpreter::execute_evaluated(const Block& written, std::string_view raw_line,
+                                             const MotionSink& sink) {
   detail::ExecState& st = *state_;
   if (st.ended) return;
   const BlockContext ctx{st.file, written.line, raw_line};
@@ -349,23 +349,34 @@ void Interpreter::execute_evaluated(const Block& written, std::string_view raw_l
   const detail::Emit emit = detail::make_hook(emit_motion);
 
   if (modes) {
-    detail::convert_feed_mode(st, b);
+    // Every step acts only on the codes of its own groups (its first test);
+    // a step whose groups the block does not use is not called.
+    const auto g = [&codes](std::initializer_list<GGroup> groups) {
+      std::uint32_t mask = 0;
+      for (GGroup group : groups) mask |= 1U << static_cast<unsigned>(group);
+      return (codes.g_mask & mask) != 0;
+    };
+    const auto m = [&codes](MGroup group) { return codes.group(group) != nullptr; };
+    if (g({GGroup::feed_mode})) detail::convert_feed_mode(st, b);
     detail::convert_feed_speed_tool(st, b);
-    detail::convert_modal_save(st, b);
-    detail::convert_dwell(st, b, emit);
-    detail::convert_plane(st, b);
-    detail::convert_units(st, b);
-    detail::convert_cutter_comp(st, b);
-    detail::convert_tool_length(st, b);
-    detail::convert_coord_system(st, b);
-    detail::convert_path_control(st, b);
-    detail::convert_distance_modes(st, b);
-    detail::convert_setup(st, b);
-    detail::convert_home(st, b, emit);
-    detail::convert_axis_offsets(st, b);
+    if (m(MGroup::modal_save)) detail::convert_modal_save(st, b);
+    if (g({GGroup::non_modal})) detail::convert_dwell(st, b, emit);
+    if (g({GGroup::plane})) detail::convert_plane(st, b);
+    if (g({GGroup::units})) detail::convert_units(st, b);
+    if (g({GGroup::cutter_comp})) detail::convert_cutter_comp(st, b);
+    if (g({GGroup::tool_length})) detail::convert_tool_length(st, b);
+    if (g({GGroup::coord_system})) detail::convert_coord_system(st, b);
+    if (g({GGroup::path_control})) detail::convert_path_control(st, b);
+    if (g({GGroup::distance, GGroup::arc_distance, GGroup::retract}))
+      detail::convert_distance_modes(st, b);
+    if (g({GGroup::non_modal})) {
+      detail::convert_setup(st, b);
+      detail::convert_home(st, b, emit);
+      detail::convert_axis_offsets(st, b);
+    }
   }
   detail::convert_motion(st, b, emit);
-  if (modes) detail::convert_stop(st, b);
+  if (modes && codes.group(MGroup::stopping)) detail::convert_stop(st, b);
 }
 
 }  // namespace abbe::gcode

@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "abbe/io/input_error.hpp"
+#include "hot.hpp"
 
 namespace abbe::gcode {
 
@@ -276,7 +277,7 @@ constexpr std::uint32_t kAcceptedLetters =
 
 }  // namespace
 
-BlockCodes classify_block(const Block& block, const BlockContext& where) {
+ABBE_HOT BlockCodes classify_block(const Block& block, const BlockContext& where) {
   BlockCodes codes;
   for (const Word& w : block.words) {
     const char letter = w.letter;
