@@ -174,6 +174,10 @@ const auto comment = paren_comment | semicolon_comment;
 // comment: the plain word first, the expression word (which looks for a
 // word letter again) last. (Measured: 1.9 % fewer instructions than
 // "word | setting | comment" for `abbe interpret` on the 1 M-block program.)
+// The setting and the expression word go through cold[...] behind a look-ahead
+// of their first character (a '#' or a word letter): a CAM line has
+// neither, and the loop over its words stays small enough to be inlined
+// into the line rule (docs/performance.md, "fifth run").
 const auto cold = cold_gen{};
 const auto item =
     plain_word | comment |
