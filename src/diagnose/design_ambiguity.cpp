@@ -57,6 +57,12 @@ bool generic_of(const Term& t, int j) {
   return t.kind == TermKind::unexplained && t.vars.size() == 1 && t.vars[0] == j;
 }
 
+bool depends_on_time(const Term& t) {
+  if (t.kind == TermKind::thermal_drift) return true;
+  return t.kind == TermKind::unexplained &&
+         std::find(t.vars.begin(), t.vars.end(), 3) != t.vars.end();
+}
+
 void add_alternative(SelectedTerm& st, const std::string& alt) {
   if (std::find(st.ambiguous_with.begin(), st.ambiguous_with.end(), alt) == st.ambiguous_with.end())
     st.ambiguous_with.push_back(alt);
@@ -105,9 +111,10 @@ std::vector<std::string> mark_design_ambiguities(const Problem& pb,
     for (int j = 0; j < 3; ++j) {
       const std::vector<double>& lv = levelled[static_cast<std::size_t>(j)];
       if (lv.empty()) continue;
-      bool any_generic = false;
-      for (const SelectedTerm& st : effects) any_generic = any_generic || generic_of(st.term, j);
-      if (!any_generic) continue;
+      bool any = false;
+      for (const SelectedTerm& st : effects)
+        any = any || generic_of(st.term, j) || depends_on_time(st.term);
+      if (!any) continue;
       // Every function of the level of s_j, per direction: u_i · [level = l].
       const auto m = static_cast<Eigen::Index>(lv.size());
       Mat L = Mat::Zero(n, 3 * m);
@@ -134,6 +141,47 @@ std::vector<std::string> mark_design_ambiguities(const Problem& pb,
           "sample {} at irregular spacing (its {} levels, {:.4g} mm or more apart, alias every "
           "period below {:.4g} mm: a cycle of {} and these effects share one structure)",
           axis_name(j), lv.size(), gap, 2.0 * gap, axis_name(j));
+      // Time itself (mostly) a function of these levels: the design walks
+      // the levels in order, time and s_j go together, and a drift in time
+      // is a function of s_j as much.
+      std::vector<double> t_sum(lv.size(), 0.0), t_n(lv.size(), 0.0);
+      double t_all = 0.0;
+      std::vector<std::size_t> level_of(pb.points.size());
+      for (std::size_t p = 0; p < pb.points.size(); ++p) {
+        const double s = pb.points[p].s[j];
+        level_of[p] = std::min(
+            static_cast<std::size_t>(std::lower_bound(lv.begin(), lv.end(), s - 1e-3) - lv.begin()),
+            lv.size() - 1);
+        t_sum[level_of[p]] += pb.points[p].t;
+        t_n[level_of[p]] += 1.0;
+        t_all += pb.points[p].t;
+      }
+      t_all /= static_cast<double>(pb.points.size());
+      double t_total = 0.0, t_within = 0.0;
+      for (std::size_t p = 0; p < pb.points.size(); ++p) {
+        const double t = pb.points[p].t;
+        t_total += (t - t_all) * (t - t_all);
+        const double mean = t_sum[level_of[p]] / t_n[level_of[p]];
+        t_within += (t - mean) * (t - mean);
+      }
+      const bool time_follows = t_total > 0.0 && t_within <= o.level_share_left * t_total;
+      for (std::size_t e = 0; e < effects.size(); ++e) {
+        const Term& et = effects[e].term;
+        if (!time_follows || !depends_on_time(et) || et.direction < 0) continue;
+        Term position;
+        position.kind = et.direction == j ? TermKind::scale : TermKind::squareness;
+        position.axis = j;
+        position.direction = et.direction;
+        add_alternative(effects[e], position.label());
+        add_alternative(effects[e], levels_text);
+        if (effects[e].separate_by.empty())
+          effects[e].separate_by = fmt::format(
+              "measure the points again in another order or after a pause (in this design "
+              "time and {} vary together: {} walks its {} levels in order)",
+              axis_name(j), axis_name(j), lv.size());
+        log.push_back(fmt::format("design: {} is a function of the {} levels of {} as much",
+                                  et.label(), lv.size(), variable_name(j)));
+      }
       for (std::size_t g = 0; g < effects.size(); ++g) {
         if (!in_span[g] || !generic_of(effects[g].term, j)) continue;
         for (std::size_t e = 0; e < effects.size(); ++e) {

@@ -191,5 +191,49 @@ TEST(DiagnoseDesignAmbiguity, ScaleBesideAReversalThatGrowsAlongItsTravel) {
   }
 }
 
+// A drift of Z in time on a grid whose 5 Z levels are walked in order (one
+// pass: time and z go together) is ambiguous with a scale of Z; walked
+// there and back (each level at two times) it is not.
+TEST(DiagnoseDesignAmbiguity, DriftOnLevelsWalkedInOrderIsAmbiguousWithAScale) {
+  for (const bool one_pass : {true, false}) {
+    std::vector<PointContext> pts;
+    for (int pass = 0; pass < (one_pass ? 1 : 2); ++pass)
+      for (int kz = 0; kz < 5; ++kz)
+        for (int i = 0; i < 20; ++i) {
+          const int level = pass == 0 ? kz : 4 - kz;
+          PointContext pc = at(30.0 * i, 0.0);
+          pc.p.z() = pc.s.z() = 100.0 * level;
+          pc.t = 10.0 * static_cast<double>(pts.size());
+          pts.push_back(pc);
+        }
+    Problem pb;
+    std::vector<double> y;
+    for (const PointContext& pc : pts) {
+      const auto p = static_cast<std::uint32_t>(pb.points.size());
+      pb.points.push_back(pc);
+      Observation ob;
+      ob.point = p;
+      ob.u = Eigen::Vector3d::UnitZ();
+      pb.obs.push_back(ob);
+      y.push_back(-3.0 * (1.0 - std::exp(-pc.t / 600.0)));
+    }
+    test::finish_problem(pb, y, "a", {false, false, true}, {0.0, 0.0, 0.0}, {570.0, 0.0, 400.0});
+    Term drift;
+    drift.kind = TermKind::thermal_drift;
+    drift.axis = 2;
+    drift.direction = 2;
+    drift.tau_s = 600.0;
+    std::vector<SelectedTerm> eff{fitted(drift, {-3.0})};
+    mark_design_ambiguities(pb, {}, eff, {}, 4.0);
+    if (one_pass) {
+      ASSERT_EQ(eff[0].ambiguous_with.size(), 2u);
+      EXPECT_EQ(eff[0].ambiguous_with[0], "scale Z");
+      EXPECT_NE(eff[0].separate_by.find("another order or after a pause"), std::string::npos);
+    } else {
+      EXPECT_TRUE(eff[0].ambiguous_with.empty());
+    }
+  }
+}
+
 }  // namespace
 }  // namespace abbe::diagnose

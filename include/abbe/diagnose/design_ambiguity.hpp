@@ -12,7 +12,11 @@
 //    effects that are functions of the same levels in the same direction (a
 //    scale, a squareness, an arm offset, a reversal constant per row), the
 //    split between them is the aliasing's, not the machine's: all of them
-//    are ambiguous ("sample that axis at irregular spacing").
+//    are ambiguous ("sample that axis at irregular spacing"). Where time
+//    itself is (mostly) a function of such an axis's levels — the design
+//    walks the levels in order, e.g. a grid measured in one pass — a drift
+//    in time is ambiguous with a scale or squareness of that axis
+//    ("measure again in another order or after a pause").
 //  - A reversal that grows along its travel. Where the design drives the
 //    axis one way almost everywhere, sign(v_j)·s_j and s_j coincide: an
 //    effect linear in s_j beside a reversal of that axis (a scale, a drift
