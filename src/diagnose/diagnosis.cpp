@@ -112,6 +112,10 @@ Diagnosis diagnose_problem(const Problem& full, const DiagnoseOptions& o) {
   d.explained_together = sel.explained_together;
   for (SelectedTerm& st : d.effects) st.significant = value_significant(st.term);
   d.datum = sel.datum;
+  d.log = sel.log;
+  for (std::string& line :
+       mark_design_ambiguities(pb, d.datum, d.effects, o.design, o.candidates.min_period_mm))
+    d.log.push_back(std::move(line));
   d.extended = residual_stats(pb, sel.residual);
   d.extended.model = pb.base_model + "+effects";
   const double np = std::max<double>(static_cast<double>(d.n_points), 1.0);
@@ -126,7 +130,6 @@ Diagnosis diagnose_problem(const Problem& full, const DiagnoseOptions& o) {
   const NoiseEstimate ne = estimate_noise(pb);
   d.noise_independent_um = ne.sigma_um;
   d.noise_method = ne.method;
-  d.log = sel.log;
   // On every point: a reversal spike may well have been flagged as an outlier.
   CircleCheck cc =
       fit.drop.empty()

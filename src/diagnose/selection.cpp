@@ -231,6 +231,12 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     }
   }
 
+  // The set of each point (its index in pb.sets).
+  std::vector<std::size_t> set_of(np, 0);
+  for (std::size_t p = 0; p < np; ++p) {
+    const auto it = std::find(pb.sets.begin(), pb.sets.end(), pb.points[p].set);
+    set_of[p] = it == pb.sets.end() ? 0 : static_cast<std::size_t>(it - pb.sets.begin());
+  }
   const double tests_named = std::max(cs.named_tests, 1);
   const double tests_generic = std::max(cs.generic_tests, 1);
   // Subsample for the period scan.
@@ -321,18 +327,31 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
           if (pow[q] >= o.alias_power * best_pow) aliases.push_back(f.grid[q]);
         }
       } else {  // thermal_drift: the time constant with the largest normalised projection
+        // The residual is orthogonal to the datum's offsets, so the
+        // column's norm is taken without its mean per set (else a time
+        // constant whose column has the larger mean is penalised, and the
+        // scan prefers the wrong shape).
         double best_score = -1.0;
+        const std::size_t ns = std::max<std::size_t>(pb.sets.size(), 1);
+        std::vector<double> sw(ns), swg(ns);
         for (double tau : f.grid) {
           double num = 0.0, den = 0.0;
+          std::fill(sw.begin(), sw.end(), 0.0);
+          std::fill(swg.begin(), swg.end(), 0.0);
           for (std::size_t p = 0; p < np; p += stride) {
             const PointContext& pc = pb.points[p];
             const double tt = std::max(pc.t, 0.0);
             double g = tau > 0.0 ? 1.0 - std::exp(-tt / tau) : tt / 3600.0;
             if (t.with_axis >= 0) g *= 1e-3 * pc.s[t.with_axis];
             const auto ip = static_cast<Eigen::Index>(p);
+            const double w = W(ip, t.direction);
             num += R(ip, t.direction) * g;
-            den += W(ip, t.direction) * g * g;
+            den += w * g * g;
+            sw[set_of[p]] += w;
+            swg[set_of[p]] += w * g;
           }
+          for (std::size_t k = 0; k < ns; ++k)
+            if (sw[k] > 0.0) den -= swg[k] * swg[k] / sw[k];
           const double score = den > 0.0 ? num * num / den : 0.0;
           if (score > best_score) {
             best_score = score;

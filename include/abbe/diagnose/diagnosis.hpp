@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "abbe/diagnose/candidates.hpp"
+#include "abbe/diagnose/design_ambiguity.hpp"
 #include "abbe/diagnose/dynamic.hpp"
 #include "abbe/diagnose/noise.hpp"
 #include "abbe/diagnose/outliers.hpp"
@@ -24,6 +25,7 @@ struct DiagnoseOptions {
   SelectionOptions selection;
   CandidateOptions candidates;
   OutlierOptions outliers;
+  DesignAmbiguityOptions design;    // what the design cannot tell apart (design_ambiguity.hpp)
   const Overlay* extend = nullptr;  // an earlier overlay added to the model's prediction
 };
 

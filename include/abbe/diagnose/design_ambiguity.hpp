@@ -1,0 +1,65 @@
+#pragma once
+// What the measurement design cannot tell apart among the selected effects
+// (issue 16, "identifiability from the design"). Checked after the final
+// fit; an effect found ambiguous gets its alternatives (`ambiguous_with`)
+// and what to measure to separate them (`separate_by`), never a name:
+//  - Levelled axes. An axis the design samples at a few discrete levels,
+//    spaced at least twice the shortest catalogue period apart (a regular
+//    grid, a plate's rows, targets along a line), aliases every shorter
+//    period: a pitch error sampled there is an arbitrary function of the
+//    levels. When the selection explains one structure along such an axis
+//    with a cycle of that axis (or a smooth function of it alone) AND other
+//    effects that are functions of the same levels in the same direction (a
+//    scale, a squareness, an arm offset, a reversal constant per row), the
+//    split between them is the aliasing's, not the machine's: all of them
+//    are ambiguous ("sample that axis at irregular spacing"). Where time
+//    itself is (mostly) a function of such an axis's levels — the design
+//    walks the levels in order, e.g. a grid measured in one pass — a drift
+//    in time is ambiguous with a scale or squareness of that axis
+//    ("measure again in another order or after a pause").
+//  - A reversal that grows along its travel. Where the design drives the
+//    axis one way almost everywhere, sign(v_j)·s_j and s_j coincide: an
+//    effect linear in s_j beside a reversal of that axis (a scale, a drift
+//    ∝ s_j·t, ...) may be the reversal's growth: when, given everything
+//    else, the growth column sign(v_j)·(s_j − mid) removes as much as the
+//    effect, or less by no more than a one-column χ² at `growth_alpha`
+//    (the data do not prefer the effect), the effect is ambiguous ("drive
+//    the axis both ways over its whole travel").
+#include <array>
+#include <string>
+#include <vector>
+
+#include "abbe/diagnose/residuals.hpp"
+#include "abbe/diagnose/selection.hpp"
+
+namespace abbe::diagnose {
+
+struct DesignAmbiguityOptions {
+  bool levelled_axes = true;
+  // An axis with at most this many distinct positions counts as levelled
+  // (when its levels are also ≥ 2 × the shortest period apart).
+  std::size_t max_levels = 40;
+  // A term counts as a function of the levels when at most this share of its
+  // columns' sum of squares lies outside their span (an arm offset ε_j×Δ is
+  // one up to the tables' direction-dependent part).
+  double level_share_left = 0.1;
+  bool growing_reversal = true;
+  double growth_alpha = 0.01;
+};
+
+// The levels of each axis when the design samples it at few levels spaced
+// so that periods down to `min_period_mm` (the catalogue's shortest) alias;
+// empty for the other axes.
+std::array<std::vector<double>, 3> levelled_axes(const Problem& problem,
+                                                 const DesignAmbiguityOptions& options,
+                                                 double min_period_mm);
+
+// Marks the effects (fitted, with coef) the design cannot tell apart;
+// `datum`: the fitted datum terms. Returns one log line per marked effect.
+std::vector<std::string> mark_design_ambiguities(const Problem& problem,
+                                                 const std::vector<SelectedTerm>& datum,
+                                                 std::vector<SelectedTerm>& effects,
+                                                 const DesignAmbiguityOptions& options,
+                                                 double min_period_mm);
+
+}  // namespace abbe::diagnose

@@ -1,0 +1,266 @@
+#include "abbe/diagnose/design_ambiguity.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+#include "abbe/diagnose/statistics.hpp"
+
+namespace abbe::diagnose {
+namespace {
+
+using Mat = Eigen::MatrixXd;
+using Vec = Eigen::VectorXd;
+
+// Orthonormal basis of the span of the columns (two-pass Gram–Schmidt;
+// columns already in the span are dropped).
+Mat orthonormal(const Mat& A) {
+  Mat Q(A.rows(), 0);
+  for (Eigen::Index c = 0; c < A.cols(); ++c) {
+    Vec q = A.col(c);
+    const double n0 = q.norm();
+    if (n0 == 0.0) continue;
+    for (int pass = 0; pass < 2; ++pass)
+      if (Q.cols() > 0) q -= Q * (Q.transpose() * q);
+    const double n = q.norm();
+    if (!(n > 1e-9 * n0)) continue;
+    Q.conservativeResize(Eigen::NoChange, Q.cols() + 1);
+    Q.col(Q.cols() - 1) = q / n;
+  }
+  return Q;
+}
+
+Mat residual_of(const Mat& Q, const Mat& C) {
+  return Q.cols() > 0 ? Mat(C - Q * (Q.transpose() * C)) : C;
+}
+
+// The deviation directions a term moves at these points (bit i: direction i).
+unsigned direction_mask(const Problem& pb, const Term& t) {
+  const int k = t.columns();
+  Eigen::Matrix<double, 3, Eigen::Dynamic> g(3, k);
+  unsigned mask = 0;
+  for (const PointContext& pc : pb.points) {
+    t.basis(pc, g);
+    for (int i = 0; i < 3; ++i)
+      if (g.row(i).squaredNorm() > 0.0) mask |= 1u << i;
+    if (mask == 7u) break;
+  }
+  return mask;
+}
+
+// A cycle of axis j or a smooth function of s_j alone: what an aliased
+// pitch error of j is selected as.
+bool generic_of(const Term& t, int j) {
+  if (t.kind == TermKind::cyclic) return t.axis == j;
+  return t.kind == TermKind::unexplained && t.vars.size() == 1 && t.vars[0] == j;
+}
+
+bool depends_on_time(const Term& t) {
+  if (t.kind == TermKind::thermal_drift) return true;
+  return t.kind == TermKind::unexplained &&
+         std::find(t.vars.begin(), t.vars.end(), 3) != t.vars.end();
+}
+
+void add_alternative(SelectedTerm& st, const std::string& alt) {
+  if (std::find(st.ambiguous_with.begin(), st.ambiguous_with.end(), alt) == st.ambiguous_with.end())
+    st.ambiguous_with.push_back(alt);
+}
+
+}  // namespace
+
+std::array<std::vector<double>, 3> levelled_axes(const Problem& pb, const DesignAmbiguityOptions& o,
+                                                 double min_period_mm) {
+  std::array<std::vector<double>, 3> out;
+  for (int j = 0; j < 3; ++j) {
+    std::vector<double> v;
+    v.reserve(pb.points.size());
+    for (const PointContext& pc : pb.points) v.push_back(pc.s[j]);
+    std::sort(v.begin(), v.end());
+    std::vector<double> levels;
+    for (double x : v) {
+      if (levels.empty() || x - levels.back() > 1e-3) levels.push_back(x);
+      if (levels.size() > o.max_levels) break;
+    }
+    if (levels.size() < 3 || levels.size() > o.max_levels) continue;
+    double gap = 1e300;
+    for (std::size_t l = 1; l < levels.size(); ++l) gap = std::min(gap, levels[l] - levels[l - 1]);
+    if (gap >= 2.0 * min_period_mm) out[static_cast<std::size_t>(j)] = std::move(levels);
+  }
+  return out;
+}
+
+std::vector<std::string> mark_design_ambiguities(const Problem& pb,
+                                                 const std::vector<SelectedTerm>& datum,
+                                                 std::vector<SelectedTerm>& effects,
+                                                 const DesignAmbiguityOptions& o,
+                                                 double min_period_mm) {
+  std::vector<std::string> log;
+  if (effects.empty() || pb.obs.empty()) return log;
+  const auto n = static_cast<Eigen::Index>(pb.obs.size());
+  std::vector<Mat> cols;
+  std::vector<unsigned> mask;
+  for (const SelectedTerm& st : effects) {
+    cols.push_back(term_columns(pb, st.term));
+    mask.push_back(direction_mask(pb, st.term));
+  }
+
+  if (o.levelled_axes) {
+    const auto levelled = levelled_axes(pb, o, min_period_mm);
+    for (int j = 0; j < 3; ++j) {
+      const std::vector<double>& lv = levelled[static_cast<std::size_t>(j)];
+      if (lv.empty()) continue;
+      bool any = false;
+      for (const SelectedTerm& st : effects)
+        any = any || generic_of(st.term, j) || depends_on_time(st.term);
+      if (!any) continue;
+      // Every function of the level of s_j, per direction: u_i · [level = l].
+      const auto m = static_cast<Eigen::Index>(lv.size());
+      Mat L = Mat::Zero(n, 3 * m);
+      for (std::size_t ob = 0; ob < pb.obs.size(); ++ob) {
+        const Observation& obs = pb.obs[ob];
+        const double s = pb.points[obs.point].s[j];
+        const auto l = static_cast<Eigen::Index>(std::lower_bound(lv.begin(), lv.end(), s - 1e-3) -
+                                                 lv.begin());
+        for (Eigen::Index i = 0; i < 3; ++i)
+          L(static_cast<Eigen::Index>(ob), 3 * std::min(l, m - 1) + i) = obs.u[i];
+      }
+      const Mat Q = orthonormal(L);
+      std::vector<bool> in_span(effects.size(), false);
+      for (std::size_t e = 0; e < effects.size(); ++e) {
+        const double total = cols[e].squaredNorm();
+        in_span[e] =
+            total > 0.0 && residual_of(Q, cols[e]).squaredNorm() <= o.level_share_left * total;
+      }
+      double gap = 1e300;
+      for (std::size_t l = 1; l < lv.size(); ++l) gap = std::min(gap, lv[l] - lv[l - 1]);
+      const std::string levels_text =
+          fmt::format("any function of {} on its {} levels", variable_name(j), lv.size());
+      const std::string separate = fmt::format(
+          "sample {} at irregular spacing (its {} levels, {:.4g} mm or more apart, alias every "
+          "period below {:.4g} mm: a cycle of {} and these effects share one structure)",
+          axis_name(j), lv.size(), gap, 2.0 * gap, axis_name(j));
+      // Time itself (mostly) a function of these levels: the design walks
+      // the levels in order, time and s_j go together, and a drift in time
+      // is a function of s_j as much.
+      std::vector<double> t_sum(lv.size(), 0.0), t_n(lv.size(), 0.0);
+      double t_all = 0.0;
+      std::vector<std::size_t> level_of(pb.points.size());
+      for (std::size_t p = 0; p < pb.points.size(); ++p) {
+        const double s = pb.points[p].s[j];
+        level_of[p] = std::min(
+            static_cast<std::size_t>(std::lower_bound(lv.begin(), lv.end(), s - 1e-3) - lv.begin()),
+            lv.size() - 1);
+        t_sum[level_of[p]] += pb.points[p].t;
+        t_n[level_of[p]] += 1.0;
+        t_all += pb.points[p].t;
+      }
+      t_all /= static_cast<double>(pb.points.size());
+      double t_total = 0.0, t_within = 0.0;
+      for (std::size_t p = 0; p < pb.points.size(); ++p) {
+        const double t = pb.points[p].t;
+        t_total += (t - t_all) * (t - t_all);
+        const double mean = t_sum[level_of[p]] / t_n[level_of[p]];
+        t_within += (t - mean) * (t - mean);
+      }
+      const bool time_follows = t_total > 0.0 && t_within <= o.level_share_left * t_total;
+      for (std::size_t e = 0; e < effects.size(); ++e) {
+        const Term& et = effects[e].term;
+        if (!time_follows || !depends_on_time(et) || et.direction < 0) continue;
+        Term position;
+        position.kind = et.direction == j ? TermKind::scale : TermKind::squareness;
+        position.axis = j;
+        position.direction = et.direction;
+        add_alternative(effects[e], position.label());
+        add_alternative(effects[e], levels_text);
+        if (effects[e].separate_by.empty())
+          effects[e].separate_by = fmt::format(
+              "measure the points again in another order or after a pause (in this design "
+              "time and {} vary together: {} walks its {} levels in order)",
+              axis_name(j), axis_name(j), lv.size());
+        log.push_back(fmt::format("design: {} is a function of the {} levels of {} as much",
+                                  et.label(), lv.size(), variable_name(j)));
+      }
+      for (std::size_t g = 0; g < effects.size(); ++g) {
+        if (!in_span[g] || !generic_of(effects[g].term, j)) continue;
+        for (std::size_t e = 0; e < effects.size(); ++e) {
+          if (e == g || !in_span[e] || generic_of(effects[e].term, j)) continue;
+          if ((mask[e] & mask[g]) == 0) continue;
+          add_alternative(effects[e], effects[g].term.label());
+          add_alternative(effects[e], levels_text);
+          add_alternative(effects[g], effects[e].term.label());
+          for (std::size_t k : {g, e})
+            if (effects[k].separate_by.empty()) effects[k].separate_by = separate;
+          log.push_back(fmt::format("design: {} and {} are one function of {} on {} levels",
+                                    effects[e].term.label(), effects[g].term.label(),
+                                    variable_name(j), lv.size()));
+        }
+      }
+    }
+  }
+
+  if (o.growing_reversal) {
+    for (std::size_t rv = 0; rv < effects.size(); ++rv) {
+      const Term& rt = effects[rv].term;
+      if (rt.kind != TermKind::reversal || rt.axis < 0) continue;
+      const int j = rt.axis;
+      // The reversal's growth along its travel: sign(v_j)/2 · (s_j − mid)/half.
+      Vec growth = cols[rv].col(0);
+      for (std::size_t ob = 0; ob < pb.obs.size(); ++ob) {
+        const PointContext& pc = pb.points[pb.obs[ob].point];
+        growth[static_cast<Eigen::Index>(ob)] *=
+            (pc.s[j] - pb.travel_mid[j]) / std::max(pb.travel_half[j], 1e-9);
+      }
+      for (std::size_t e = 0; e < effects.size(); ++e) {
+        const Term& et = effects[e].term;
+        if (e == rv || et.kind == TermKind::unexplained || et.kind == TermKind::reversal) continue;
+        if ((mask[e] & mask[rv]) == 0) continue;
+        // Everything else of the fit: the datum and the other effects.
+        Eigen::Index k = 0;
+        for (const SelectedTerm& d : datum) k += d.term.columns();
+        for (std::size_t f = 0; f < effects.size(); ++f)
+          if (f != e) k += cols[f].cols();
+        Mat A(n, k);
+        Eigen::Index c = 0;
+        for (const SelectedTerm& d : datum) {
+          const Mat Cd = term_columns(pb, d.term);
+          A.middleCols(c, Cd.cols()) = Cd;
+          c += Cd.cols();
+        }
+        for (std::size_t f = 0; f < effects.size(); ++f)
+          if (f != e) {
+            A.middleCols(c, cols[f].cols()) = cols[f];
+            c += cols[f].cols();
+          }
+        const Mat QA = orthonormal(A);
+        // What the effect and the growth each add to everything else.
+        const Vec rA = residual_of(QA, pb.y);
+        const Mat Qe = orthonormal(residual_of(QA, cols[e]));
+        const Vec gp = residual_of(QA, growth);
+        if (Qe.cols() == 0 || !(gp.norm() > 0.0)) continue;
+        const double d_e = (Qe.transpose() * rA).squaredNorm();
+        const double d_g = std::pow(gp.dot(rA), 2) / gp.squaredNorm();
+        const double dof = static_cast<double>(n - QA.cols() - Qe.cols());
+        const double s2 = std::max(rA.squaredNorm() - d_e, 0.0) / std::max(dof, 1.0);
+        // Not shown to be more than the growth: the data do not prefer it
+        // significantly (at `growth_alpha`, one column's χ²).
+        const double margin = s2 * chi2_upper_quantile(1, o.growth_alpha);
+        if (!(d_e - d_g < margin)) continue;
+        const std::string alt = fmt::format("{} growing along {}", rt.label(), variable_name(j));
+        add_alternative(effects[e], alt);
+        if (effects[e].separate_by.empty())
+          effects[e].separate_by = fmt::format(
+              "drive {} both ways over its whole travel (on these points a {} that grows along "
+              "{} and {} explain the same structure)",
+              axis_name(j), rt.label(), variable_name(j), et.label());
+        log.push_back(fmt::format(
+            "design: {} (ΔRSS {:.6g}) is not told from the growth of {} along {} (ΔRSS {:.6g})",
+            et.label(), d_e, rt.label(), variable_name(j), d_g));
+      }
+    }
+  }
+  return log;
+}
+
+}  // namespace abbe::diagnose

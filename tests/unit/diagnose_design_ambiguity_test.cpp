@@ -1,0 +1,239 @@
+// What the measurement design cannot tell apart (design_ambiguity.hpp):
+// levelled axes, a cycle beside other functions of the same levels, and an
+// effect that is the growth of a reversal along its travel. Hand-made
+// problems with known answers.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "abbe/diagnose/design_ambiguity.hpp"
+#include "diagnose_test_problem.hpp"
+
+namespace abbe::diagnose {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Points with dx and dy observed; y filled by `truth` plus noise.
+template <class Truth>
+Problem make_problem(const std::vector<PointContext>& pts, Truth truth, std::uint64_t seed) {
+  Problem pb;
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> noise(0.0, 0.5);
+  std::vector<double> y;
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
+  for (const PointContext& pc : pts) {
+    const auto p = static_cast<std::uint32_t>(pb.points.size());
+    pb.points.push_back(pc);
+    const Eigen::Vector3d d = truth(pc);
+    for (int i = 0; i < 2; ++i) {
+      Observation ob;
+      ob.point = p;
+      ob.u = Eigen::Vector3d::Unit(i);
+      pb.obs.push_back(ob);
+      y.push_back(d[i] + noise(rng));
+    }
+    lo = lo.cwiseMin(pc.s);
+    hi = hi.cwiseMax(pc.s);
+  }
+  test::finish_problem(pb, y, "a", {true, true, false}, lo, hi);
+  return pb;
+}
+
+PointContext at(double x, double y, int vx = 1, int vy = 1) {
+  PointContext pc;
+  pc.p = {x, y, 0.0};
+  pc.s = pc.p;
+  pc.dir = {vx, vy, 0};
+  pc.set = "a";
+  return pc;
+}
+
+// A regular plate: 12 × 8 levels 50 mm apart.
+std::vector<PointContext> regular() {
+  std::vector<PointContext> v;
+  for (int j = 0; j < 8; ++j)
+    for (int i = 0; i < 12; ++i) v.push_back(at(50.0 * i, 50.0 * j));
+  return v;
+}
+
+// The same box at irregular positions.
+std::vector<PointContext> irregular() {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> ux(0.0, 550.0), uy(0.0, 350.0);
+  std::vector<PointContext> v;
+  for (int k = 0; k < 96; ++k) v.push_back(at(ux(rng), uy(rng)));
+  return v;
+}
+
+SelectedTerm fitted(Term t, std::vector<double> coef) {
+  SelectedTerm st;
+  t.coef = std::move(coef);
+  t.stderr_.assign(t.coef.size(), 0.01);
+  st.term = std::move(t);
+  return st;
+}
+
+Term scale(int axis) {
+  Term t;
+  t.kind = TermKind::scale;
+  t.axis = axis;
+  t.direction = axis;
+  return t;
+}
+
+Term cyclic(int axis, double period) {
+  Term t;
+  t.kind = TermKind::cyclic;
+  t.axis = axis;
+  t.direction = axis;
+  t.period_mm = period;
+  return t;
+}
+
+Term reversal(int axis) {
+  Term t;
+  t.kind = TermKind::reversal;
+  t.axis = axis;
+  t.direction = axis;
+  return t;
+}
+
+TEST(DiagnoseDesignAmbiguity, RegularLevelsAreFoundAndIrregularPositionsAreNot) {
+  const Problem reg = make_problem(
+      regular(), [](const PointContext&) { return Eigen::Vector3d::Zero(); }, 1);
+  const auto lv = levelled_axes(reg, {}, 4.0);
+  EXPECT_EQ(lv[0].size(), 12u);
+  EXPECT_EQ(lv[1].size(), 8u);
+  EXPECT_TRUE(lv[2].empty());  // one level: nothing to alias
+  // Levels 50 mm apart alias the periods below 100 mm: they count while the
+  // catalogue's shortest period is at most half their gap.
+  EXPECT_EQ(levelled_axes(reg, {}, 25.0)[0].size(), 12u);
+  EXPECT_TRUE(levelled_axes(reg, {}, 26.0)[0].empty());
+  const Problem irr = make_problem(
+      irregular(), [](const PointContext&) { return Eigen::Vector3d::Zero(); }, 1);
+  const auto li = levelled_axes(irr, {}, 4.0);
+  EXPECT_TRUE(li[0].empty());
+  EXPECT_TRUE(li[1].empty());
+}
+
+// A pitch error of X (18 mm, with its harmonic) on 50 mm levels, selected as
+// a scale X and a cycle of X: one function of the 12 levels, both ambiguous.
+TEST(DiagnoseDesignAmbiguity, ScaleBesideACycleOfALevelledAxisIsAmbiguous) {
+  auto pitch = [](const PointContext& pc) {
+    const double w = 2.0 * kPi * pc.s.x() / 18.0;
+    return Eigen::Vector3d(4.0 * (std::sin(w) + 0.35 * std::sin(2.0 * w + 1.0)), 0.0, 0.0);
+  };
+  for (const bool reg : {true, false}) {
+    const Problem pb = make_problem(reg ? regular() : irregular(), pitch, 2);
+    std::vector<SelectedTerm> eff{fitted(scale(0), {3.0}), fitted(cyclic(0, 97.5), {1.0, 0.5})};
+    const auto log = mark_design_ambiguities(pb, {}, eff, {}, 4.0);
+    if (reg) {
+      ASSERT_EQ(log.size(), 1u);
+      ASSERT_FALSE(eff[0].ambiguous_with.empty());
+      EXPECT_EQ(eff[0].ambiguous_with[0], "cyclic X→X (97.50 mm)");
+      EXPECT_NE(eff[0].separate_by.find("sample X at irregular spacing"), std::string::npos);
+      ASSERT_FALSE(eff[1].ambiguous_with.empty());
+      EXPECT_EQ(eff[1].ambiguous_with[0], "scale X");
+    } else {
+      EXPECT_TRUE(log.empty());
+      EXPECT_TRUE(eff[0].ambiguous_with.empty());
+      EXPECT_TRUE(eff[1].ambiguous_with.empty());
+    }
+  }
+}
+
+// A scale of X beside a cycle of Y: different levels, nothing shared.
+TEST(DiagnoseDesignAmbiguity, EffectsOfDifferentAxesStayNamed) {
+  const Problem pb = make_problem(
+      regular(), [](const PointContext&) { return Eigen::Vector3d::Zero(); }, 3);
+  std::vector<SelectedTerm> eff{fitted(scale(0), {3.0}), fitted(cyclic(1, 40.0), {1.0, 0.5})};
+  EXPECT_TRUE(mark_design_ambiguities(pb, {}, eff, {}, 4.0).empty());
+  EXPECT_TRUE(eff[0].ambiguous_with.empty());
+}
+
+// A reversal of Y growing 20 % along Y, on a design that drives Y one way
+// except for its first row (a plate's rows): the scale Y selected beside the
+// reversal is the growth as much, and is ambiguous. Walked both ways (each
+// point approached from either side at random), the growth and a real scale
+// differ and the scale stays named.
+TEST(DiagnoseDesignAmbiguity, ScaleBesideAReversalThatGrowsAlongItsTravel) {
+  for (const bool one_way : {true, false}) {
+    std::vector<PointContext> pts;
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (int j = 0; j < 9; ++j)
+      for (int i = 0; i < 13; ++i) {
+        const int vy = one_way ? (j == 0 ? -1 : 1) : (u(rng) < 0.5 ? -1 : 1);
+        pts.push_back(at(37.0 * i + 3.0 * u(rng), 41.0 * j + 3.0 * u(rng), 1, vy));
+      }
+    // One way: the growing reversal alone; both ways: a reversal and a real
+    // scale (2 µm over the plate).
+    auto truth = [one_way](const PointContext& pc) {
+      const double u = (pc.s.y() - 170.0) / 170.0;
+      if (one_way) return Eigen::Vector3d(0.0, 3.0 * pc.dir[1] * (1.0 + 0.2 * u), 0.0);
+      return Eigen::Vector3d(0.0, 3.0 * pc.dir[1] + 2.0 * u, 0.0);
+    };
+    const Problem pb = make_problem(pts, truth, 6);
+    std::vector<SelectedTerm> eff{fitted(reversal(1), {6.0}), fitted(scale(1), {1.0})};
+    DesignAmbiguityOptions o;
+    o.levelled_axes = false;
+    mark_design_ambiguities(pb, {}, eff, o, 4.0);
+    EXPECT_TRUE(eff[0].ambiguous_with.empty());
+    if (one_way) {
+      ASSERT_EQ(eff[1].ambiguous_with.size(), 1u);
+      EXPECT_EQ(eff[1].ambiguous_with[0], "reversal Y→Y growing along y");
+      EXPECT_NE(eff[1].separate_by.find("drive Y both ways"), std::string::npos);
+    } else {
+      EXPECT_TRUE(eff[1].ambiguous_with.empty());
+    }
+  }
+}
+
+// A drift of Z in time on a grid whose 5 Z levels are walked in order (one
+// pass: time and z go together) is ambiguous with a scale of Z; walked
+// there and back (each level at two times) it is not.
+TEST(DiagnoseDesignAmbiguity, DriftOnLevelsWalkedInOrderIsAmbiguousWithAScale) {
+  for (const bool one_pass : {true, false}) {
+    std::vector<PointContext> pts;
+    for (int pass = 0; pass < (one_pass ? 1 : 2); ++pass)
+      for (int kz = 0; kz < 5; ++kz)
+        for (int i = 0; i < 20; ++i) {
+          const int level = pass == 0 ? kz : 4 - kz;
+          PointContext pc = at(30.0 * i, 0.0);
+          pc.p.z() = pc.s.z() = 100.0 * level;
+          pc.t = 10.0 * static_cast<double>(pts.size());
+          pts.push_back(pc);
+        }
+    Problem pb;
+    std::vector<double> y;
+    for (const PointContext& pc : pts) {
+      const auto p = static_cast<std::uint32_t>(pb.points.size());
+      pb.points.push_back(pc);
+      Observation ob;
+      ob.point = p;
+      ob.u = Eigen::Vector3d::UnitZ();
+      pb.obs.push_back(ob);
+      y.push_back(-3.0 * (1.0 - std::exp(-pc.t / 600.0)));
+    }
+    test::finish_problem(pb, y, "a", {false, false, true}, {0.0, 0.0, 0.0}, {570.0, 0.0, 400.0});
+    Term drift;
+    drift.kind = TermKind::thermal_drift;
+    drift.axis = 2;
+    drift.direction = 2;
+    drift.tau_s = 600.0;
+    std::vector<SelectedTerm> eff{fitted(drift, {-3.0})};
+    mark_design_ambiguities(pb, {}, eff, {}, 4.0);
+    if (one_pass) {
+      ASSERT_EQ(eff[0].ambiguous_with.size(), 2u);
+      EXPECT_EQ(eff[0].ambiguous_with[0], "scale Z");
+      EXPECT_NE(eff[0].separate_by.find("another order or after a pause"), std::string::npos);
+    } else {
+      EXPECT_TRUE(eff[0].ambiguous_with.empty());
+    }
+  }
+}
+
+}  // namespace
+}  // namespace abbe::diagnose
