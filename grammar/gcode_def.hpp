@@ -174,7 +174,14 @@ const auto comment = paren_comment | semicolon_comment;
 // comment: the plain word first, the expression word (which looks for a
 // word letter again) last. (Measured: 1.9 % fewer instructions than
 // "word | setting | comment" for `abbe interpret` on the 1 M-block program.)
-const auto item = plain_word | comment | setting | expression_word;
+// The setting and the expression word go through cold[...] behind a look-ahead
+// of their first character (a '#' or a word letter): a CAM line has
+// neither, and the loop over its words stays small enough to be inlined
+// into the line rule (docs/performance.md, "fifth run").
+const auto cold = cold_gen{};
+const auto item =
+    plain_word | comment |
+    &char_("#ABCDEFGHIJKLMPQRSTXYZabcdefghijklmpqrstxyz@^") >> cold[setting | expression_word];
 
 // O-word control flow: o100 sub, o<name> call [1] [2], o101 if [#1 GT 0], ...
 const auto o_line = &char_("Oo") >> (position >> omit[char_("Oo")] >> blanks >> o_label >> blanks >>
@@ -189,7 +196,8 @@ const auto block = -line_number >> x3::repeat(std::size_t{0}, kMaxItemsPerBlock)
 // after an item has been stored, so no half-parsed item is ever left behind.
 const line_type nc_line = "line";
 const auto nc_line_def = blanks >>
-                         (percent_line | (-block_delete >> (o_line | program_line | block)));
+                         (&lit('%') >> cold[percent_line] |
+                          (-block_delete >> (&char_("Oo") >> cold[o_line | program_line] | block)));
 
 BOOST_SPIRIT_DEFINE(nc_line)
 

@@ -14,6 +14,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <type_traits>
+#include <utility>
 
 #include "grammar/ast.hpp"
 
@@ -121,6 +122,45 @@ struct blanks_parser : x3::parser<blanks_parser> {
   bool parse(It& first, It const& last, Context const&, RContext&, Attribute&) const {
     while (first != last && (*first == ' ' || *first == '\t')) ++first;
     return true;
+  }
+};
+
+// cold[p]: parses as p, in a function of its own that is never inlined.
+// The rare items of a line (parameter settings, computed words, O-word
+// lines) go through it, so that the compiler keeps the loop over the
+// frequent ones (plain words, comments) in one function.
+template <typename Subject>
+struct cold_directive : x3::unary_parser<Subject, cold_directive<Subject>> {
+  using base_type = x3::unary_parser<Subject, cold_directive<Subject>>;
+  static bool const is_pass_through_unary = true;
+
+  constexpr explicit cold_directive(Subject const& subject) : base_type(subject) {}
+
+  template <typename It, typename Context, typename RContext, typename Attribute>
+  bool parse(It& first, It const& last, Context const& context, RContext& rcontext,
+             Attribute& attribute) const {
+    // The iterators go by value: were their addresses passed on, the caller
+    // could not keep its own in registers.
+    const std::pair<bool, It> result = parse_apart(first, last, context, rcontext, attribute);
+    if (result.first) first = result.second;
+    return result.first;
+  }
+
+ private:
+  template <typename It, typename Context, typename RContext, typename Attribute>
+  BOOST_NOINLINE std::pair<bool, It> parse_apart(It first, It last, Context const& context,
+                                                 RContext& rcontext, Attribute& attribute) const {
+    const bool matched = this->subject.parse(first, last, context, rcontext, attribute);
+    return {matched, first};
+  }
+};
+
+struct cold_gen {
+  template <typename Subject>
+  constexpr cold_directive<typename x3::extension::as_parser<Subject>::value_type> operator[](
+      Subject const& subject) const {
+    return cold_directive<typename x3::extension::as_parser<Subject>::value_type>(
+        x3::as_parser(subject));
   }
 };
 

@@ -2,10 +2,14 @@
 // straight, arc and canned-cycle motions.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <string_view>
 
 #include "abbe/gcode/arc_geometry.hpp"
 #include "abbe/gcode/canned_cycle.hpp"
+#include "abbe/gcode/motion_limits.hpp"
 #include "interpreter_steps.hpp"
 
 namespace abbe::gcode::detail {
@@ -97,7 +101,12 @@ void polar_end(const ExecState& st, const BlockPlan& b, bool g53, Eigen::Vector3
 
 }  // namespace
 
-Eigen::Vector3d motion_end(ExecState& st, const BlockPlan& b) {
+// The end point, the straight motion and the delivery are written once, as
+// always-inline bodies: the plain block's path (convert_plain_motion, most
+// of a CAM program) gets them in one function; the general path calls them
+// through motion_end, straight_motion and deliver_motion below.
+[[gnu::always_inline]] static inline Eigen::Vector3d inline_motion_end(ExecState& st,
+                                                                       const BlockPlan& b) {
   const int motion = b.motion;
   const BlockCodes& c = b.codes;
   const bool g53 = b.non_modal == gcode_id(53);
@@ -123,9 +132,91 @@ Eigen::Vector3d motion_end(ExecState& st, const BlockPlan& b) {
   return end;
 }
 
+[[gnu::always_inline]] static inline Motion inline_straight_motion(ExecState& st,
+                                                                   const BlockPlan& b,
+                                                                   const Eigen::Vector3d& end) {
+  const bool rapid = b.motion == gcode_id(0);
+  if (!rapid) check_feed(st, b, "G1");
+  Motion m;
+  m.kind = rapid ? MotionKind::rapid : MotionKind::linear;
+  m.start = st.tip(st.pos);
+  m.end = st.tip(end);
+  // The length matters only to inverse-time feed (no square root otherwise).
+  m.feed = rapid                                    ? 0.0
+           : st.feed_mode == FeedMode::inverse_time ? st.feed_rate_mm((m.end - m.start).norm())
+                                                    : st.feed_rate_mm(0.0);
+  st.motion_mode = b.motion;
+  return m;
+}
+
 void note_motion_code(ExecState& st, int motion) {
   if (!is_cycle(motion)) st.cycle_initial_level_set = false;
   if (motion >= gcode_id(0) && motion <= gcode_id(3)) st.fanuc_group01 = motion;
+}
+
+// The word a refused motion is reported at: the first axis, centre or radius word.
+static const Word* motion_anchor(const Block& block) {
+  for (const auto& w : block.words)
+    if (std::string_view("XYZIJKR@^").find(w.letter) != std::string_view::npos) return &w;
+  return block.words.empty() ? nullptr : &block.words.front();
+}
+
+void stamp_motion(const ExecState& st, Motion& m, std::size_t line, std::uint32_t sub) {
+  m.line = line;
+  m.sub = sub;
+  m.tool_length = st.g43 && st.tool_length_unknown ? std::numeric_limits<double>::quiet_NaN()
+                                                   : st.active_length_mm();
+  m.spindle = st.spindle;
+  m.tool = st.selected_tool;
+}
+
+[[gnu::always_inline]] static inline void inline_deliver_motion(ExecState& st, Motion& m,
+                                                                const Block& block,
+                                                                const BlockContext& ctx,
+                                                                const MotionSink& sink) {
+  double far = std::max(m.start.cwiseAbs().maxCoeff(), m.end.cwiseAbs().maxCoeff());
+  if (m.kind == MotionKind::arc) far = std::max(far, m.center.cwiseAbs().maxCoeff());
+  if (!(far <= kMaxCoordinateMm))
+    ctx.fail(motion_anchor(block), fmt::format("the motion reaches a coordinate of {:g} mm, "
+                                               "beyond the bound of ±{:g} mm",
+                                               far, kMaxCoordinateMm));
+  ++st.delivered;
+  try {
+    sink(m);
+  } catch (const MotionRefused& e) {
+    ctx.fail(motion_anchor(block), e.what());
+  }
+}
+
+Eigen::Vector3d motion_end(ExecState& st, const BlockPlan& b) { return inline_motion_end(st, b); }
+
+Motion straight_motion(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& end) {
+  return inline_straight_motion(st, b, end);
+}
+
+void deliver_motion(ExecState& st, Motion& m, const Block& block, const BlockContext& ctx,
+                    const MotionSink& sink) {
+  inline_deliver_motion(st, m, block, ctx, sink);
+}
+
+// In the same file as motion_end, straight_motion and deliver_motion, so
+// that the plain block's one motion is made in one function.
+void convert_plain_motion(ExecState& st, const BlockPlan& b, const Block& block,
+                          const MotionSink& sink) {
+  note_motion_code(st, b.motion);
+  const Eigen::Vector3d end = inline_motion_end(st, b);
+  if (b.motion == gcode_id(2) || b.motion == gcode_id(3)) {
+    auto emit_arc = [&](Motion& m) {
+      stamp_motion(st, m, block.line, 0);
+      deliver_motion(st, m, block, b.ctx, sink);
+    };
+    convert_arc(st, b, end, make_hook(emit_arc));
+    return;
+  }
+  Motion m = inline_straight_motion(st, b, end);
+  st.pos = end;
+  stamp_motion(st, m, block.line, 0);
+  inline_deliver_motion(st, m, block, b.ctx, sink);
 }
 
 void convert_motion(ExecState& st, const BlockPlan& b, const Emit& emit) {
@@ -142,21 +233,6 @@ void convert_motion(ExecState& st, const BlockPlan& b, const Emit& emit) {
   } else if (motion == gcode_id(80)) {
     st.motion_mode = st.config.dialect.dialect == Dialect::fanuc ? st.fanuc_group01 : gcode_id(80);
   }
-}
-
-Motion straight_motion(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& end) {
-  const bool rapid = b.motion == gcode_id(0);
-  if (!rapid) check_feed(st, b, "G1");
-  Motion m;
-  m.kind = rapid ? MotionKind::rapid : MotionKind::linear;
-  m.start = st.tip(st.pos);
-  m.end = st.tip(end);
-  // The length matters only to inverse-time feed (no square root otherwise).
-  m.feed = rapid                                    ? 0.0
-           : st.feed_mode == FeedMode::inverse_time ? st.feed_rate_mm((m.end - m.start).norm())
-                                                    : st.feed_rate_mm(0.0);
-  st.motion_mode = b.motion;
-  return m;
 }
 
 void convert_straight(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& end,

@@ -161,38 +161,6 @@ void check_rotary_words(ExecState& st, const BlockPlan& b) {
   }
 }
 
-// The word a refused motion is reported at: the first axis, centre or radius word.
-const Word* motion_anchor(const Block& block) {
-  for (const auto& w : block.words)
-    if (std::string_view("XYZIJKR@^").find(w.letter) != std::string_view::npos) return &w;
-  return block.words.empty() ? nullptr : &block.words.front();
-}
-
-void stamp_motion(const ExecState& st, Motion& m, std::size_t line, std::uint32_t sub) {
-  m.line = line;
-  m.sub = sub;
-  m.tool_length = st.g43 && st.tool_length_unknown ? std::numeric_limits<double>::quiet_NaN()
-                                                   : st.active_length_mm();
-  m.spindle = st.spindle;
-  m.tool = st.selected_tool;
-}
-
-void deliver_motion(ExecState& st, Motion& m, const Block& block, const BlockContext& ctx,
-                    const MotionSink& sink) {
-  double far = std::max(m.start.cwiseAbs().maxCoeff(), m.end.cwiseAbs().maxCoeff());
-  if (m.kind == MotionKind::arc) far = std::max(far, m.center.cwiseAbs().maxCoeff());
-  if (!(far <= kMaxCoordinateMm))
-    ctx.fail(motion_anchor(block), fmt::format("the motion reaches a coordinate of {:g} mm, "
-                                               "beyond the bound of ±{:g} mm",
-                                               far, kMaxCoordinateMm));
-  ++st.delivered;
-  try {
-    sink(m);
-  } catch (const MotionRefused& e) {
-    ctx.fail(motion_anchor(block), e.what());
-  }
-}
-
 }  // namespace detail
 
 Interpreter::Interpreter(InterpreterConfig config, std::string file)
@@ -297,8 +265,8 @@ void Interpreter::leave_call(std::size_t line, std::string_view raw_line) {
   }
 }
 
-void Interpreter::execute_evaluated(const Block& written, std::string_view raw_line,
-                                    const MotionSink& sink) {
+ABBE_HOT void Interpreter::execute_evaluated(const Block& written, std::string_view raw_line,
+                                             const MotionSink& sink) {
   detail::ExecState& st = *state_;
   if (st.ended) return;
   const BlockContext ctx{st.file, written.line, raw_line};
@@ -356,20 +324,7 @@ void Interpreter::execute_evaluated(const Block& written, std::string_view raw_l
   // directly; what it skips acts only on codes, words or compensation
   // states it cannot have.
   if (plain && b.motion != -1 && st.comp.queue.empty() && !st.comp.exit_pending) {
-    detail::note_motion_code(st, b.motion);
-    const Eigen::Vector3d end = detail::motion_end(st, b);
-    if (b.motion == gcode_id(2) || b.motion == gcode_id(3)) {
-      auto emit_arc = [&](Motion& m) {
-        detail::stamp_motion(st, m, block.line, 0);
-        detail::deliver_motion(st, m, block, ctx, sink);
-      };
-      detail::convert_arc(st, b, end, detail::make_hook(emit_arc));
-      return;
-    }
-    Motion m = detail::straight_motion(st, b, end);
-    st.pos = end;
-    detail::stamp_motion(st, m, block.line, 0);
-    detail::deliver_motion(st, m, block, ctx, sink);
+    detail::convert_plain_motion(st, b, block, sink);
     return;
   }
 
@@ -394,23 +349,34 @@ void Interpreter::execute_evaluated(const Block& written, std::string_view raw_l
   const detail::Emit emit = detail::make_hook(emit_motion);
 
   if (modes) {
-    detail::convert_feed_mode(st, b);
+    // Every step acts only on the codes of its own groups (its first test);
+    // a step whose groups the block does not use is not called.
+    const auto g = [&codes](std::initializer_list<GGroup> groups) {
+      std::uint32_t mask = 0;
+      for (GGroup group : groups) mask |= 1U << static_cast<unsigned>(group);
+      return (codes.g_mask & mask) != 0;
+    };
+    const auto m = [&codes](MGroup group) { return codes.group(group) != nullptr; };
+    if (g({GGroup::feed_mode})) detail::convert_feed_mode(st, b);
     detail::convert_feed_speed_tool(st, b);
-    detail::convert_modal_save(st, b);
-    detail::convert_dwell(st, b, emit);
-    detail::convert_plane(st, b);
-    detail::convert_units(st, b);
-    detail::convert_cutter_comp(st, b);
-    detail::convert_tool_length(st, b);
-    detail::convert_coord_system(st, b);
-    detail::convert_path_control(st, b);
-    detail::convert_distance_modes(st, b);
-    detail::convert_setup(st, b);
-    detail::convert_home(st, b, emit);
-    detail::convert_axis_offsets(st, b);
+    if (m(MGroup::modal_save)) detail::convert_modal_save(st, b);
+    if (g({GGroup::non_modal})) detail::convert_dwell(st, b, emit);
+    if (g({GGroup::plane})) detail::convert_plane(st, b);
+    if (g({GGroup::units})) detail::convert_units(st, b);
+    if (g({GGroup::cutter_comp})) detail::convert_cutter_comp(st, b);
+    if (g({GGroup::tool_length})) detail::convert_tool_length(st, b);
+    if (g({GGroup::coord_system})) detail::convert_coord_system(st, b);
+    if (g({GGroup::path_control})) detail::convert_path_control(st, b);
+    if (g({GGroup::distance, GGroup::arc_distance, GGroup::retract}))
+      detail::convert_distance_modes(st, b);
+    if (g({GGroup::non_modal})) {
+      detail::convert_setup(st, b);
+      detail::convert_home(st, b, emit);
+      detail::convert_axis_offsets(st, b);
+    }
   }
   detail::convert_motion(st, b, emit);
-  if (modes) detail::convert_stop(st, b);
+  if (modes && codes.group(MGroup::stopping)) detail::convert_stop(st, b);
 }
 
 }  // namespace abbe::gcode

@@ -12,6 +12,7 @@
 #include "abbe/gcode/modal_groups.hpp"
 #include "abbe/gcode/modal_state.hpp"
 #include "abbe/io/units.hpp"
+#include "hot.hpp"
 
 namespace abbe::gcode::detail {
 
@@ -198,12 +199,14 @@ void convert_cutter_comp(ExecState& st, const BlockPlan& b);              // G40
 void convert_tool_length(ExecState& st, const BlockPlan& b);              // G43/G49
 void convert_coord_system(ExecState& st, const BlockPlan& b);             // G54-G59
 void convert_path_control(ExecState& st, const BlockPlan& b);             // G61/G61.1/G64
-void convert_distance_modes(ExecState& st, const BlockPlan& b);  // G90/G91, G90.1/G91.1, G98/G99
-void convert_setup(ExecState& st, const BlockPlan& b);           // G10 L1/L2/L10/L20
-void convert_home(ExecState& st, const BlockPlan& b, const Emit& emit);    // G28/G30, .1
-void convert_axis_offsets(ExecState& st, const BlockPlan& b);              // G92 family, G52
-void convert_motion(ExecState& st, const BlockPlan& b, const Emit& emit);  // G0-G3, cycles, G80
-void convert_stop(ExecState& st, const BlockPlan& b);                      // M2/M30
+void convert_distance_modes(ExecState& st,
+                            const BlockPlan& b);        // G90/G91, G90.1/G91.1, G98/G99
+void convert_setup(ExecState& st, const BlockPlan& b);  // G10 L1/L2/L10/L20
+void convert_home(ExecState& st, const BlockPlan& b, const Emit& emit);  // G28/G30, .1
+void convert_axis_offsets(ExecState& st, const BlockPlan& b);            // G92 family, G52
+void convert_motion(ExecState& st, const BlockPlan& b,
+                    const Emit& emit);                 // G0-G3, cycles, G80
+void convert_stop(ExecState& st, const BlockPlan& b);  // M2/M30
 
 // G20/G21: converts everything held in program units.
 void set_units(ExecState& st, bool inch);
@@ -241,11 +244,16 @@ void stamp_motion(const ExecState& st, Motion& m, std::size_t line, std::uint32_
 // or radius word.
 void deliver_motion(ExecState& st, Motion& m, const Block& block, const BlockContext& ctx,
                     const MotionSink& sink);
+// The one motion of a plain block (is_plain_block), with no motion held
+// back by cutter compensation: stamped and delivered.
+ABBE_HOT void convert_plain_motion(ExecState& st, const BlockPlan& b, const Block& block,
+                                   const MotionSink& sink);
 
 // The motion kinds of convert_motion (end: the end point in the program frame).
 void convert_straight(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& end,
                       const Emit& emit);
-void convert_arc(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& end, const Emit& emit);
+ABBE_HOT void convert_arc(ExecState& st, const BlockPlan& b, const Eigen::Vector3d& end,
+                          const Emit& emit);
 void convert_cycle(ExecState& st, const BlockPlan& b, const Emit& emit);
 
 }  // namespace abbe::gcode::detail

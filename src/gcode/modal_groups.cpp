@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "abbe/io/input_error.hpp"
+#include "hot.hpp"
 
 namespace abbe::gcode {
 
@@ -270,10 +271,13 @@ constexpr std::uint32_t letter_bit(char letter) { return 1U << BlockCodes::lette
 // axis does not move.)
 constexpr std::uint32_t kRefusedLetters = letter_bit('U') | letter_bit('V') | letter_bit('W') |
                                           letter_bit('E') | letter_bit('N') | letter_bit('O');
+// The letters a word may have besides G and M: A to Z, '^' and '@', less the refused ones.
+constexpr std::uint32_t kAcceptedLetters =
+    (((letter_bit('Z') << 1) - 1) | letter_bit('^') | letter_bit('@')) & ~kRefusedLetters;
 
 }  // namespace
 
-BlockCodes classify_block(const Block& block, const BlockContext& where) {
+ABBE_HOT BlockCodes classify_block(const Block& block, const BlockContext& where) {
   BlockCodes codes;
   for (const Word& w : block.words) {
     const char letter = w.letter;
@@ -312,14 +316,17 @@ BlockCodes classify_block(const Block& block, const BlockContext& where) {
       if ((codes.m_mask >> index) & 1U) fail_m_twice(where, w, codes.m[index].code, number);
       codes.m_mask |= 1U << index;
       codes.m[index] = CodeWord{number, &w};
-    } else if ((letter >= 'A' && letter <= 'Z') || letter == '@' || letter == '^') {
-      const std::uint32_t bit = letter_bit(letter);
-      if (bit & kRefusedLetters) fail_letter(where, w);
+    } else {
+      // One test for the common case: a letter of BlockCodes that is not refused.
+      const unsigned index = BlockCodes::letter_index(letter);
+      if (index > 30 || ((kAcceptedLetters >> index) & 1U) == 0) {
+        if (index <= 30 && ((kRefusedLetters >> index) & 1U) != 0) fail_letter(where, w);
+        fail_unexpected(where, w);
+      }
+      const std::uint32_t bit = 1U << index;
       if (codes.letter_mask & bit) fail_repeated(where, w);
       codes.letter_mask |= bit;
-      codes.letters[BlockCodes::letter_index(letter)] = &w;
-    } else {
-      fail_unexpected(where, w);
+      codes.letters[index] = &w;
     }
   }
   return codes;

@@ -14,6 +14,7 @@
 #include "abbe/io/input_error.hpp"
 #include "grammar/ast.hpp"
 #include "grammar/gcode.hpp"
+#include "hot.hpp"
 #include "parse_diagnosis.hpp"
 
 namespace abbe::gcode {
@@ -35,12 +36,16 @@ void reset(Block& block, std::size_t line_number) {
   block.n.reset();
   block.words.clear();
   block.checksum.reset();
-  block.code.clear();
-  block.names.clear();
-  block.word_expressions.clear();
-  block.settings.clear();
-  block.o.keyword = OKeyword::none;
-  block.o.args.clear();
+  // Expression parts exist only beside code, a name or an O-word (most
+  // lines of a CAM program have none: nothing to clear).
+  if (block.has_code()) {
+    block.code.clear();
+    block.names.clear();
+    block.word_expressions.clear();
+    block.settings.clear();
+    block.o.keyword = OKeyword::none;
+    block.o.args.clear();
+  }
 }
 
 std::string number_error_message(ast::NumberError error) {
@@ -62,8 +67,8 @@ std::string number_error_message(ast::NumberError error) {
 
 }  // namespace
 
-void parse_line(std::string_view line, std::size_t line_number, const std::string& file,
-                Block& block) {
+ABBE_HOT void parse_line(std::string_view line, std::size_t line_number, const std::string& file,
+                         Block& block) {
   if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
   if (line.size() > std::numeric_limits<std::uint32_t>::max())
     throw detail::line_error(line, line_number, file, 0, "line is longer than 4 GiB");
@@ -128,7 +133,7 @@ void BlockReader::refill() {
   }
 }
 
-bool BlockReader::next_line() {
+ABBE_HOT bool BlockReader::next_line() {
   for (;;) {
     const char* const first = buffer_.get() + begin_;
     const std::size_t available = end_ - begin_;
@@ -155,7 +160,7 @@ bool BlockReader::next_line() {
   }
 }
 
-bool BlockReader::next(Block& block) {
+ABBE_HOT bool BlockReader::next(Block& block) {
   if (!next_line()) return false;
   ++line_number_;
   line_copied_ = false;

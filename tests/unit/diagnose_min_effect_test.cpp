@@ -61,13 +61,7 @@ int named(double rms_in_sigma, bool test, int seeds) {
   int count = 0;
   for (int seed = 1; seed <= seeds; ++seed) {
     const Problem pb = plate(rms_in_sigma, static_cast<std::uint64_t>(seed));
-    CandidateSet cs;
-    cs.datum = build_candidates(pb, CandidateOptions{}).datum;
-    Term scale;
-    scale.kind = TermKind::scale;
-    scale.axis = 0;
-    scale.direction = 0;
-    cs.fixed = {scale};
+    CandidateSet cs = test::datum_and(pb, TermKind::scale, 0, 0);
     cs.named_tests = 1;
     SelectionOptions o;
     o.min_effect_test = test;

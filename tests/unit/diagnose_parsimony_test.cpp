@@ -86,13 +86,7 @@ TEST(DiagnoseParsimony, OneParameterSquarenessBeatsACyclicThatFitsTheSameLine) {
                            static_cast<std::uint64_t>(seed), [](const Eigen::Vector3d& s) {
                              return Eigen::Vector3d(1e-3 * 100.0 * (s.y() + 250.0), 0.0, 0.0);
                            });
-    CandidateSet cs;
-    cs.datum = build_candidates(pb, CandidateOptions{}).datum;
-    Term sq;
-    sq.kind = TermKind::squareness;
-    sq.axis = 1;
-    sq.direction = 0;
-    cs.fixed = {sq};
+    CandidateSet cs = test::datum_and(pb, TermKind::squareness, 1, 0);
     ScanFamily cyclic;
     cyclic.base.kind = TermKind::cyclic;
     cyclic.base.axis = 1;

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "abbe/diagnose/candidates.hpp"
 #include "abbe/diagnose/residuals.hpp"
 
 namespace abbe::diagnose::test {
@@ -24,6 +25,18 @@ inline void finish_problem(Problem& pb, const std::vector<double>& y, const std:
   }
   pb.travel_mid = 0.5 * (lo + hi);
   pb.travel_half = (0.5 * (hi - lo)).cwiseMax(1e-9);
+}
+
+// The problem's datum and one fixed candidate of `kind` (axis, direction).
+inline CandidateSet datum_and(const Problem& pb, TermKind kind, int axis, int direction) {
+  CandidateSet cs;
+  cs.datum = build_candidates(pb, CandidateOptions{}).datum;
+  Term term;
+  term.kind = kind;
+  term.axis = axis;
+  term.direction = direction;
+  cs.fixed = {term};
+  return cs;
 }
 
 }  // namespace abbe::diagnose::test

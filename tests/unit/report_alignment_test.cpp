@@ -43,14 +43,7 @@ PredictedPath predicted(const std::string& machine_file, const pipeline::AlignOp
   return test::predict_rect(machine_file, align, draws, max_points);
 }
 
-std::string page_of(const PredictedPath& r) {
-  HtmlPage page("abbe: predicted toolpath of rect.ngc");
-  Provenance p;
-  p.date = "2026-01-01T00:00:00Z";
-  page.set_provenance(p);
-  render_predict_report(page, r, 0.0);
-  return page.render();
-}
+std::string page_of(const PredictedPath& r) { return test::rect_page(r); }
 
 std::size_t count(const std::string& text, const std::string& what) {
   std::size_t n = 0;

@@ -8,6 +8,8 @@
 
 #include "abbe/machine/machine.hpp"
 #include "abbe/pipeline/aligned_prediction.hpp"
+#include "abbe/report/html_page.hpp"
+#include "abbe/report/predict_section.hpp"
 #include "abbe/report/predicted_path.hpp"
 #include "rect_program.hpp"
 
@@ -30,6 +32,17 @@ inline report::PredictedPath predict_rect(const std::string& machine_file,
   o.max_points = max_points;
   std::istringstream in(kRectProgram);
   return report::predict_program(m, in, "rect.ngc", o);
+}
+
+// The prediction's report page, dated 2026-01-01 so that it does not
+// depend on the day it is made.
+inline std::string rect_page(const report::PredictedPath& r) {
+  report::HtmlPage page("abbe: predicted toolpath of rect.ngc");
+  report::Provenance p;
+  p.date = "2026-01-01T00:00:00Z";
+  page.set_provenance(p);
+  report::render_predict_report(page, r, 0.0);
+  return page.render();
 }
 
 }  // namespace abbe::test

@@ -36,12 +36,7 @@ PredictedPath predicted(const std::string& machine_file, std::size_t draws,
 
 // The page without its footer (which names abbe's version).
 std::string page_of(const PredictedPath& r) {
-  HtmlPage page("abbe: predicted toolpath of rect.ngc");
-  Provenance p;
-  p.date = "2026-01-01T00:00:00Z";
-  page.set_provenance(p);
-  render_predict_report(page, r, 0.0);
-  std::string html = page.render();
+  std::string html = test::rect_page(r);
   const std::size_t footer = html.find("<footer id=\"provenance\">");
   EXPECT_NE(footer, std::string::npos);
   return html.substr(0, footer);

@@ -70,6 +70,9 @@ class ArcSpan {
   double end_radius() const { return r1_; }
 
  private:
+  template <int a, int b, int k, class F>
+  void for_each_sample_in(std::size_t n, F& f) const;
+
   std::array<int, 3> axes_;  // a, b, n
   Eigen::Vector3d p_start_;
   Eigen::Vector3d p_end_;
@@ -82,8 +85,21 @@ class ArcSpan {
 
 template <class F>
 void ArcSpan::for_each_sample(std::size_t n, F&& f) const {
+  // The plane's axes as constants: the point and the velocity then stay in
+  // registers (written through run-time indices, they went through memory,
+  // and reading a vector just written a component at a time stalls).
+  if (axes_ == std::array<int, 3>{0, 1, 2}) {
+    for_each_sample_in<0, 1, 2>(n, f);
+  } else if (axes_ == std::array<int, 3>{2, 0, 1}) {
+    for_each_sample_in<2, 0, 1>(n, f);
+  } else {
+    for_each_sample_in<1, 2, 0>(n, f);
+  }
+}
+
+template <int a, int b, int k, class F>
+void ArcSpan::for_each_sample_in(std::size_t n, F& f) const {
   constexpr std::size_t kReseed = 32;
-  const int a = axes_[0], b = axes_[1], k = axes_[2];
   const double dn = static_cast<double>(n);
   const double inv_n = 1.0 / dn;
   const double dtheta = sweep_ * inv_n;
