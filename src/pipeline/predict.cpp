@@ -1,6 +1,5 @@
 #include "abbe/pipeline/predict.hpp"
 
-#include "abbe/machine/travel_check.hpp"
 #include "abbe/pipeline/interpreter_setup.hpp"
 #include "abbe/pipeline/point_reader.hpp"
 
@@ -19,33 +18,38 @@ PredictInput predict_input_of(const std::string& file, bool force_points) {
                                                                             : PredictInput::program;
 }
 
-PredictionSummary predict(std::istream& in, const std::string& file,
-                          const machine::Machine& machine, const PredictOptions& options,
-                          const PredictionSink& sink) {
-  ModelSet models(machine, options.models, options.extension);
-  machine::TravelCheck travel(machine.spec().travel);
-  auto evaluate = [&](const model::EvalPoint& p, std::size_t line, bool rapid) {
-    travel.add(p.p, p.tool_length, line);
-    models.evaluate(p, file, line, rapid);
-    if (sink) sink(p, line, models);
-  };
-  if (options.input == PredictInput::points) {
-    PointReader reader(in, file, machine.tool_length());
-    model::EvalPoint p;
-    std::size_t line = 0;
-    while (reader.next(p, line)) evaluate(p, line, false);
-  } else {
-    run_path(in, file, options.config ? *options.config : interpreter_config(machine), options.path,
-             [&](const path::PathPoint& pp) {
-               evaluate(eval_point(pp), pp.line, pp.kind == gcode::MotionKind::rapid);
-             });
+namespace detail {
+
+PredictRun::PredictRun(const machine::Machine& machine, const PredictOptions& options,
+                       const std::string& file)
+    : machine_(machine),
+      file_(file),
+      models_(machine, options.models, options.extension),
+      travel_(machine.spec().travel) {}
+
+gcode::InterpreterConfig PredictRun::config(const PredictOptions& options) const {
+  return options.config ? *options.config : interpreter_config(machine_);
+}
+
+void PredictRun::read_points(
+    std::istream& in, const std::function<void(const model::EvalPoint&, std::size_t)>& each) {
+  PointReader reader(in, file_, machine_.tool_length());
+  model::EvalPoint p;
+  std::size_t line = 0;
+  while (reader.next(p, line)) {
+    evaluate(p, line, false);
+    each(p, line);
   }
-  PredictionSummary summary = summarize(models, machine, file);
-  summary.moves = options.input == PredictInput::program;
-  summary.outside_travel_points = travel.outside();
-  summary.outside_travel_per_axis = travel.outside_per_axis();
-  summary.travel_text = travel.text();
+}
+
+PredictionSummary PredictRun::summary(bool moves) const {
+  PredictionSummary summary = summarize(models_, machine_, file_);
+  summary.moves = moves;
+  summary.outside_travel_points = travel_.outside();
+  summary.outside_travel_per_axis = travel_.outside_per_axis();
+  summary.travel_text = travel_.text();
   return summary;
 }
 
+}  // namespace detail
 }  // namespace abbe::pipeline

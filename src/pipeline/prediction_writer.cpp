@@ -120,12 +120,10 @@ void PredictionWriter::write_row(const model::EvalPoint& p, std::size_t line,
   if (io::fixed6_fits(magnitude)) {
     const std::size_t old_size = buf_.size();
     buf_.resize(old_size + row_max_);
-    io::InPlaceRow out{buf_.data() + old_size};
-    row(out, p, devs, norms);
+    const io::InPlaceRow out = row(io::InPlaceRow{buf_.data() + old_size}, p, devs, norms);
     buf_.resize(static_cast<std::size_t>(out.p - buf_.data()));
   } else {
-    io::AppendedRow out{buf_};
-    row(out, p, devs, norms);
+    row(io::AppendedRow{buf_}, p, devs, norms);
   }
   ++points_;
   if (buf_.size() >= kChunk) flush();
@@ -141,9 +139,9 @@ void PredictionWriter::finish(std::string_view summary_json) {
 }
 
 template <class Out>
-void PredictionWriter::row(Out& out, const model::EvalPoint& p,
-                           const std::vector<model::Deviation>& devs,
-                           const std::vector<double>& norms) const {
+Out PredictionWriter::row(Out out, const model::EvalPoint& p,
+                          const std::vector<model::Deviation>& devs,
+                          const std::vector<double>& norms) const {
   const bool all = kinds_.size() > 1;
   if (format_ == PathFormat::csv) {
     num3(out, p.p, "", ",", ",");
@@ -197,6 +195,7 @@ void PredictionWriter::row(Out& out, const model::EvalPoint& p,
     }
     out.ch('}');
   }
+  return out;
 }
 
 void PredictionWriter::flush() {

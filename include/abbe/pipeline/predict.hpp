@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "abbe/machine/machine.hpp"
+#include "abbe/machine/travel_check.hpp"
 #include "abbe/model/error_extension.hpp"
 #include "abbe/model/model_kind.hpp"
 #include "abbe/pipeline/model_set.hpp"
@@ -38,9 +39,61 @@ struct PredictOptions {
 using PredictionSink =
     std::function<void(const model::EvalPoint& point, std::size_t line, const ModelSet& models)>;
 
+// `sink`: callable as sink(point, line, models) like a PredictionSink; a
+// template so that a lambda (the CLI's writer, a Python callback's
+// collector) is inlined into the point loop of a program.
 // Throws abbe::InputError on bad input (file, line, column).
+template <class Sink>
 PredictionSummary predict(std::istream& in, const std::string& file,
                           const machine::Machine& machine, const PredictOptions& options,
-                          const PredictionSink& sink);
+                          Sink&& sink);
+
+namespace detail {
+
+// The state of one predict() run: the models with their statistics and the
+// travel check, fed one point at a time (inline: it runs once per point).
+class PredictRun {
+ public:
+  PredictRun(const machine::Machine& machine, const PredictOptions& options,
+             const std::string& file);
+
+  void evaluate(const model::EvalPoint& p, std::size_t line, bool rapid) {
+    travel_.add(p.p, p.tool_length, line);
+    models_.evaluate(p, file_, line, rapid);
+  }
+  const ModelSet& models() const { return models_; }
+  // The interpreter's setup: the options' or the machine file's.
+  gcode::InterpreterConfig config(const PredictOptions& options) const;
+  // A CSV of points (PointReader): each point evaluated, then handed to `each`.
+  void read_points(std::istream& in,
+                   const std::function<void(const model::EvalPoint&, std::size_t)>& each);
+  PredictionSummary summary(bool moves) const;
+
+ private:
+  const machine::Machine& machine_;
+  const std::string& file_;
+  ModelSet models_;
+  machine::TravelCheck travel_;
+};
+
+}  // namespace detail
+
+template <class Sink>
+PredictionSummary predict(std::istream& in, const std::string& file,
+                          const machine::Machine& machine, const PredictOptions& options,
+                          Sink&& sink) {
+  detail::PredictRun run(machine, options, file);
+  if (options.input == PredictInput::points) {
+    run.read_points(
+        in, [&](const model::EvalPoint& p, std::size_t line) { sink(p, line, run.models()); });
+  } else {
+    run_path(in, file, run.config(options), options.path, [&](const path::PathPoint& pp) {
+      const model::EvalPoint p = eval_point(pp);
+      run.evaluate(p, pp.line, pp.kind == gcode::MotionKind::rapid);
+      sink(p, pp.line, run.models());
+    });
+  }
+  return run.summary(options.input == PredictInput::program);
+}
 
 }  // namespace abbe::pipeline

@@ -64,9 +64,12 @@ class PredictionWriter {
   std::size_t points() const { return points_; }
 
  private:
+  // Formats one row through `out` and returns it advanced. By value: the
+  // sink's pointer stays in a register (through a reference, every character
+  // stored could alias it, so it would be stored and reloaded per number).
   template <class Out>
-  void row(Out& out, const model::EvalPoint& p, const std::vector<model::Deviation>& devs,
-           const std::vector<double>& norms) const;
+  Out row(Out out, const model::EvalPoint& p, const std::vector<model::Deviation>& devs,
+          const std::vector<double>& norms) const;
   void write_row(const model::EvalPoint& p, std::size_t line,
                  const std::vector<model::Deviation>& devs, const std::vector<double>& norms);
   void put(std::string_view s) { buf_.append(s.data(), s.data() + s.size()); }
