@@ -75,30 +75,18 @@ SelectedTerm fitted(Term t, std::vector<double> coef) {
   return st;
 }
 
-Term scale(int axis) {
+// A term of `kind` along `axis`, in its own direction.
+Term term(TermKind kind, int axis, double period_mm = 0.0) {
   Term t;
-  t.kind = TermKind::scale;
+  t.kind = kind;
   t.axis = axis;
   t.direction = axis;
+  t.period_mm = period_mm;
   return t;
 }
-
-Term cyclic(int axis, double period) {
-  Term t;
-  t.kind = TermKind::cyclic;
-  t.axis = axis;
-  t.direction = axis;
-  t.period_mm = period;
-  return t;
-}
-
-Term reversal(int axis) {
-  Term t;
-  t.kind = TermKind::reversal;
-  t.axis = axis;
-  t.direction = axis;
-  return t;
-}
+Term scale(int axis) { return term(TermKind::scale, axis); }
+Term cyclic(int axis, double period) { return term(TermKind::cyclic, axis, period); }
+Term reversal(int axis) { return term(TermKind::reversal, axis); }
 
 TEST(DiagnoseDesignAmbiguity, RegularLevelsAreFoundAndIrregularPositionsAreNot) {
   const Problem reg = make_problem(
