@@ -351,25 +351,21 @@ ABBE_HOT void Interpreter::execute_evaluated(const Block& written, std::string_v
   if (modes) {
     // Every step acts only on the codes of its own groups (its first test);
     // a step whose groups the block does not use is not called.
-    const auto g = [&codes](std::initializer_list<GGroup> groups) {
-      std::uint32_t mask = 0;
-      for (GGroup group : groups) mask |= 1U << static_cast<unsigned>(group);
-      return (codes.g_mask & mask) != 0;
-    };
+    const auto g = [&codes](GGroup group) { return codes.group(group) != nullptr; };
     const auto m = [&codes](MGroup group) { return codes.group(group) != nullptr; };
-    if (g({GGroup::feed_mode})) detail::convert_feed_mode(st, b);
+    if (g(GGroup::feed_mode)) detail::convert_feed_mode(st, b);
     detail::convert_feed_speed_tool(st, b);
     if (m(MGroup::modal_save)) detail::convert_modal_save(st, b);
-    if (g({GGroup::non_modal})) detail::convert_dwell(st, b, emit);
-    if (g({GGroup::plane})) detail::convert_plane(st, b);
-    if (g({GGroup::units})) detail::convert_units(st, b);
-    if (g({GGroup::cutter_comp})) detail::convert_cutter_comp(st, b);
-    if (g({GGroup::tool_length})) detail::convert_tool_length(st, b);
-    if (g({GGroup::coord_system})) detail::convert_coord_system(st, b);
-    if (g({GGroup::path_control})) detail::convert_path_control(st, b);
-    if (g({GGroup::distance, GGroup::arc_distance, GGroup::retract}))
+    if (g(GGroup::non_modal)) detail::convert_dwell(st, b, emit);
+    if (g(GGroup::plane)) detail::convert_plane(st, b);
+    if (g(GGroup::units)) detail::convert_units(st, b);
+    if (g(GGroup::cutter_comp)) detail::convert_cutter_comp(st, b);
+    if (g(GGroup::tool_length)) detail::convert_tool_length(st, b);
+    if (g(GGroup::coord_system)) detail::convert_coord_system(st, b);
+    if (g(GGroup::path_control)) detail::convert_path_control(st, b);
+    if (g(GGroup::distance) || g(GGroup::arc_distance) || g(GGroup::retract))
       detail::convert_distance_modes(st, b);
-    if (g({GGroup::non_modal})) {
+    if (g(GGroup::non_modal)) {
       detail::convert_setup(st, b);
       detail::convert_home(st, b, emit);
       detail::convert_axis_offsets(st, b);

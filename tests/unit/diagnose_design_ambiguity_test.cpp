@@ -77,10 +77,7 @@ SelectedTerm fitted(Term t, std::vector<double> coef) {
 
 // A term of `kind` along `axis`, in its own direction.
 Term term(TermKind kind, int axis, double period_mm = 0.0) {
-  Term t;
-  t.kind = kind;
-  t.axis = axis;
-  t.direction = axis;
+  Term t = test::make_term(kind, axis, axis);
   t.period_mm = period_mm;
   return t;
 }

@@ -14,6 +14,7 @@
 #include "abbe/diagnose/selection.hpp"
 #include "abbe/io/plugplate.hpp"
 #include "abbe/machine/machine.hpp"
+#include "diagnose_test_problem.hpp"
 
 namespace abbe::diagnose {
 namespace {
@@ -108,10 +109,7 @@ struct LinearMap {
 
 LinearMap fit_linear_map(const Problem& pb, const std::string& set) {
   auto mk = [&](TermKind k, int a, int d) {
-    Term t;
-    t.kind = k;
-    t.axis = a;
-    t.direction = d;
+    Term t = test::make_term(k, a, d);
     t.set = set;
     return t;
   };

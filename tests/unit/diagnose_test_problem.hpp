@@ -27,15 +27,20 @@ inline void finish_problem(Problem& pb, const std::vector<double>& y, const std:
   pb.travel_half = (0.5 * (hi - lo)).cwiseMax(1e-9);
 }
 
+// A term of `kind` on `axis`, acting in `direction` (-1: none).
+inline Term make_term(TermKind kind, int axis, int direction) {
+  Term t;
+  t.kind = kind;
+  t.axis = axis;
+  t.direction = direction;
+  return t;
+}
+
 // The problem's datum and one fixed candidate of `kind` (axis, direction).
 inline CandidateSet datum_and(const Problem& pb, TermKind kind, int axis, int direction) {
   CandidateSet cs;
   cs.datum = build_candidates(pb, CandidateOptions{}).datum;
-  Term term;
-  term.kind = kind;
-  term.axis = axis;
-  term.direction = direction;
-  cs.fixed = {term};
+  cs.fixed = {make_term(kind, axis, direction)};
   return cs;
 }
 
