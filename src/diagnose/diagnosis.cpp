@@ -116,6 +116,10 @@ Diagnosis diagnose_problem(const Problem& full, const DiagnoseOptions& o) {
   for (std::string& line :
        mark_design_ambiguities(pb, d.datum, d.effects, o.design, o.candidates.min_period_mm))
     d.log.push_back(std::move(line));
+  for (std::string& line :
+       mark_unrejected_rivals(pb, d.datum, d.effects, build_candidates(pb, o.candidates),
+                              o.selection.searched_cost, o.rivals))
+    d.log.push_back(std::move(line));
   d.extended = residual_stats(pb, sel.residual);
   d.extended.model = pb.base_model + "+effects";
   const double np = std::max<double>(static_cast<double>(d.n_points), 1.0);

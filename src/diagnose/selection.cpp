@@ -99,6 +99,42 @@ void append_orthonormal(Mat& Q, const Mat& C) {
   }
 }
 
+// The variables (x, y, z, t) a term's deviation is a function of; false
+// for a term that is not a function of a few of them (a reversal follows the
+// motion; a setup rotation or a model choice, every position).
+bool within_variables(const Term& t, const std::vector<int>& vars) {
+  auto has = [&](int v) { return std::find(vars.begin(), vars.end(), v) != vars.end(); };
+  switch (t.kind) {
+    case TermKind::scale:
+    case TermKind::squareness:
+    case TermKind::cyclic:
+    case TermKind::arm_offset:
+      return has(t.axis);
+    case TermKind::coupling:
+      return has(t.axis) && has(t.with_axis);
+    case TermKind::thermal_drift:
+      return has(3) && (t.with_axis < 0 || has(t.with_axis));
+    case TermKind::reversal:  // on a serpentine walk a function of the other axes' rows
+      return true;
+    default:
+      return false;
+  }
+}
+
+// Share of the deviation a term's columns make (at unit coefficients, over
+// the points) that lies along `direction`.
+double share_along(const Problem& pb, const Term& t, int direction) {
+  const int k = t.columns();
+  Eigen::Matrix<double, 3, Eigen::Dynamic> g(3, k);
+  double along = 0.0, all = 0.0;
+  for (const PointContext& pc : pb.points) {
+    t.basis(pc, g);
+    along += g.row(direction).squaredNorm();
+    all += g.squaredNorm();
+  }
+  return all > 0.0 ? along / all : 0.0;
+}
+
 }  // namespace
 
 std::vector<int> point_folds(std::size_t points, int folds, std::uint64_t seed) {
@@ -318,6 +354,19 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
           }
         }
         t.period_mm = f.grid[best];
+        // The peak between the grid's frequencies: a parabola through the
+        // best power and its two neighbours (a period a quarter step off
+        // beats against the data over a long travel).
+        if (best > 0 && best + 1 < pow.size()) {
+          const double pm = pow[best - 1], p0 = pow[best], pp = pow[best + 1];
+          const double curv = pm - 2.0 * p0 + pp;
+          if (curv < 0.0) {
+            const double delta = std::clamp(0.5 * (pm - pp) / curv, -0.5, 0.5);
+            const double fb = 1.0 / f.grid[best];
+            const double step = 1.0 / f.grid[best + 1] - fb;
+            t.period_mm = 1.0 / (fb + delta * step);
+          }
+        }
         // Aliases: other peaks (local maxima away from the best) that reach
         // nearly the same power — on regularly spaced levels a period and its
         // aliases give the same samples, and the design cannot tell them apart.
@@ -374,6 +423,7 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
       // least at the practical floor; the minimum-effect test is for a new
       // structure, and the combination explains one already above it.
       double thr_part = 0.0;
+      double thr_added = 0.0;
     };
     std::vector<Score> scores;
     auto consider = [&](const Cached& c) {
@@ -382,7 +432,8 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
       const int k = c.term.columns();
       const double s2 = std::max(rr - d, 1e-300) / std::max(dof_base - k, 1.0);
       const double chi2 = chi2_upper_quantile(k, o.alpha / tests_named);
-      scores.push_back({&c, d, s2 * std::max(chi2, practical(k)), s2 * std::max(chi2, lambda)});
+      scores.push_back({&c, d, s2 * std::max(chi2, practical(k)), s2 * chi2,
+                        s2 * std::max(chi2, o.partner_floor_share * lambda)});
     };
     for (const Cached& c : named) consider(c);
     for (const Cached& c : scanned) consider(c);
@@ -463,48 +514,85 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     // together explain the structure as well, at a lower cost? Greedy from
     // the best named candidate, each partner significant in what it adds.
     bool combination_wins = false;
+    std::vector<const Score*> partners;             // of a winning combination, beside best_named
+    double d_partners = 0.0;                        // ΔRSS of the whole combination
+    std::vector<std::vector<Term>> partner_rivals;  // per partner: what may stand in its place
+    // ΔRSS of several candidates together (orthogonal to the selected span).
+    auto together = [&](const std::vector<const Score*>& members) {
+      Eigen::Index k = 0;
+      for (const Score* m : members) k += m->c->C.cols();
+      Mat Cj(n, k), QtCj(Q.cols(), k);
+      Eigen::Index at = 0;
+      for (const Score* m : members) {
+        Cj.middleCols(at, m->c->C.cols()) = m->c->C;
+        QtCj.middleCols(at, m->c->C.cols()) = m->c->QtC;
+        at += m->c->C.cols();
+      }
+      const Mat CtCj = Cj.transpose() * Cj;
+      return delta_rss(Cj, CtCj, QtCj, r);
+    };
     if (best_named && have_generic && best_named->d < o.name_ratio * g_best_d &&
         o.combinations > 1) {
       std::vector<const Score*> combo{best_named};
-      Mat Cc = best_named->c->C, QtCc = best_named->c->QtC;
       double d_combo = best_named->d, cost_combo = cost(best_named->c->term);
+      // Partners: among the 40 largest candidates (a partner explains
+      // something alone), significant alone and in what it adds.
+      // A partner is part of the structure the smooth function explains: a
+      // function of its variables, moving mainly along its direction (not,
+      // e.g., an arm offset that moves X and Y beside a structure in Z).
+      auto may_join = [&](const Score& s, const std::vector<const Score*>& members) {
+        return s.d > s.thr_part && std::find(members.begin(), members.end(), &s) == members.end() &&
+               within_variables(s.c->term, g_best.vars) &&
+               share_along(pb, s.c->term, g_best.direction) >= 0.5;
+      };
+      const std::size_t shortlist = std::min<std::size_t>(scores.size(), 40);
       for (int m = 1; m < o.combinations; ++m) {
         const Score* add = nullptr;
-        double d_add = d_combo;
-        int tried = 0;
-        for (const Score& s : scores) {
-          if (++tried > 40) break;  // the 40 largest: a partner explains something alone
-          if (!(s.d > s.thr_part) || std::find(combo.begin(), combo.end(), &s) != combo.end())
-            continue;
-          const Eigen::Index k0 = Cc.cols(), k1 = s.c->C.cols();
-          Mat Cj(n, k0 + k1), QtCj(QtCc.rows(), k0 + k1), CtCj(k0 + k1, k0 + k1);
-          Cj << Cc, s.c->C;
-          QtCj << QtCc, s.c->QtC;
-          CtCj = Cj.transpose() * Cj;
-          const double dj = delta_rss(Cj, CtCj, QtCj, r);
-          if (dj - d_combo > s.thr_part && dj > d_add) {
+        double d_add = d_combo, ic_add = 0.0;
+        for (std::size_t i = 0; i < shortlist; ++i) {
+          const Score& s = scores[i];
+          if (!may_join(s, combo)) continue;
+          std::vector<const Score*> with = combo;
+          with.push_back(&s);
+          const double dj = together(with);
+          // The partner that adds most on the criterion (a searched cycle
+          // that fits a line as well as a one-column squareness costs more).
+          const double ic = ic_gain(dj - d_combo, cost(s.c->term));
+          if (dj - d_combo > s.thr_added && (!add || ic > ic_add)) {
             add = &s;
             d_add = dj;
+            ic_add = ic;
           }
         }
         if (!add) break;
         combo.push_back(add);
-        Mat Cn(n, Cc.cols() + add->c->C.cols()), Qn(QtCc.rows(), Cc.cols() + add->c->C.cols());
-        Cn << Cc, add->c->C;
-        Qn << QtCc, add->c->QtC;
-        Cc = std::move(Cn);
-        QtCc = std::move(Qn);
         d_combo = d_add;
         cost_combo += cost(add->c->term);
       }
       if (combo.size() > 1 && d_combo >= o.name_ratio * g_best_d &&
           ic_gain(d_combo, cost_combo) >= ic_gain(g_best_d, g_best.columns())) {
         combination_wins = true;
+        partners.assign(combo.begin() + 1, combo.end());
+        d_partners = d_combo;
         std::string names;
         for (const Score* c : combo) names += (names.empty() ? "" : " + ") + c->c->term.label();
         res.log.push_back(fmt::format(
             "step {}: {} (ΔRSS {:.6g}) explain what {} explains (ΔRSS {:.6g}) at lower cost",
             step + 1, names, d_combo, g_best.label(), g_best_d));
+        // A partner the data do not prefer over another candidate in its
+        // place (the combination with the other removes less by no more
+        // than a one-column χ² at `alpha`) is reported with it as ambiguous.
+        const double swap_margin = s2_ic * chi2_upper_quantile(1, o.alpha);
+        partner_rivals.resize(partners.size());
+        for (std::size_t m = 1; m < combo.size(); ++m)
+          for (std::size_t i = 0; i < shortlist; ++i) {
+            const Score& s = scores[i];
+            if (!may_join(s, combo)) continue;
+            std::vector<const Score*> swapped = combo;
+            swapped[m] = &s;
+            if (together(swapped) >= d_combo - swap_margin)
+              partner_rivals[m - 1].push_back(s.c->term);
+          }
       }
     }
 
@@ -513,31 +601,58 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     double d_pick = 0.0;
     std::vector<std::string> amb;
     std::string separation;
+    std::vector<Term> with_pick;  // the partners of a winning combination
+    std::vector<std::vector<std::string>> with_amb;
+    std::vector<std::string> with_separation;
     if (best_named &&
         (!have_generic || combination_wins || best_named->d >= o.name_ratio * g_best_d)) {
       pick = best_named->c->term;
       C = best_named->c->C;
       d_pick = best_named->d;
       // Ambiguity: near-equal candidates whose fitted contributions coincide.
-      const Vec fb = contribution(*best_named->c);
-      std::vector<Term> rivals;
       // Parsimony: an alternative that costs more (columns, plus the cost of
       // a period or time constant found by search) and explains no more is
       // not a rival explanation of the same structure.
-      for (const Score& s : scores) {
-        if (&s == best_named || s.d < 0.9 * best_named->d) continue;
-        if (cost(s.c->term) > cost(best_named->c->term)) continue;
-        if (abs_correlation(fb, contribution(*s.c)) > o.ambiguous_corr) {
-          amb.push_back(s.c->term.label());
-          rivals.push_back(s.c->term);
+      auto ambiguity = [&](const Score& target, std::vector<std::string>& names) {
+        const Vec fb = contribution(*target.c);
+        std::vector<Term> rivals;
+        for (const Score& s : scores) {
+          if (&s == &target || s.d < 0.9 * target.d) continue;
+          if (cost(s.c->term) > cost(target.c->term)) continue;
+          if (abs_correlation(fb, contribution(*s.c)) > o.ambiguous_corr) {
+            names.push_back(s.c->term.label());
+            rivals.push_back(s.c->term);
+          }
         }
+        for (double period : target.c->aliases) {
+          Term alias = target.c->term;
+          alias.period_mm = period;
+          names.push_back(alias.label());
+        }
+        return separating_measurement(target.c->term, rivals, target.c->aliases);
+      };
+      separation = ambiguity(*best_named, amb);
+      // A combination that won against a smooth function enters whole: its
+      // members explain the structure together (a partner alone may be
+      // below the practical floor, e.g. the squareness part of an
+      // off-centre coupling), so each is kept with it, with its own rivals.
+      for (std::size_t m = 0; m < partners.size(); ++m) {
+        const Score* s = partners[m];
+        Mat Cn(n, C.cols() + s->c->C.cols());
+        Cn << C, s->c->C;
+        C = std::move(Cn);
+        with_pick.push_back(s->c->term);
+        with_amb.emplace_back();
+        std::string sep = ambiguity(*s, with_amb.back());
+        for (const Term& t : partner_rivals[m])
+          if (std::find(with_amb.back().begin(), with_amb.back().end(), t.label()) ==
+              with_amb.back().end())
+            with_amb.back().push_back(t.label());
+        if (sep.empty() && !partner_rivals[m].empty())
+          sep = separating_measurement(s->c->term, partner_rivals[m], {});
+        with_separation.push_back(sep);
+        d_pick = d_partners;
       }
-      for (double period : best_named->c->aliases) {
-        Term alias = pick;
-        alias.period_mm = period;
-        amb.push_back(alias.label());
-      }
-      separation = separating_measurement(pick, rivals, best_named->c->aliases);
     } else if (have_generic) {
       pick = g_best;
       C = term_columns(pb, pick);
@@ -602,8 +717,10 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
                                     pick.label(), cv, cv_prev));
       break;
     }
+    std::string picked = pick.label();
+    for (const Term& t : with_pick) picked += " + " + t.label();
     res.log.push_back(fmt::format("step {}: {} ΔRSS {:.6g} (of {:.6g}), held-out SSE {:.6g}",
-                                  step + 1, pick.label(), d_pick, rr, cv));
+                                  step + 1, picked, d_pick, rr, cv));
     cv_prev = cv;
     X = std::move(Xn);
     const Eigen::Index p0 = Q.cols();
@@ -618,9 +735,19 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     chosen.push_back(pick);
     ambiguous.push_back(amb);
     separations.push_back(separation);
+    for (std::size_t i = 0; i < with_pick.size(); ++i) {
+      chosen.push_back(with_pick[i]);
+      ambiguous.push_back(with_amb[i]);
+      separations.push_back(with_separation[i]);
+    }
     // A chosen fixed candidate cannot be chosen again.
     named.erase(std::remove_if(named.begin(), named.end(),
-                               [&](const Cached& c) { return c.term.label() == pick.label(); }),
+                               [&](const Cached& c) {
+                                 if (c.term.label() == pick.label()) return true;
+                                 for (const Term& t : with_pick)
+                                   if (c.term.label() == t.label()) return true;
+                                 return false;
+                               }),
                 named.end());
   }
 

@@ -499,6 +499,7 @@ struct Case {
   // With gross outliers: how many were put in, flagged right, flagged wrongly.
   std::size_t injected = 0, flagged = 0, false_flags = 0;
   double noise_um = 0.0, noise_independent_um = 0.0;
+  std::vector<std::string> log;  // the diagnosis's selection log
 };
 
 // Gross outliers: `fraction` of the points get one measured component
@@ -538,6 +539,7 @@ Case run_case(Design design, const Hidden& h, std::uint64_t seed, double outlier
   const Diagnosis d = diagnose_problem(pb, opt);
 
   Case c;
+  c.log = d.log;
   c.injected = bad.size();
   for (const Outlier& o : d.outliers) (bad.count(o.line) ? c.flagged : c.false_flags) += 1;
   c.noise_um = d.noise_um;
@@ -616,6 +618,13 @@ int seeds() {
   return s ? std::max(1, std::atoi(s)) : 40;
 }
 
+// ABBE_DIAGNOSE_CASE=i: run only case i of the sweep and print the
+// diagnosis's selection log (to look into one case of the table).
+int only_case() {
+  const char* s = std::getenv("ABBE_DIAGNOSE_CASE");
+  return s ? std::atoi(s) : -1;
+}
+
 struct Rates {
   int n_id = 0, id_right = 0, id_wrong = 0;
   int n_un = 0, un_ambiguous = 0, un_wrong = 0;  // "ambiguous" here: ambiguous or nothing named
@@ -643,13 +652,16 @@ Rates sweep(Design design) {
   Rates r;
   const Box b = box();
   const double L = noisy_vm().generated.truth.tool_length;
-  for (int i = 0; i < n; ++i) {
+  const int only = only_case();
+  for (int i = only >= 0 ? only : 0; i < (only >= 0 ? only + 1 : n); ++i) {
     std::mt19937_64 rng(static_cast<std::uint64_t>(7000 + 31 * i + static_cast<int>(design)));
     const auto seed = static_cast<std::uint64_t>(100 + i);
     // Every fourth case is null data.
     Hidden h;
     if (i % 4 != 3) h = draw(rng, b, L);
     const Case c = run_case(design, h, seed);
+    if (only >= 0)
+      for (const std::string& line : c.log) std::cerr << "  log: " << line << "\n";
     std::string tag;
     if (h.shape == Shape::none) {
       tag = r.add_null(c.verdict);

@@ -13,6 +13,7 @@
 #include "abbe/diagnose/outliers.hpp"
 #include "abbe/diagnose/overlay.hpp"
 #include "abbe/diagnose/residuals.hpp"
+#include "abbe/diagnose/rival_check.hpp"
 #include "abbe/diagnose/selection.hpp"
 #include "abbe/io/measured_data.hpp"
 #include "abbe/machine/machine.hpp"
@@ -26,6 +27,7 @@ struct DiagnoseOptions {
   CandidateOptions candidates;
   OutlierOptions outliers;
   DesignAmbiguityOptions design;    // what the design cannot tell apart (design_ambiguity.hpp)
+  RivalOptions rivals;              // rivals the data cannot reject (rival_check.hpp)
   const Overlay* extend = nullptr;  // an earlier overlay added to the model's prediction
 };
 

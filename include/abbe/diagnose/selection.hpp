@@ -58,6 +58,12 @@ struct SelectionOptions {
   // this many significant named candidates (greedy) compete with it on the
   // same criterion (1: no combinations).
   int combinations = 3;
+  // A partner of a combination must add, beyond the others, this share of
+  // the practical floor's sum of squares (n·min_effect_rms²·σ̂²; 0.5: an
+  // RMS of 0.21 σ̂): a part of one structure may be smaller than an effect
+  // of its own, but not so small that the model's own table error (a few
+  // tenths of a µm, present in every data set) fills the place.
+  double partner_floor_share = 0.5;
   // The flexibility of a smooth `unexplained` function that wins a step is
   // chosen by the held-out SSE among these Legendre degrees (one variable;
   // per variable of a pair); empty: the candidates' fixed degree.

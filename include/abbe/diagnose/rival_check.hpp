@@ -1,0 +1,48 @@
+#pragma once
+// Rivals the data cannot reject (issue 16, "never a wrong name"). After the
+// final fit, each named effect is put to a swap test: with everything else
+// of the fit kept (the datum and the other effects), does another
+// catalogue candidate in its place remove as much of the residual, or less
+// by no more than a one-column χ² at `alpha` (σ̂² · χ²₁(α))? Then the data
+// do not prefer the effect over that candidate, and the effect is reported
+// `ambiguous` with it, never as a name. This is what the design's geometry
+// decides case by case where no rule of design_ambiguity.hpp covers it:
+// e.g. along the body diagonals a drift ∝ x·t in X and a drift ∝ y·t in Y
+// differ only by the sign pattern of the four lines.
+//
+// Thermal-drift families are tried at every time constant of their grid;
+// cyclic families only at the effect's own period (a period scan per swap
+// would test hundreds of columns, and aliases are design_ambiguity's).
+// Candidates whose columns (after the datum) hardly correlate with the
+// effect's fitted contribution cannot stand in its place and are skipped
+// before the exact test.
+#include <string>
+#include <vector>
+
+#include "abbe/diagnose/candidates.hpp"
+#include "abbe/diagnose/residuals.hpp"
+#include "abbe/diagnose/selection.hpp"
+
+namespace abbe::diagnose {
+
+struct RivalOptions {
+  bool enabled = true;
+  double alpha = 0.01;
+  // Exact test only for candidates whose best fit to the effect's
+  // contribution reaches this |correlation| (after the datum).
+  double prefilter_corr = 0.5;
+};
+
+// Marks the effects (fitted, with coef) the data do not prefer over another
+// candidate of `catalogue`; `datum`: the fitted datum terms. A candidate that
+// costs more than the effect (columns, plus `searched_cost` for a period or
+// time constant found by search: SelectionOptions::searched_cost) is not a
+// rival, as in the selection's parsimony rule. Returns one log line per
+// rival found.
+std::vector<std::string> mark_unrejected_rivals(const Problem& problem,
+                                                const std::vector<SelectedTerm>& datum,
+                                                std::vector<SelectedTerm>& effects,
+                                                const CandidateSet& catalogue, double searched_cost,
+                                                const RivalOptions& options);
+
+}  // namespace abbe::diagnose

@@ -1,0 +1,160 @@
+#include "abbe/diagnose/rival_check.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+#include "abbe/diagnose/separation.hpp"
+#include "abbe/diagnose/statistics.hpp"
+
+namespace abbe::diagnose {
+namespace {
+
+using Mat = Eigen::MatrixXd;
+using Vec = Eigen::VectorXd;
+
+// Orthonormal basis of the span of the columns (two-pass Gram–Schmidt).
+Mat orthonormal(const Mat& A) {
+  Mat Q(A.rows(), 0);
+  for (Eigen::Index c = 0; c < A.cols(); ++c) {
+    Vec q = A.col(c);
+    const double n0 = q.norm();
+    if (n0 == 0.0) continue;
+    for (int pass = 0; pass < 2; ++pass)
+      if (Q.cols() > 0) q -= Q * (Q.transpose() * q);
+    const double n = q.norm();
+    if (!(n > 1e-9 * n0)) continue;
+    Q.conservativeResize(Eigen::NoChange, Q.cols() + 1);
+    Q.col(Q.cols() - 1) = q / n;
+  }
+  return Q;
+}
+
+Mat residual_of(const Mat& Q, const Mat& C) {
+  return Q.cols() > 0 ? Mat(C - Q * (Q.transpose() * C)) : C;
+}
+
+// What the columns C remove of r, both already orthogonal to the rest.
+double removes(const Mat& C, const Vec& r) {
+  const Mat Qc = orthonormal(C);
+  return Qc.cols() > 0 ? (Qc.transpose() * r).squaredNorm() : 0.0;
+}
+
+// The candidates that could stand in place of `effect`: the fixed ones, the
+// drift families at each time constant, the cycles at the effect's period.
+std::vector<Term> stand_ins(const CandidateSet& cs, const Term& effect) {
+  std::vector<Term> out;
+  for (const Term& t : cs.fixed) out.push_back(t);
+  for (const ScanFamily& f : cs.scanned) {
+    if (f.base.kind == TermKind::thermal_drift) {
+      for (double tau : f.grid) {
+        Term t = f.base;
+        t.tau_s = tau;
+        out.push_back(t);
+      }
+    } else if (f.base.kind == TermKind::cyclic && effect.kind == TermKind::cyclic) {
+      Term t = f.base;
+      t.period_mm = effect.period_mm;
+      out.push_back(t);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::string> mark_unrejected_rivals(const Problem& pb,
+                                                const std::vector<SelectedTerm>& datum,
+                                                std::vector<SelectedTerm>& effects,
+                                                const CandidateSet& catalogue, double searched_cost,
+                                                const RivalOptions& o) {
+  auto cost = [&](const Term& t) {
+    const bool searched = t.kind == TermKind::cyclic || t.kind == TermKind::thermal_drift;
+    return t.columns() + (searched ? searched_cost : 0.0);
+  };
+  std::vector<std::string> log;
+  if (!o.enabled || effects.empty() || pb.obs.empty()) return log;
+  const auto n = static_cast<Eigen::Index>(pb.obs.size());
+  Mat D(n, 0);
+  for (const SelectedTerm& d : datum) {
+    const Mat Cd = term_columns(pb, d.term);
+    Mat A(n, D.cols() + Cd.cols());
+    A << D, Cd;
+    D = std::move(A);
+  }
+  const Mat Qd = orthonormal(D);
+  std::vector<Mat> cols;
+  for (const SelectedTerm& st : effects) cols.push_back(term_columns(pb, st.term));
+
+  for (std::size_t e = 0; e < effects.size(); ++e) {
+    SelectedTerm& se = effects[e];
+    if (se.term.kind == TermKind::unexplained || !se.ambiguous_with.empty()) continue;
+    // Everything else of the named fit: the datum and the other named
+    // effects (a smooth `unexplained` function is fitted after them, on what
+    // they leave — selection.hpp — and would take the effect's own shape).
+    auto rest = [&](std::size_t f) {
+      return f != e && effects[f].term.kind != TermKind::unexplained;
+    };
+    Eigen::Index k = D.cols();
+    for (std::size_t f = 0; f < effects.size(); ++f)
+      if (rest(f)) k += cols[f].cols();
+    Mat A(n, k);
+    A.leftCols(D.cols()) = D;
+    Eigen::Index c = D.cols();
+    for (std::size_t f = 0; f < effects.size(); ++f)
+      if (rest(f)) {
+        A.middleCols(c, cols[f].cols()) = cols[f];
+        c += cols[f].cols();
+      }
+    const Mat QA = orthonormal(A);
+    const Vec rA = residual_of(QA, pb.y);
+    const Mat Ce = residual_of(QA, cols[e]);
+    const double d_e = removes(Ce, rA);
+    const double dof = static_cast<double>(n - QA.cols() - cols[e].cols());
+    if (!(d_e > 0.0) || dof < 1.0) continue;
+    const double s2 = std::max(rA.squaredNorm() - d_e, 0.0) / dof;
+    const double margin = s2 * chi2_upper_quantile(1, o.alpha);
+    // The effect's fitted contribution after the datum, for the prefilter.
+    Vec fe =
+        residual_of(Qd, cols[e]) *
+        Eigen::Map<const Vec>(se.term.coef.data(), static_cast<Eigen::Index>(se.term.coef.size()));
+    if (se.term.coef.size() != static_cast<std::size_t>(cols[e].cols()) || !(fe.norm() > 0.0))
+      fe = residual_of(Qd, Ce.col(0));
+    std::vector<Term> rivals;
+    for (const Term& cand : stand_ins(catalogue, se.term)) {
+      // Parsimony: an alternative that costs more (columns, plus a
+      // parameter found by search) and explains no more is not a rival.
+      if (cost(cand) > cost(se.term)) continue;
+      // The same effect at another time constant is not another name.
+      if (cand.kind == se.term.kind && cand.axis == se.term.axis &&
+          cand.direction == se.term.direction && cand.with_axis == se.term.with_axis)
+        continue;
+      bool selected = false;
+      for (const SelectedTerm& other : effects)
+        selected = selected || other.term.label() == cand.label();
+      if (selected) continue;
+      const Mat Cc = term_columns(pb, cand);
+      if (!(Cc.squaredNorm() > 0.0)) continue;
+      // Prefilter: how well the candidate (after the datum) fits the effect.
+      const Mat Qc = orthonormal(residual_of(Qd, Cc));
+      if (Qc.cols() == 0) continue;
+      const double corr = (Qc.transpose() * fe).norm() / fe.norm();
+      if (corr < o.prefilter_corr) continue;
+      const double d_c = removes(residual_of(QA, Cc), rA);
+      if (d_c < d_e - margin) continue;
+      rivals.push_back(cand);
+      se.ambiguous_with.push_back(cand.label());
+      log.push_back(fmt::format(
+          "data: {} (ΔRSS {:.6g}) is not preferred over {} in its place (ΔRSS {:.6g}, margin "
+          "{:.3g})",
+          se.term.label(), d_e, cand.label(), d_c, margin));
+    }
+    if (!rivals.empty() && se.separate_by.empty())
+      se.separate_by = separating_measurement(se.term, rivals, {});
+  }
+  return log;
+}
+
+}  // namespace abbe::diagnose
