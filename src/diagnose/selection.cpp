@@ -419,11 +419,6 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
       const Cached* c = nullptr;
       double d = -1.0;
       double thr = 0.0;
-      // A partner in a combination (below): significant, its estimate at
-      // least at the practical floor; the minimum-effect test is for a new
-      // structure, and the combination explains one already above it.
-      double thr_part = 0.0;
-      double thr_added = 0.0;
     };
     std::vector<Score> scores;
     auto consider = [&](const Cached& c) {
@@ -432,8 +427,7 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
       const int k = c.term.columns();
       const double s2 = std::max(rr - d, 1e-300) / std::max(dof_base - k, 1.0);
       const double chi2 = chi2_upper_quantile(k, o.alpha / tests_named);
-      scores.push_back({&c, d, s2 * std::max(chi2, practical(k)), s2 * chi2,
-                        s2 * std::max(chi2, o.partner_floor_share * lambda)});
+      scores.push_back({&c, d, s2 * std::max(chi2, practical(k))});
     };
     for (const Cached& c : named) consider(c);
     for (const Cached& c : scanned) consider(c);
@@ -541,24 +535,37 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
       // function of its variables, moving mainly along its direction (not,
       // e.g., an arm offset that moves X and Y beside a structure in Z).
       auto may_join = [&](const Score& s, const std::vector<const Score*>& members) {
-        return s.d > s.thr_part && std::find(members.begin(), members.end(), &s) == members.end() &&
+        return std::find(members.begin(), members.end(), &s) == members.end() &&
                within_variables(s.c->term, g_best.vars) &&
                share_along(pb, s.c->term, g_best.direction) >= 0.5;
       };
       const std::size_t shortlist = std::min<std::size_t>(scores.size(), 40);
+      Eigen::Index k_combo = best_named->c->C.cols();
       for (int m = 1; m < o.combinations; ++m) {
         const Score* add = nullptr;
         double d_add = d_combo, ic_add = 0.0;
+        Eigen::Index k_add = 0;
         for (std::size_t i = 0; i < shortlist; ++i) {
           const Score& s = scores[i];
           if (!may_join(s, combo)) continue;
           std::vector<const Score*> with = combo;
           with.push_back(&s);
           const double dj = together(with);
+          // What it adds must pass its χ² and `partner_floor_share` of the
+          // practical floor, in units of the residual variance the
+          // combination leaves (not what the candidate alone leaves: that
+          // still holds the structure the others explain).
+          const Eigen::Index kj = k_combo + s.c->C.cols();
+          const double s2j =
+              std::max(rr - dj, 1e-300) / std::max(dof_base - static_cast<double>(kj), 1.0);
+          const double thr_added =
+              s2j * std::max(chi2_upper_quantile(s.c->term.columns(), o.alpha / tests_named),
+                             o.partner_floor_share * lambda);
           // The partner that adds most on the criterion (a searched cycle
           // that fits a line as well as a one-column squareness costs more).
           const double ic = ic_gain(dj - d_combo, cost(s.c->term));
-          if (dj - d_combo > s.thr_added && (!add || ic > ic_add)) {
+          if (dj - d_combo > thr_added && (!add || ic > ic_add)) {
+            k_add = kj;
             add = &s;
             d_add = dj;
             ic_add = ic;
@@ -566,6 +573,7 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
         }
         if (!add) break;
         combo.push_back(add);
+        k_combo = k_add;
         d_combo = d_add;
         cost_combo += cost(add->c->term);
       }
