@@ -525,10 +525,19 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
       const Mat CtCj = Cj.transpose() * Cj;
       return delta_rss(Cj, CtCj, QtCj, r);
     };
-    if (best_named && have_generic && best_named->d < o.name_ratio * g_best_d &&
-        o.combinations > 1) {
-      std::vector<const Score*> combo{best_named};
-      double d_combo = best_named->d, cost_combo = cost(best_named->c->term);
+    // The combination starts from the best named candidate, or, where none
+    // passes the floors alone, from the largest significant one (e.g. a
+    // coupling whose linear parts take half of it).
+    const Score* lead = best_named;
+    if (!lead && !scores.empty()) {
+      const Score& top = scores.front();
+      const int k = top.c->term.columns();
+      const double s2 = std::max(rr - top.d, 1e-300) / std::max(dof_base - k, 1.0);
+      if (top.d > s2 * chi2_upper_quantile(k, o.alpha / tests_named)) lead = &top;
+    }
+    if (lead && have_generic && lead->d < o.name_ratio * g_best_d && o.combinations > 1) {
+      std::vector<const Score*> combo{lead};
+      double d_combo = lead->d, cost_combo = cost(lead->c->term);
       // Partners: among the 40 largest candidates (a partner explains
       // something alone), significant alone and in what it adds.
       // A partner is part of the structure the smooth function explains: a
@@ -540,7 +549,7 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
                share_along(pb, s.c->term, g_best.direction) >= 0.5;
       };
       const std::size_t shortlist = std::min<std::size_t>(scores.size(), 40);
-      Eigen::Index k_combo = best_named->c->C.cols();
+      Eigen::Index k_combo = lead->c->C.cols();
       for (int m = 1; m < o.combinations; ++m) {
         const Score* add = nullptr;
         double d_add = d_combo, ic_add = 0.0;
@@ -580,6 +589,7 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
       if (combo.size() > 1 && d_combo >= o.name_ratio * g_best_d &&
           ic_gain(d_combo, cost_combo) >= ic_gain(g_best_d, g_best.columns())) {
         combination_wins = true;
+        best_named = lead;
         partners.assign(combo.begin() + 1, combo.end());
         d_partners = d_combo;
         std::string names;

@@ -734,8 +734,8 @@ void check(const Rates& r, const Floor& f) {
 // ballbar's wrong names fell 1 → 0 and the diagonals' 3/147 → 1/147
 // (200 seeds; 40 seeds: grid 25/26, toolpath 17/18 with 1 wrong, ballbar
 // 22/23, diagonals 1 wrong in 30): every floor rose, none fell.
-TEST(DiagnoseDesigns, Grid) { check(sweep(Design::grid), {0.92, 0.02, 0.06, 0.95, 0.95}); }
-TEST(DiagnoseDesigns, Plane) { check(sweep(Design::plane), {0.9, 0.02, 0.02, 0.95, 0.9}); }
+TEST(DiagnoseDesigns, Grid) { check(sweep(Design::grid), {0.94, 0.02, 0.06, 0.95, 0.95}); }
+TEST(DiagnoseDesigns, Plane) { check(sweep(Design::plane), {0.93, 0.02, 0.02, 0.95, 0.9}); }
 TEST(DiagnoseDesigns, Toolpath) { check(sweep(Design::toolpath), {0.92, 0.06, 0.05, 0.95, 0.95}); }
 TEST(DiagnoseDesigns, Ballbar) { check(sweep(Design::ballbar), {0.9, 0.02, 0.02, 0.95, 0.9}); }
 TEST(DiagnoseDesigns, Diagonals) { check(sweep(Design::diagonals), {0.0, 0.02, 0.04, 0.95, 0.0}); }
