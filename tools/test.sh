@@ -2,14 +2,15 @@
 # Runs all of abbe's tests on a fresh Debian machine: installs the
 # dependencies, builds with AddressSanitizer + UndefinedBehaviorSanitizer and
 # runs ctest (unit, property, cli, consumer project, Python, interop,
-# browser and a short fuzz run).
+# browser and a short fuzz run). The benchmarks are built (not run) so that
+# they keep compiling with the library they measure.
 # Usage: tools/test.sh [extra ctest arguments]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 tools/install-deps.sh --test
 build=${ABBE_TEST_BUILD_DIR:-build/test}
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DABBE_SANITIZE=ON \
-      -DABBE_BUILD_TESTS=ON -DABBE_PYTHON=ON -DABBE_BUILD_BENCHMARKS=OFF -DABBE_WERROR=ON
+      -DABBE_BUILD_TESTS=ON -DABBE_PYTHON=ON -DABBE_BUILD_BENCHMARKS=ON -DABBE_WERROR=ON
 cmake --build "$build" --parallel "$(nproc)"
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1

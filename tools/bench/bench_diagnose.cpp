@@ -56,18 +56,26 @@ Setup make_setup(int points) {
   return Setup{std::move(g), std::move(m), std::move(data)};
 }
 
+// range(0): points; range(1): 1 with the swap test after the fit
+// (rival_check.hpp), 0 without — its cost as a ratio in the same run.
 void BM_Diagnose(benchmark::State& state) {
   const Setup s = make_setup(static_cast<int>(state.range(0)));
+  abbe::diagnose::DiagnoseOptions o;
+  o.rivals.enabled = state.range(1) != 0;
   std::size_t effects = 0;
   for (auto _ : state) {
-    const abbe::diagnose::Diagnosis d =
-        abbe::diagnose::diagnose(s.machine, s.data, abbe::diagnose::DiagnoseOptions{});
+    const abbe::diagnose::Diagnosis d = abbe::diagnose::diagnose(s.machine, s.data, o);
     effects = d.effects.size();
     benchmark::DoNotOptimize(effects);
   }
   state.counters["points"] = static_cast<double>(state.range(0));
   state.counters["effects"] = static_cast<double>(effects);
 }
-BENCHMARK(BM_Diagnose)->Arg(10000)->Arg(100000)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(BM_Diagnose)
+    ->Args({10000, 1})
+    ->Args({100000, 1})
+    ->Args({100000, 0})
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1);
 
 }  // namespace

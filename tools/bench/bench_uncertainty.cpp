@@ -58,7 +58,8 @@ void BM_PredictPlain(benchmark::State& state) {
   std::size_t points = 0;
   for (auto _ : state) {
     std::istringstream in(program);
-    const auto summary = abbe::pipeline::predict(in, "thesis.ngc", uncertain_machine(), po, {});
+    const auto summary = abbe::pipeline::predict(in, "thesis.ngc", uncertain_machine(), po,
+                                                 [](const auto&, std::size_t, const auto&) {});
     points = summary.points;
     benchmark::DoNotOptimize(points);
   }
