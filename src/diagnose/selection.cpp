@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <deque>
+#include <map>
 #include <numeric>
 #include <random>
 
@@ -278,7 +280,8 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
   // Subsample for the period scan.
   const std::size_t stride = std::max<std::size_t>(1, (np + o.scan_points - 1) / o.scan_points);
 
-  std::array<double, 64> practical_cache{};  // by column count
+  std::array<double, 64> practical_cache{};                  // by column count
+  std::map<std::string, std::array<double, 3>> share_cache;  // by label: share along each direction
   for (int step = 0; step < o.max_terms; ++step) {
     if (o.on_step) o.on_step(step);
     const double rr = r.squaredNorm();
@@ -525,17 +528,82 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
       const Mat CtCj = Cj.transpose() * Cj;
       return delta_rss(Cj, CtCj, QtCj, r);
     };
-    // The combination starts from the best named candidate, or, where none
-    // passes the floors alone, from the largest significant one (e.g. a
-    // coupling whose linear parts take half of it).
-    const Score* lead = best_named;
-    if (!lead && !scores.empty()) {
-      const Score& top = scores.front();
-      const int k = top.c->term.columns();
-      const double s2 = std::max(rr - top.d, 1e-300) / std::max(dof_base - k, 1.0);
-      if (top.d > s2 * chi2_upper_quantile(k, o.alpha / tests_named)) lead = &top;
+    // Drifts at other time constants tried in a combination (below); kept
+    // for the step, a partner may point to one.
+    std::deque<Cached> rescanned;
+    std::deque<Score> rescanned_scores;
+    // The structure the best smooth function explains: a named candidate is
+    // a part of it when it is a function of its variables only, moving at
+    // least half along its direction (not, e.g., an arm offset that moves X
+    // and Y beside a structure in Z; a reversal counts, it follows the rows
+    // of a walk).
+    auto share_of = [&](const Score& sc, int direction) {
+      const std::string key = sc.c->term.label();
+      auto it = share_cache.find(key);
+      if (it == share_cache.end()) {
+        std::array<double, 3> sh{};
+        for (int i = 0; i < 3; ++i)
+          sh[static_cast<std::size_t>(i)] = share_along(pb, sc.c->term, i);
+        it = share_cache.emplace(key, sh).first;
+      }
+      return it->second[static_cast<std::size_t>(direction)];
+    };
+    // The smooth function's fitted contribution (orthogonal to the selected span).
+    auto generic_fit = [&]() {
+      Mat Cg = term_columns(pb, g_best);
+      if (Q.cols() > 0) Cg -= Q * (Q.transpose() * Cg);
+      Mat G = Cg.transpose() * Cg;
+      G.diagonal().array() += 1e-12 * std::max(G.trace(), 1e-300) / static_cast<double>(G.rows());
+      const Vec beta = G.ldlt().solve(Cg.transpose() * r);
+      return Vec(Cg * beta);
+    };
+    auto in_structure = [&](const Score& sc) {
+      return have_generic && within_variables(sc.c->term, g_best.vars) &&
+             share_of(sc, g_best.direction) >= 0.5;
+    };
+    auto significant = [&](const Score& sc) {
+      const int k = sc.c->term.columns();
+      const double s2 = std::max(rr - sc.d, 1e-300) / std::max(dof_base - k, 1.0);
+      return sc.d > s2 * chi2_upper_quantile(k, o.alpha / tests_named);
+    };
+    // Where the smooth function explains more than the best named candidate
+    // can: its structure is explained from the best named candidate that is
+    // a part of it (or, where none passes the floors alone, the largest
+    // significant part: e.g. a coupling whose linear parts take half of it),
+    // alone or in a combination. The best named candidate may explain
+    // another structure (two effects in the data): then, if the smooth
+    // function's structure has no named explanation, the other is named
+    // first and the smooth function competes again at the next step.
+    const Score* lead = nullptr;
+    bool other_structure = false, lead_explains = false;
+    if (have_generic && (!best_named || best_named->d < o.name_ratio * g_best_d)) {
+      for (const Score& sc : scores)
+        if (sc.d > sc.thr && in_structure(sc)) {
+          lead = &sc;
+          break;
+        }
+      if (!lead)
+        for (const Score& sc : scores)
+          if (in_structure(sc)) {
+            if (significant(sc)) lead = &sc;
+            break;
+          }
+      // Another structure: the best named candidate is no part of the
+      // smooth function's (another direction or other variables) and its
+      // fitted contribution hardly correlates with the smooth function's (a
+      // candidate of other variables may still fit the same structure: a
+      // drift y·t of τ 300 s is a function of y for most of a measurement).
+      other_structure =
+          best_named &&
+          (share_of(*best_named, g_best.direction) < 0.5 || !in_structure(*best_named)) &&
+          abs_correlation(contribution(*best_named->c), generic_fit()) < o.other_structure_corr;
+      if (lead && lead != best_named && lead->d > lead->thr && lead->d >= o.name_ratio * g_best_d) {
+        lead_explains = true;
+        best_named = lead;
+      }
     }
-    if (lead && have_generic && lead->d < o.name_ratio * g_best_d && o.combinations > 1) {
+    if (lead && !lead_explains && have_generic && lead->d < o.name_ratio * g_best_d &&
+        o.combinations > 1) {
       std::vector<const Score*> combo{lead};
       double d_combo = lead->d, cost_combo = cost(lead->c->term);
       // Partners: among the 40 largest candidates (a partner explains
@@ -544,19 +612,55 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
       // function of its variables, moving mainly along its direction (not,
       // e.g., an arm offset that moves X and Y beside a structure in Z).
       auto may_join = [&](const Score& s, const std::vector<const Score*>& members) {
-        return std::find(members.begin(), members.end(), &s) == members.end() &&
-               within_variables(s.c->term, g_best.vars) &&
-               share_along(pb, s.c->term, g_best.direction) >= 0.5;
+        return std::find(members.begin(), members.end(), &s) == members.end() && in_structure(s);
       };
       const std::size_t shortlist = std::min<std::size_t>(scores.size(), 40);
+      // The pool of partners: the shortlist, and a drift of the structure at
+      // every time constant of its grid (its scan chose the time constant
+      // that fits the residual alone; beside the others another may fit).
+      std::vector<const Score*> pool;
+      for (std::size_t i = 0; i < shortlist; ++i) {
+        const Score& sc = scores[i];
+        pool.push_back(&sc);
+        if (sc.c->term.kind != TermKind::thermal_drift || !in_structure(sc)) continue;
+        for (const ScanFamily& f : cs.scanned) {
+          const Term& base = f.base;
+          if (base.kind != TermKind::thermal_drift || base.axis != sc.c->term.axis ||
+              base.direction != sc.c->term.direction || base.with_axis != sc.c->term.with_axis)
+            continue;
+          for (double tau : f.grid) {
+            if (tau == sc.c->term.tau_s) continue;
+            Term t = sc.c->term;
+            t.tau_s = tau;
+            Cached c{t, term_columns(pb, t), Mat(), Mat(), {}};
+            c.CtC = c.C.transpose() * c.C;
+            c.QtC = Q.transpose() * c.C;
+            rescanned.push_back(std::move(c));
+            Score alt{&rescanned.back(),
+                      delta_rss(rescanned.back().C, rescanned.back().CtC, rescanned.back().QtC, r),
+                      0.0};
+            rescanned_scores.push_back(alt);
+            pool.push_back(&rescanned_scores.back());
+          }
+        }
+      }
       Eigen::Index k_combo = lead->c->C.cols();
       for (int m = 1; m < o.combinations; ++m) {
         const Score* add = nullptr;
         double d_add = d_combo, ic_add = 0.0;
         Eigen::Index k_add = 0;
-        for (std::size_t i = 0; i < shortlist; ++i) {
-          const Score& s = scores[i];
+        for (const Score* sp : pool) {
+          const Score& s = *sp;
           if (!may_join(s, combo)) continue;
+          // One time constant per drift family in a combination.
+          bool same_family = false;
+          for (const Score* mb : combo)
+            same_family = same_family || (mb->c->term.kind == TermKind::thermal_drift &&
+                                          s.c->term.kind == TermKind::thermal_drift &&
+                                          mb->c->term.axis == s.c->term.axis &&
+                                          mb->c->term.direction == s.c->term.direction &&
+                                          mb->c->term.with_axis == s.c->term.with_axis);
+          if (same_family) continue;
           std::vector<const Score*> with = combo;
           with.push_back(&s);
           const double dj = together(with);
@@ -606,6 +710,10 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
           for (std::size_t i = 0; i < shortlist; ++i) {
             const Score& s = scores[i];
             if (!may_join(s, combo)) continue;
+            const Term& pt = combo[m]->c->term;
+            if (s.c->term.kind == pt.kind && s.c->term.axis == pt.axis &&
+                s.c->term.direction == pt.direction && s.c->term.with_axis == pt.with_axis)
+              continue;  // the same effect (another period or time constant)
             std::vector<const Score*> swapped = combo;
             swapped[m] = &s;
             if (together(swapped) >= d_combo - swap_margin)
@@ -622,8 +730,8 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     std::vector<Term> with_pick;  // the partners of a winning combination
     std::vector<std::vector<std::string>> with_amb;
     std::vector<std::string> with_separation;
-    if (best_named &&
-        (!have_generic || combination_wins || best_named->d >= o.name_ratio * g_best_d)) {
+    if (best_named && (!have_generic || combination_wins || lead_explains || other_structure ||
+                       best_named->d >= o.name_ratio * g_best_d)) {
       pick = best_named->c->term;
       C = best_named->c->C;
       d_pick = best_named->d;

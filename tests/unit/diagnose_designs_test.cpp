@@ -279,6 +279,7 @@ struct Hidden {
   bool proportional = false;  // drift ∝ s_dir
   double sign = 1.0;
   std::string text;
+  std::vector<Hidden> also;  // further effects hidden in the same data
 
   Eigen::Vector3d at(const sim::TipState& tip, const Box& b) const {
     Eigen::Vector3d s = tip.p;
@@ -313,6 +314,7 @@ struct Hidden {
         d[dir] = a * (s[axis] - zero) * (s[with] - zero2) / (4.0 * half[axis] * half[with]);
         break;
     }
+    for (const Hidden& other : also) d += other.at(tip, b);
     return d;
   }
 };
@@ -412,7 +414,7 @@ io::MeasuredData measure(const std::vector<Sample>& design, const Hidden& h, std
   std::mt19937_64 rng(seed * 7919 + 13);
   std::normal_distribution<double> datum(0.0, 15.0);
   std::map<std::string, Eigen::Vector3d> offset;
-  if (design.front().n.any()) {  // ballbar: through its importer
+  if (!design.front().plane.empty()) {  // ballbar: through its importer
     std::vector<double> dr;
     for (std::size_t i = 0; i < pts.size(); ++i) {
       const sim::TipState& tip = pts[i].tip;
@@ -549,7 +551,8 @@ struct Case {
   // With gross outliers: how many were put in, flagged right, flagged wrongly.
   std::size_t injected = 0, flagged = 0, false_flags = 0;
   double noise_um = 0.0, noise_independent_um = 0.0;
-  std::vector<std::string> log;  // the diagnosis's selection log
+  std::vector<std::string> log;       // the diagnosis's selection log
+  std::vector<SelectedTerm> effects;  // what the diagnosis selected
 };
 
 // Gross outliers: `fraction` of the points get one measured component
@@ -590,6 +593,7 @@ Case run_case(Design design, const Hidden& h, std::uint64_t seed, double outlier
 
   Case c;
   c.log = d.log;
+  c.effects = d.effects;
   c.injected = bad.size();
   for (const Outlier& o : d.outliers) (bad.count(o.line) ? c.flagged : c.false_flags) += 1;
   c.noise_um = d.noise_um;
@@ -791,6 +795,74 @@ TEST(DiagnoseDesigns, Plane) { check(sweep(Design::plane), {0.93, 0.02, 0.02, 0.
 TEST(DiagnoseDesigns, Toolpath) { check(sweep(Design::toolpath), {0.92, 0.06, 0.05, 0.95, 0.95}); }
 TEST(DiagnoseDesigns, Ballbar) { check(sweep(Design::ballbar), {0.9, 0.02, 0.02, 0.95, 0.9}); }
 TEST(DiagnoseDesigns, Diagonals) { check(sweep(Design::diagonals), {0.0, 0.02, 0.04, 0.95, 0.0}); }
+
+// Two effects together on the grid (issue 16: "both named"): two
+// identifiable hidden shapes of different kinds or axes, each 3–20× the
+// noise, in the same data. A case is right when each is named (its kind,
+// axis, direction and sign, not ambiguous); a name that is part of
+// neither is wrong.
+TEST(DiagnoseDesigns, GridTwoEffects) {
+  const int n = std::max(8, seeds() / 2);
+  const Box b = box();
+  const double L = noisy_vm().generated.truth.tool_length;
+  int both = 0, one = 0, wrong = 0, resolvable = 0;
+  const int only = only_case();
+  for (int i = only >= 0 ? only : 0; i < (only >= 0 ? only + 1 : n); ++i) {
+    std::mt19937_64 rng(static_cast<std::uint64_t>(11000 + 41 * i));
+    Hidden h, h2;
+    do {
+      h = draw(rng, b, L);
+    } while (!identifiable(Design::grid, h));
+    do {
+      h2 = draw(rng, b, L);
+    } while (!identifiable(Design::grid, h2) ||
+             (h2.shape == h.shape && h2.axis == h.axis && h2.dir == h.dir));
+    Hidden pair = h;
+    pair.also = {h2};
+    const Case c = run_case(Design::grid, pair, static_cast<std::uint64_t>(700 + i));
+    if (only >= 0)
+      for (const std::string& line : c.log) std::cerr << "  log: " << line << "\n";
+    // Each effect alone must be within what the design resolves: the
+    // oracle of the pair is checked, and each part's share below.
+    bool named[2] = {false, false}, bad = false;
+    for (const SelectedTerm& st : c.effects) {
+      const Term& t = st.term;
+      if (is_datum(t) || t.kind == TermKind::unexplained || !st.significant) continue;
+      bool part = false;
+      for (int k = 0; k < 2; ++k) {
+        const Hidden& hk = k == 0 ? h : h2;
+        if (!consistent(t, hk)) continue;
+        part = true;
+        if (!sign_right(t, hk)) bad = true;
+        if (st.ambiguous_with.empty() && is_truth(t, hk) && sign_right(t, hk)) named[k] = true;
+      }
+      if (!part && st.ambiguous_with.empty()) bad = true;
+    }
+    const bool ok = c.oracle >= kResolvable;
+    resolvable += ok ? 1 : 0;
+    both += ok && named[0] && named[1] ? 1 : 0;
+    one += ok && (named[0] != named[1]) ? 1 : 0;
+    wrong += bad ? 1 : 0;
+    std::cerr << fmt::format(
+        "two effects | seed {:3d} | {} + {} | {}{} | gain {:5.2f} oracle {:5.2f} |", i, h.text,
+        h2.text,
+        named[0] && named[1]   ? "both"
+        : named[0] || named[1] ? "one"
+                               : "none",
+        bad ? ", WRONG" : "", c.gain, c.oracle);
+    for (const SelectedTerm& st : c.effects)
+      std::cerr << fmt::format(" [{}{}]", st.term.label(), st.ambiguous_with.empty() ? "" : " ~");
+    std::cerr << "\n";
+  }
+  std::cerr << fmt::format(
+      "RATES | grid, two hidden effects | both named {}/{} , one {} , wrong names in {} cases\n",
+      both, resolvable, one, wrong);
+  // Measured: 17/20 both named with 20 cases, 83/100 with 100 (the misses
+  // name one of the two: the other smaller or a drift ∝ s left as a smooth
+  // function), 0 and 1 cases with a wrong name.
+  EXPECT_GE(resolvable ? static_cast<double>(both) / resolvable : 1.0, 0.8);
+  EXPECT_LE(static_cast<double>(wrong) / std::max(resolvable, 1), 0.02);
+}
 
 // Gross outliers (issue 16): 2 % of the grid's points 20–50 µm off in one
 // component, on top of a hidden effect of 1–2 µm (2–4× the noise) or of
