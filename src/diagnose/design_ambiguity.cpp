@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "abbe/diagnose/statistics.hpp"
+#include "span.hpp"
 
 namespace abbe::diagnose {
 namespace {
@@ -14,27 +15,8 @@ namespace {
 using Mat = Eigen::MatrixXd;
 using Vec = Eigen::VectorXd;
 
-// Orthonormal basis of the span of the columns (two-pass Gram–Schmidt;
-// columns already in the span are dropped).
-Mat orthonormal(const Mat& A) {
-  Mat Q(A.rows(), 0);
-  for (Eigen::Index c = 0; c < A.cols(); ++c) {
-    Vec q = A.col(c);
-    const double n0 = q.norm();
-    if (n0 == 0.0) continue;
-    for (int pass = 0; pass < 2; ++pass)
-      if (Q.cols() > 0) q -= Q * (Q.transpose() * q);
-    const double n = q.norm();
-    if (!(n > 1e-9 * n0)) continue;
-    Q.conservativeResize(Eigen::NoChange, Q.cols() + 1);
-    Q.col(Q.cols() - 1) = q / n;
-  }
-  return Q;
-}
-
-Mat residual_of(const Mat& Q, const Mat& C) {
-  return Q.cols() > 0 ? Mat(C - Q * (Q.transpose() * C)) : C;
-}
+using span::orthonormal;
+using span::residual_of;
 
 // The deviation directions a term moves at these points (bit i: direction i).
 unsigned direction_mask(const Problem& pb, const Term& t) {

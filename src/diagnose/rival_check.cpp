@@ -8,6 +8,7 @@
 
 #include "abbe/diagnose/separation.hpp"
 #include "abbe/diagnose/statistics.hpp"
+#include "span.hpp"
 
 namespace abbe::diagnose {
 namespace {
@@ -15,26 +16,8 @@ namespace {
 using Mat = Eigen::MatrixXd;
 using Vec = Eigen::VectorXd;
 
-// Orthonormal basis of the span of the columns (two-pass Gram–Schmidt).
-Mat orthonormal(const Mat& A) {
-  Mat Q(A.rows(), 0);
-  for (Eigen::Index c = 0; c < A.cols(); ++c) {
-    Vec q = A.col(c);
-    const double n0 = q.norm();
-    if (n0 == 0.0) continue;
-    for (int pass = 0; pass < 2; ++pass)
-      if (Q.cols() > 0) q -= Q * (Q.transpose() * q);
-    const double n = q.norm();
-    if (!(n > 1e-9 * n0)) continue;
-    Q.conservativeResize(Eigen::NoChange, Q.cols() + 1);
-    Q.col(Q.cols() - 1) = q / n;
-  }
-  return Q;
-}
-
-Mat residual_of(const Mat& Q, const Mat& C) {
-  return Q.cols() > 0 ? Mat(C - Q * (Q.transpose() * C)) : C;
-}
+using span::orthonormal;
+using span::residual_of;
 
 // What the columns C remove of r, both already orthogonal to the rest.
 double removes(const Mat& C, const Vec& r) {

@@ -52,6 +52,16 @@ Problem box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, const std::arr
   return pb;
 }
 
+// The 7 × 9 × 7 box of the combination tests (noise 0.4 µm) with a
+// deviation given in travel-normalised positions u ∈ [−1, 1]³.
+template <class Deviation>
+Problem normalised_box(std::uint64_t seed, Deviation d) {
+  const Eigen::Vector3d lo(-900, -500, -460), hi(-100, 0, -60);
+  return box(lo, hi, {7, 9, 7}, 0.4, seed, [&](const Eigen::Vector3d& s) {
+    return d(Eigen::Vector3d((s - 0.5 * (lo + hi)).cwiseQuotient(0.5 * (hi - lo))));
+  });
+}
+
 // Prints both counts; the rule must give its result in every seed, and the
 // case must be a real competition: without the rule the other explanation
 // wins at least once (else the test could not fail).
@@ -121,10 +131,8 @@ TEST(DiagnoseParsimony, TwoCatalogueEffectsBeatAnUnexplainedSmoothFunction) {
   int both = 0, unexplained_without = 0;
   const int seeds = 10;
   for (int seed = 1; seed <= seeds; ++seed) {
-    const Eigen::Vector3d lo(-900, -500, -460), hi(-100, 0, -60);
-    const Problem pb = box(
-        lo, hi, {7, 9, 7}, 0.4, static_cast<std::uint64_t>(seed), [&](const Eigen::Vector3d& s) {
-          const Eigen::Vector3d u = (s - 0.5 * (lo + hi)).cwiseQuotient(0.5 * (hi - lo));
+    const Problem pb =
+        normalised_box(static_cast<std::uint64_t>(seed), [](const Eigen::Vector3d& u) {
           return Eigen::Vector3d(3.0 * u.y() * u.z() + 1.73 * u.y(), 0.0, 0.0);
         });
     const SelectionResult with = select(pb, true, 3);
@@ -162,10 +170,8 @@ TEST(DiagnoseParsimony, AnOffCentreCouplingEntersWithBothItsLinearParts) {
   int all_three = 0, scale_missing_with_full_floor = 0;
   const int seeds = 10;
   for (int seed = 1; seed <= seeds; ++seed) {
-    const Eigen::Vector3d lo(-900, -500, -460), hi(-100, 0, -60);
-    const Problem pb = box(
-        lo, hi, {7, 9, 7}, 0.4, static_cast<std::uint64_t>(seed), [&](const Eigen::Vector3d& s) {
-          const Eigen::Vector3d u = (s - 0.5 * (lo + hi)).cwiseQuotient(0.5 * (hi - lo));
+    const Problem pb =
+        normalised_box(static_cast<std::uint64_t>(seed), [](const Eigen::Vector3d& u) {
           return Eigen::Vector3d(0.0, 3.0 * u.x() * u.y() + 1.73 * u.x() + 0.33 * u.y(), 0.0);
         });
     auto named = [](const SelectionResult& r) {
