@@ -507,9 +507,9 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
       }
     }
 
-    // Before the smooth function is taken: do two or three named kinds
-    // together explain the structure as well, at a lower cost? Greedy from
-    // the best named candidate, each partner significant in what it adds.
+    // Before the smooth function is taken: does a named part of its
+    // structure, alone or with up to two partners, explain it as well at a
+    // lower cost (docs/diagnosis.md, step 3)?
     bool combination_wins = false;
     std::vector<const Score*> partners;             // of a winning combination, beside best_named
     double d_partners = 0.0;                        // ΔRSS of the whole combination
@@ -606,11 +606,9 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
         o.combinations > 1) {
       std::vector<const Score*> combo{lead};
       double d_combo = lead->d, cost_combo = cost(lead->c->term);
-      // Partners: among the 40 largest candidates (a partner explains
-      // something alone), significant alone and in what it adds.
-      // A partner is part of the structure the smooth function explains: a
-      // function of its variables, moving mainly along its direction (not,
-      // e.g., an arm offset that moves X and Y beside a structure in Z).
+      // Partners: among the 40 largest candidates, parts of the structure
+      // the smooth function explains (in_structure), each significant and
+      // above the partner floor in what it adds.
       auto may_join = [&](const Score& s, const std::vector<const Score*>& members) {
         return std::find(members.begin(), members.end(), &s) == members.end() && in_structure(s);
       };

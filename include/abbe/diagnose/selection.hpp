@@ -67,8 +67,9 @@ struct SelectionOptions {
   // Two effects in the data: where the smooth function explains more than
   // the best named candidate and no named explanation of its structure is
   // found, the best named candidate is still taken first when it explains
-  // another structure — it moves mainly along another direction and its
-  // fitted contribution correlates below this with the smooth function's.
+  // another structure — it is no part of the smooth function's (another
+  // direction, or other variables) and its fitted contribution correlates
+  // below this with the smooth function's.
   double other_structure_corr = 0.3;
   // The flexibility of a smooth `unexplained` function that wins a step is
   // chosen by the held-out SSE among these Legendre degrees (one variable;
