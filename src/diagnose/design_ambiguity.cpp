@@ -183,6 +183,7 @@ std::vector<std::string> mark_design_ambiguities(const Problem& pb,
   }
 
   if (o.growing_reversal) {
+    const Mat D = span::datum_columns(pb, datum);
     for (std::size_t rv = 0; rv < effects.size(); ++rv) {
       const Term& rt = effects[rv].term;
       if (rt.kind != TermKind::reversal || rt.axis < 0) continue;
@@ -199,23 +200,9 @@ std::vector<std::string> mark_design_ambiguities(const Problem& pb,
         if (e == rv || et.kind == TermKind::unexplained || et.kind == TermKind::reversal) continue;
         if ((mask[e] & mask[rv]) == 0) continue;
         // Everything else of the fit: the datum and the other effects.
-        Eigen::Index k = 0;
-        for (const SelectedTerm& d : datum) k += d.term.columns();
-        for (std::size_t f = 0; f < effects.size(); ++f)
-          if (f != e) k += cols[f].cols();
-        Mat A(n, k);
-        Eigen::Index c = 0;
-        for (const SelectedTerm& d : datum) {
-          const Mat Cd = term_columns(pb, d.term);
-          A.middleCols(c, Cd.cols()) = Cd;
-          c += Cd.cols();
-        }
-        for (std::size_t f = 0; f < effects.size(); ++f)
-          if (f != e) {
-            A.middleCols(c, cols[f].cols()) = cols[f];
-            c += cols[f].cols();
-          }
-        const Mat QA = orthonormal(A);
+        std::vector<bool> others(effects.size(), true);
+        others[e] = false;
+        const Mat QA = span::basis_of(D, cols, others);
         // What the effect and the growth each add to everything else.
         const Vec rA = residual_of(QA, pb.y);
         const Mat Qe = orthonormal(residual_of(QA, cols[e]));

@@ -13,6 +13,7 @@ namespace {
 // outliers stays the same.
 struct RobustFit {
   Problem work;
+  CandidateSet candidates;  // of `work`, as selected from
   SelectionResult sel;
   std::vector<std::uint32_t> drop;
   double threshold = 0.0;
@@ -28,7 +29,8 @@ RobustFit converge(const Problem& pb, const DiagnoseOptions& o, std::vector<std:
   f.threshold = threshold;
   for (int pass = 0;; ++pass) {
     f.work = without_points(pb, f.drop);
-    f.sel = select_effects(f.work, build_candidates(f.work, o.candidates), o.selection);
+    f.candidates = build_candidates(f.work, o.candidates);
+    f.sel = select_effects(f.work, f.candidates, o.selection);
     if (!oo.enabled || pb.obs.size() < 20 || pass + 1 >= oo.max_passes) break;
     f.threshold = std::max(oo.k * robust_sigma(f.sel.residual), oo.min_threshold_um);
     std::vector<std::uint32_t> again =
@@ -116,9 +118,8 @@ Diagnosis diagnose_problem(const Problem& full, const DiagnoseOptions& o) {
   for (std::string& line :
        mark_design_ambiguities(pb, d.datum, d.effects, o.design, o.candidates.min_period_mm))
     d.log.push_back(std::move(line));
-  for (std::string& line :
-       mark_unrejected_rivals(pb, d.datum, d.effects, build_candidates(pb, o.candidates),
-                              o.selection.searched_cost, o.rivals))
+  for (std::string& line : mark_unrejected_rivals(pb, d.datum, d.effects, fit.candidates,
+                                                  o.selection.searched_cost, o.rivals))
     d.log.push_back(std::move(line));
   d.extended = residual_stats(pb, sel.residual);
   d.extended.model = pb.base_model + "+effects";

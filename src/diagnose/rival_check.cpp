@@ -60,13 +60,7 @@ std::vector<std::string> mark_unrejected_rivals(const Problem& pb,
   std::vector<std::string> log;
   if (!o.enabled || effects.empty() || pb.obs.empty()) return log;
   const auto n = static_cast<Eigen::Index>(pb.obs.size());
-  Mat D(n, 0);
-  for (const SelectedTerm& d : datum) {
-    const Mat Cd = term_columns(pb, d.term);
-    Mat A(n, D.cols() + Cd.cols());
-    A << D, Cd;
-    D = std::move(A);
-  }
+  const Mat D = span::datum_columns(pb, datum);
   const Mat Qd = orthonormal(D);
   std::vector<Mat> cols;
   for (const SelectedTerm& st : effects) cols.push_back(term_columns(pb, st.term));
@@ -77,21 +71,10 @@ std::vector<std::string> mark_unrejected_rivals(const Problem& pb,
     // Everything else of the named fit: the datum and the other named
     // effects (a smooth `unexplained` function is fitted after them, on what
     // they leave — selection.hpp — and would take the effect's own shape).
-    auto rest = [&](std::size_t f) {
-      return f != e && effects[f].term.kind != TermKind::unexplained;
-    };
-    Eigen::Index k = D.cols();
+    std::vector<bool> rest(effects.size());
     for (std::size_t f = 0; f < effects.size(); ++f)
-      if (rest(f)) k += cols[f].cols();
-    Mat A(n, k);
-    A.leftCols(D.cols()) = D;
-    Eigen::Index c = D.cols();
-    for (std::size_t f = 0; f < effects.size(); ++f)
-      if (rest(f)) {
-        A.middleCols(c, cols[f].cols()) = cols[f];
-        c += cols[f].cols();
-      }
-    const Mat QA = orthonormal(A);
+      rest[f] = f != e && effects[f].term.kind != TermKind::unexplained;
+    const Mat QA = span::basis_of(D, cols, rest);
     const Vec rA = residual_of(QA, pb.y);
     const Mat Ce = residual_of(QA, cols[e]);
     const double d_e = removes(Ce, rA);

@@ -22,4 +22,32 @@ Eigen::MatrixXd residual_of(const Eigen::MatrixXd& Q, const Eigen::MatrixXd& C) 
   return Q.cols() > 0 ? Eigen::MatrixXd(C - Q * (Q.transpose() * C)) : C;
 }
 
+Eigen::MatrixXd datum_columns(const Problem& pb, const std::vector<SelectedTerm>& datum) {
+  Eigen::Index k = 0;
+  for (const SelectedTerm& d : datum) k += d.term.columns();
+  Eigen::MatrixXd D(static_cast<Eigen::Index>(pb.obs.size()), k);
+  Eigen::Index c = 0;
+  for (const SelectedTerm& d : datum) {
+    D.middleCols(c, d.term.columns()) = term_columns(pb, d.term);
+    c += d.term.columns();
+  }
+  return D;
+}
+
+Eigen::MatrixXd basis_of(const Eigen::MatrixXd& D, const std::vector<Eigen::MatrixXd>& blocks,
+                         const std::vector<bool>& use) {
+  Eigen::Index k = D.cols();
+  for (std::size_t f = 0; f < blocks.size(); ++f)
+    if (use[f]) k += blocks[f].cols();
+  Eigen::MatrixXd A(D.rows(), k);
+  A.leftCols(D.cols()) = D;
+  Eigen::Index c = D.cols();
+  for (std::size_t f = 0; f < blocks.size(); ++f)
+    if (use[f]) {
+      A.middleCols(c, blocks[f].cols()) = blocks[f];
+      c += blocks[f].cols();
+    }
+  return orthonormal(A);
+}
+
 }  // namespace abbe::diagnose::span

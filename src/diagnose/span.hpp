@@ -3,6 +3,10 @@
 // rival_check.cpp): an orthonormal basis by two-pass Gram–Schmidt and the
 // part of columns outside a span.
 #include <Eigen/Core>
+#include <vector>
+
+#include "abbe/diagnose/residuals.hpp"
+#include "abbe/diagnose/selection.hpp"
 
 namespace abbe::diagnose::span {
 
@@ -12,5 +16,13 @@ Eigen::MatrixXd orthonormal(const Eigen::MatrixXd& A);
 
 // C minus its projection on the span of the orthonormal columns of Q.
 Eigen::MatrixXd residual_of(const Eigen::MatrixXd& Q, const Eigen::MatrixXd& C);
+
+// The datum terms' columns side by side (observations × their columns).
+Eigen::MatrixXd datum_columns(const Problem& problem, const std::vector<SelectedTerm>& datum);
+
+// Orthonormal basis of "everything else of the fit": the columns D and the
+// blocks whose `use` is true.
+Eigen::MatrixXd basis_of(const Eigen::MatrixXd& D, const std::vector<Eigen::MatrixXd>& blocks,
+                         const std::vector<bool>& use);
 
 }  // namespace abbe::diagnose::span
