@@ -733,16 +733,19 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
       pick = best_named->c->term;
       C = best_named->c->C;
       d_pick = best_named->d;
-      // Ambiguity: near-equal candidates whose fitted contributions coincide.
+      // Ambiguity: near-equal candidates whose fitted contributions coincide
+      // and which the data do not reject against it (`rivals_by_test`).
       // Parsimony: an alternative that costs more (columns, plus the cost of
       // a period or time constant found by search) and explains no more is
       // not a rival explanation of the same structure.
+      const double rival_margin = s2_ic * chi2_upper_quantile(1, o.alpha);
       auto ambiguity = [&](const Score& target, std::vector<std::string>& names) {
         const Vec fb = contribution(*target.c);
         std::vector<Term> rivals;
         for (const Score& s : scores) {
           if (&s == &target || s.d < 0.9 * target.d) continue;
           if (cost(s.c->term) > cost(target.c->term)) continue;
+          if (o.rivals_by_test && target.d - s.d >= rival_margin) continue;
           if (abs_correlation(fb, contribution(*s.c)) > o.ambiguous_corr) {
             names.push_back(s.c->term.label());
             rivals.push_back(s.c->term);

@@ -29,6 +29,14 @@ struct SelectionOptions {
   int max_terms = 12;
   double name_ratio = 0.7;  // a named kind must explain this share of the best smooth fit
   double ambiguous_corr = 0.98;
+  // A candidate of no higher cost whose fitted contribution correlates with
+  // the pick's above `ambiguous_corr` and removes at least 0.9 of its ΔRSS
+  // is reported as an alternative (`ambiguous`) only when the data do not
+  // prefer the pick significantly: its ΔRSS is short of the pick's by less
+  // than σ̂²·χ²₁(alpha), one column's test. False: near-equal and
+  // correlated is enough (a drift z·t late in a warm-up then stays
+  // ambiguous with a scale Z, however clearly the data reject the scale).
+  bool rivals_by_test = true;
   // Practical significance: an effect is named only when the RMS of what it
   // removes per observation is at least this fraction of the noise σ̂ (a
   // structure far below the noise changes no prediction, however many
