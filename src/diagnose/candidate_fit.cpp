@@ -1,0 +1,73 @@
+#include "candidate_fit.hpp"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+
+namespace abbe::diagnose::selection {
+
+double delta_rss(const Mat& C, const Mat& CtC, const Mat& QtC, const Vec& r, Vec* beta) {
+  const Vec b = C.transpose() * r;
+  Mat G = CtC;
+  if (QtC.rows() > 0) G.noalias() -= QtC.transpose() * QtC;
+  for (Eigen::Index c = 0; c < G.rows(); ++c)
+    if (!(G(c, c) > 1e-8 * CtC(c, c)) || CtC(c, c) <= 0.0) return -1.0;
+  Eigen::LDLT<Mat> ldlt(G);
+  const Vec x = ldlt.solve(b);
+  if (beta) *beta = x;
+  return b.dot(x);
+}
+
+void point_sums(const Problem& pb, const Vec& r, Mat& R, Mat& W) {
+  const auto np = static_cast<Eigen::Index>(pb.points.size());
+  R = Mat::Zero(np, 3);
+  W = Mat::Zero(np, 3);
+  for (std::size_t o = 0; o < pb.obs.size(); ++o) {
+    const Observation& ob = pb.obs[o];
+    const auto p = static_cast<Eigen::Index>(ob.point);
+    R.row(p) += r[static_cast<Eigen::Index>(o)] * ob.u.transpose();
+    W.row(p) += ob.u.cwiseAbs2().transpose();
+  }
+}
+
+Mat generic_basis(const Problem& pb, const Term& t) {
+  Term one = t;
+  one.direction = 0;
+  const int k = t.columns();
+  Mat B(static_cast<Eigen::Index>(pb.points.size()), k);
+  Eigen::Matrix<double, 3, Eigen::Dynamic> g(3, k);
+  for (std::size_t p = 0; p < pb.points.size(); ++p) {
+    one.basis(pb.points[p], g);
+    B.row(static_cast<Eigen::Index>(p)) = g.row(0);
+  }
+  return B;
+}
+
+double motion_squared(const Problem& pb, const Term& t) {
+  const int k = t.columns();
+  Eigen::Matrix<double, 3, Eigen::Dynamic> g(3, k);
+  double s = 0.0;
+  for (const Observation& ob : pb.obs) {
+    t.basis(pb.points[ob.point], g);
+    s += g.squaredNorm();
+  }
+  return s;
+}
+
+double abs_correlation(const Vec& a, const Vec& b) {
+  return std::abs(a.dot(b)) / std::max(a.norm() * b.norm(), 1e-300);
+}
+
+void append_orthonormal(Mat& Q, const Mat& C) {
+  for (Eigen::Index c = 0; c < C.cols(); ++c) {
+    Vec q = C.col(c);
+    const double n0 = q.norm();
+    for (int pass = 0; pass < 2; ++pass)
+      if (Q.cols() > 0) q -= Q * (Q.transpose() * q);
+    const double n = q.norm();
+    if (!(n > 1e-10 * n0) || n0 == 0.0) continue;
+    Q.conservativeResize(Eigen::NoChange, Q.cols() + 1);
+    Q.col(Q.cols() - 1) = q / n;
+  }
+}
+
+}  // namespace abbe::diagnose::selection

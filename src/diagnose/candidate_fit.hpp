@@ -1,0 +1,46 @@
+#pragma once
+// Least squares of the selection's candidates against the span it has
+// selected so far (selection.cpp and its parts): a candidate's columns with
+// their Gram matrices cached, what it removes from the residual, and the
+// point-level sums the smooth families and the parameter scans use.
+#include <Eigen/Core>
+#include <vector>
+
+#include "abbe/diagnose/residuals.hpp"
+#include "abbe/diagnose/term.hpp"
+
+namespace abbe::diagnose::selection {
+
+using Mat = Eigen::MatrixXd;
+using Vec = Eigen::VectorXd;
+
+struct Cached {
+  Term term;
+  Mat C;                        // observations × k
+  Mat CtC;                      // k × k
+  Mat QtC;                      // p × k, extended as Q grows
+  std::vector<double> aliases;  // cyclic: other periods that fit these points as well
+};
+
+// ΔRSS of adding C to the selected span Q (r ⟂ Q; QtC = QᵀC). Returns −1
+// when C lies in span(Q) (nothing new to fit); beta: the coefficients.
+double delta_rss(const Mat& C, const Mat& CtC, const Mat& QtC, const Vec& r, Vec* beta = nullptr);
+
+// Point-level sums of the residual: R(p,·) = Σ_o u_o r_o; W(p,i) = Σ_o u_o,i².
+void point_sums(const Problem& pb, const Vec& r, Mat& R, Mat& W);
+
+// Point-level basis of an unexplained term (points × k, the direction ignored).
+Mat generic_basis(const Problem& pb, const Term& t);
+
+// Σ over the observations of |g_c(point)|² (the deviation the term's
+// columns make, whatever direction is measured).
+double motion_squared(const Problem& pb, const Term& t);
+
+// |cos| of the angle between two fitted contributions.
+double abs_correlation(const Vec& a, const Vec& b);
+
+// Q extended by the part of C's columns outside its span (two-pass
+// Gram–Schmidt; a column already in the span is dropped).
+void append_orthonormal(Mat& Q, const Mat& C);
+
+}  // namespace abbe::diagnose::selection

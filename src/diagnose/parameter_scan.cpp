@@ -1,0 +1,121 @@
+#include "parameter_scan.hpp"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+
+#include "abbe/io/units.hpp"
+
+namespace abbe::diagnose::selection {
+
+Term scan_parameter(const ScanFamily& f, const ScanInput& in, PowerCache& power_cache,
+                    std::vector<double>& aliases) {
+  const Problem& pb = in.pb;
+  const Mat& R = in.R;
+  const Mat& W = in.W;
+  const std::vector<std::size_t>& set_of = in.set_of;
+  const std::size_t stride = in.stride;
+  const double alias_power = in.alias_power;
+  const std::size_t np = pb.points.size();
+  Term t = f.base;
+  if (t.kind == TermKind::cyclic) {
+    const auto j = static_cast<std::size_t>(t.axis);
+    auto& acc = power_cache[j];
+    if (acc.empty()) {
+      // Σ_p R(p,i)·exp(i2πf s_j) over the frequency grid (shared by the three directions).
+      const std::size_t nf = f.grid.size();
+      acc.assign(6 * nf, 0.0);
+      const double f0 = 1.0 / f.grid.front();
+      const double df = nf > 1 ? 1.0 / f.grid[1] - f0 : 0.0;
+      for (std::size_t p = 0; p < np; p += stride) {
+        const double s = pb.points[p].s[t.axis];
+        // z = exp(i2πf s) stepped through the grid by the factor exp(i2π·df·s).
+        double zr = std::cos(units::kTwoPi * f0 * s), zi = std::sin(units::kTwoPi * f0 * s);
+        const double mr = std::cos(units::kTwoPi * df * s), mi = std::sin(units::kTwoPi * df * s);
+        const auto ip = static_cast<Eigen::Index>(p);
+        const double r0 = R(ip, 0), r1 = R(ip, 1), r2 = R(ip, 2);
+        double* a = acc.data();
+        for (std::size_t q = 0; q < nf; ++q, a += 6) {
+          a[0] += r0 * zr;
+          a[1] += r0 * zi;
+          a[2] += r1 * zr;
+          a[3] += r1 * zi;
+          a[4] += r2 * zr;
+          a[5] += r2 * zi;
+          const double nr = zr * mr - zi * mi;
+          zi = zr * mi + zi * mr;
+          zr = nr;
+        }
+      }
+    }
+    std::size_t best = 0;
+    double best_pow = -1.0;
+    std::vector<double> pow(f.grid.size());
+    for (std::size_t q = 0; q < f.grid.size(); ++q) {
+      const std::size_t at = 6 * q + 2 * static_cast<std::size_t>(t.direction);
+      const double pw = acc[at] * acc[at] + acc[at + 1] * acc[at + 1];
+      pow[q] = pw;
+      if (pw > best_pow) {
+        best_pow = pw;
+        best = q;
+      }
+    }
+    t.period_mm = f.grid[best];
+    // The peak between the grid's frequencies: a parabola through the
+    // best power and its two neighbours (a period a quarter step off
+    // beats against the data over a long travel).
+    if (best > 0 && best + 1 < pow.size()) {
+      const double pm = pow[best - 1], p0 = pow[best], pp = pow[best + 1];
+      const double curv = pm - 2.0 * p0 + pp;
+      if (curv < 0.0) {
+        const double delta = std::clamp(0.5 * (pm - pp) / curv, -0.5, 0.5);
+        const double fb = 1.0 / f.grid[best];
+        const double step = 1.0 / f.grid[best + 1] - fb;
+        t.period_mm = 1.0 / (fb + delta * step);
+      }
+    }
+    // Aliases: other peaks (local maxima away from the best) that reach
+    // nearly the same power — on regularly spaced levels a period and its
+    // aliases give the same samples, and the design cannot tell them apart.
+    for (std::size_t q = 1; q + 1 < pow.size(); ++q) {
+      const std::size_t gap = q > best ? q - best : best - q;
+      if (gap <= 4 || pow[q] < pow[q - 1] || pow[q] < pow[q + 1]) continue;
+      if (pow[q] >= alias_power * best_pow) aliases.push_back(f.grid[q]);
+    }
+  } else {  // thermal_drift: the time constant with the largest normalised projection
+    // The residual is orthogonal to the datum's offsets, so the
+    // column's norm is taken without its mean per set (else a time
+    // constant whose column has the larger mean is penalised, and the
+    // scan prefers the wrong shape).
+    double best_score = -1.0;
+    const std::size_t ns = std::max<std::size_t>(pb.sets.size(), 1);
+    std::vector<double> sw(ns), swg(ns);
+    for (double tau : f.grid) {
+      double num = 0.0, den = 0.0;
+      std::fill(sw.begin(), sw.end(), 0.0);
+      std::fill(swg.begin(), swg.end(), 0.0);
+      for (std::size_t p = 0; p < np; p += stride) {
+        const PointContext& pc = pb.points[p];
+        const double tt = std::max(pc.t, 0.0);
+        double g = tau > 0.0 ? 1.0 - std::exp(-tt / tau) : tt / 3600.0;
+        if (t.with_axis >= 0) g *= 1e-3 * pc.s[t.with_axis];
+        const auto ip = static_cast<Eigen::Index>(p);
+        const double w = W(ip, t.direction);
+        num += R(ip, t.direction) * g;
+        den += w * g * g;
+        sw[set_of[p]] += w;
+        swg[set_of[p]] += w * g;
+      }
+      for (std::size_t k = 0; k < ns; ++k)
+        if (sw[k] > 0.0) den -= swg[k] * swg[k] / sw[k];
+      const double score = den > 0.0 ? num * num / den : 0.0;
+      if (score > best_score) {
+        best_score = score;
+        t.tau_s = tau;
+      }
+    }
+  }
+  return t;
+}
+
+}  // namespace abbe::diagnose::selection

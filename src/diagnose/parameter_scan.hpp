@@ -1,0 +1,35 @@
+#pragma once
+// The parameter of a searched candidate family at one selection step,
+// found by a quick projection on the residual before the best of the family
+// is fitted exactly: the period of a cycle (the periodogram's peak on the
+// frequency grid, refined by a parabola, with the other peaks that reach
+// nearly its power as aliases) or the time constant of a drift (the largest
+// normalised projection).
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "abbe/diagnose/candidates.hpp"
+#include "candidate_fit.hpp"
+
+namespace abbe::diagnose::selection {
+
+struct ScanInput {
+  const Problem& pb;
+  const Mat& R;                            // point_sums of the residual
+  const Mat& W;                            // point_sums' weights
+  const std::vector<std::size_t>& set_of;  // each point's set (index in pb.sets)
+  std::size_t stride = 1;                  // every stride-th point is used
+  double alias_power = 0.9;                // SelectionOptions::alias_power
+};
+
+// Per axis, the periodogram sums over the frequency grid, shared by the
+// three directions of one step: [freq][dir][re, im].
+using PowerCache = std::array<std::vector<double>, 3>;
+
+// f.base with its searched parameter set; `aliases`: a cycle's other periods
+// that fit these points as well.
+Term scan_parameter(const ScanFamily& f, const ScanInput& in, PowerCache& power_cache,
+                    std::vector<double>& aliases);
+
+}  // namespace abbe::diagnose::selection

@@ -1,0 +1,140 @@
+#include "step.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+
+#include "abbe/diagnose/separation.hpp"
+#include "abbe/diagnose/statistics.hpp"
+
+namespace abbe::diagnose::selection {
+
+bool within_variables(const Term& t, const std::vector<int>& vars) {
+  auto has = [&](int v) { return std::find(vars.begin(), vars.end(), v) != vars.end(); };
+  switch (t.kind) {
+    case TermKind::scale:
+    case TermKind::squareness:
+    case TermKind::cyclic:
+    case TermKind::arm_offset:
+      return has(t.axis);
+    case TermKind::coupling:
+      return has(t.axis) && has(t.with_axis);
+    case TermKind::thermal_drift:
+      return has(3) && (t.with_axis < 0 || has(t.with_axis));
+    case TermKind::reversal:  // on a serpentine walk a function of the other axes' rows
+      return true;
+    default:
+      return false;
+  }
+}
+
+double share_along(const Problem& pb, const Term& t, int direction) {
+  const int k = t.columns();
+  Eigen::Matrix<double, 3, Eigen::Dynamic> g(3, k);
+  double along = 0.0, all = 0.0;
+  for (const PointContext& pc : pb.points) {
+    t.basis(pc, g);
+    along += g.row(direction).squaredNorm();
+    all += g.squaredNorm();
+  }
+  return all > 0.0 ? along / all : 0.0;
+}
+
+double Step::cost(const Term& t) const {
+  const bool searched = t.kind == TermKind::cyclic || t.kind == TermKind::thermal_drift;
+  return t.columns() + (searched ? o.searched_cost : 0.0);
+}
+
+double Step::ic_gain(double d, double c) const {
+  return d - s2_ic * std::log(static_cast<double>(r.size())) * c;
+}
+
+Vec Step::contribution(const Cached& c) const {
+  Vec beta;
+  delta_rss(c.C, c.CtC, c.QtC, r, &beta);
+  Vec f = c.C * beta;
+  if (Q.cols() > 0) f -= Q * (c.QtC * beta);
+  return f;
+}
+
+double Step::together(const std::vector<const Score*>& members) const {
+  Eigen::Index k = 0;
+  for (const Score* m : members) k += m->c->C.cols();
+  Mat Cj(r.size(), k), QtCj(Q.cols(), k);
+  Eigen::Index at = 0;
+  for (const Score* m : members) {
+    Cj.middleCols(at, m->c->C.cols()) = m->c->C;
+    QtCj.middleCols(at, m->c->C.cols()) = m->c->QtC;
+    at += m->c->C.cols();
+  }
+  const Mat CtCj = Cj.transpose() * Cj;
+  return delta_rss(Cj, CtCj, QtCj, r);
+}
+
+Vec Step::generic_fit() const {
+  Mat Cg = term_columns(pb, g_best);
+  if (Q.cols() > 0) Cg -= Q * (Q.transpose() * Cg);
+  Mat G = Cg.transpose() * Cg;
+  G.diagonal().array() += 1e-12 * std::max(G.trace(), 1e-300) / static_cast<double>(G.rows());
+  const Vec beta = G.ldlt().solve(Cg.transpose() * r);
+  return Vec(Cg * beta);
+}
+
+double Step::share_of(const Score& sc, int direction) const {
+  const std::string key = sc.c->term.label();
+  auto it = share_cache.find(key);
+  if (it == share_cache.end()) {
+    std::array<double, 3> sh{};
+    for (int i = 0; i < 3; ++i) sh[static_cast<std::size_t>(i)] = share_along(pb, sc.c->term, i);
+    it = share_cache.emplace(key, sh).first;
+  }
+  return it->second[static_cast<std::size_t>(direction)];
+}
+
+bool Step::in_structure(const Score& sc) const {
+  return have_generic && within_variables(sc.c->term, g_best.vars) &&
+         share_of(sc, g_best.direction) >= 0.5;
+}
+
+bool Step::significant(const Score& sc) const {
+  const int k = sc.c->term.columns();
+  const double s2 = std::max(rr - sc.d, 1e-300) / std::max(dof_base - k, 1.0);
+  return sc.d > s2 * chi2_upper_quantile(k, o.alpha / tests_named);
+}
+
+const Score* Step::parsimonious(const Score* largest) const {
+  const Score* best = largest;
+  if (!o.parsimony_ic || !largest) return best;
+  const Vec f0 = contribution(*largest->c);
+  for (const Score& s : scores) {
+    if (&s == largest || !(s.d > s.thr) || cost(s.c->term) >= cost(largest->c->term)) continue;
+    if (!(ic_gain(s.d, cost(s.c->term)) > ic_gain(best->d, cost(best->c->term)))) continue;
+    if (abs_correlation(f0, contribution(*s.c)) > o.competing_corr) best = &s;
+  }
+  return best;
+}
+
+std::string Step::rivals(const Score& target, std::vector<std::string>& names) const {
+  const double margin = s2_ic * chi2_upper_quantile(1, o.alpha);
+  const Vec fb = contribution(*target.c);
+  std::vector<Term> rivals;
+  for (const Score& s : scores) {
+    if (&s == &target || s.d < 0.9 * target.d) continue;
+    if (cost(s.c->term) > cost(target.c->term)) continue;
+    if (o.rivals_by_test && target.d - s.d >= margin) continue;
+    if (abs_correlation(fb, contribution(*s.c)) > o.ambiguous_corr) {
+      names.push_back(s.c->term.label());
+      rivals.push_back(s.c->term);
+    }
+  }
+  for (double period : target.c->aliases) {
+    Term alias = target.c->term;
+    alias.period_mm = period;
+    names.push_back(alias.label());
+  }
+  return separating_measurement(target.c->term, rivals, target.c->aliases);
+}
+
+}  // namespace abbe::diagnose::selection

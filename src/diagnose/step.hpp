@@ -1,0 +1,86 @@
+#pragma once
+// One selection step's view of its candidates: what each removes from the
+// residual, its cost on the information criterion, its fitted contribution,
+// whether it is a part of the structure the best smooth function finds, the
+// cheaper candidate that takes its place, and its rivals.
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "abbe/diagnose/candidates.hpp"
+#include "abbe/diagnose/selection.hpp"
+#include "candidate_fit.hpp"
+
+namespace abbe::diagnose::selection {
+
+// The variables (x, y, z, t) a term's deviation is a function of; false
+// for a term that is not a function of a few of them (a reversal follows the
+// motion; a setup rotation or a model choice, every position).
+bool within_variables(const Term& t, const std::vector<int>& vars);
+
+// Share of the deviation a term's columns make (at unit coefficients, over
+// the points) that lies along `direction`.
+double share_along(const Problem& pb, const Term& t, int direction);
+
+// A candidate at one step: what it removes from the residual (ΔRSS) and
+// the floor it must pass alone (its χ² and the practical floor, in σ̂²).
+struct Score {
+  const Cached* c = nullptr;
+  double d = -1.0;
+  double thr = 0.0;
+};
+
+// What a selection step knows when it weighs its candidates.
+struct Step {
+  const Problem& pb;
+  const SelectionOptions& o;
+  const CandidateSet& cs;
+  const Mat& Q;  // the selected span, orthonormal
+  const Vec& r;  // the residual, ⟂ Q
+  double rr = 0.0, dof_base = 0.0;
+  double lambda = 0.0;               // the practical floor's non-centrality, n·min_effect_rms²
+  double tests_named = 1.0;          // named candidates tested per step (the χ²'s correction)
+  double s2_ic = 0.0;                // σ̂² of the information criterion
+  const std::vector<Score>& scores;  // by ΔRSS, largest first
+  std::map<std::string, std::array<double, 3>>& share_cache;  // by label, per direction
+  // The best smooth function above its floors (have_generic), with its ΔRSS.
+  bool have_generic = false;
+  Term g_best;
+  double g_best_d = 0.0;
+
+  // Parsimony: an information criterion that charges every column ln(n)
+  // residual variances and a searched period or time constant
+  // `searched_cost` columns more (a one-column squareness beats a cyclic
+  // term that fits the same line only by fitting the noise).
+  double cost(const Term& t) const;
+  double ic_gain(double d, double cost) const;
+  // The fitted contribution of a candidate (orthogonal to the selected span).
+  Vec contribution(const Cached& c) const;
+  // ΔRSS of several candidates together (orthogonal to the selected span).
+  double together(const std::vector<const Score*>& members) const;
+  // The smooth function's fitted contribution (orthogonal to the selected span).
+  Vec generic_fit() const;
+  // A candidate is a part of the structure the best smooth function
+  // explains when it is a function of its variables only, moving at least
+  // half along its direction (not, e.g., an arm offset that moves X and Y
+  // beside a structure in Z; a reversal counts, it follows the rows of a
+  // walk).
+  double share_of(const Score& sc, int direction) const;
+  bool in_structure(const Score& sc) const;
+  // Above its χ² alone (not necessarily the practical floor).
+  bool significant(const Score& sc) const;
+  // Parsimony: only explanations of the same structure compete on the
+  // criterion; a cheaper candidate above its floors whose fitted
+  // contribution correlates with `largest`'s above `competing_corr` and has
+  // the better criterion takes its place (largest itself when none does).
+  const Score* parsimonious(const Score* largest) const;
+  // Ambiguity: the candidates of no higher cost that remove at least 0.9
+  // of the target's ΔRSS, whose fitted contributions coincide with its
+  // (`ambiguous_corr`) and which the data do not reject against it
+  // (`rivals_by_test`), and a cycle's aliases: their labels appended to
+  // `names`. Returns what measurement would separate them (may be empty).
+  std::string rivals(const Score& target, std::vector<std::string>& names) const;
+};
+
+}  // namespace abbe::diagnose::selection

@@ -1,0 +1,159 @@
+#include "structure.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "abbe/diagnose/statistics.hpp"
+
+namespace abbe::diagnose::selection {
+
+void explain_structure(const Step& st, const Score* best_named, int step, StructureChoice& out,
+                       std::vector<std::string>& log) {
+  if (st.have_generic && (!best_named || best_named->d < st.o.name_ratio * st.g_best_d)) {
+    for (const Score& sc : st.scores)
+      if (sc.d > sc.thr && st.in_structure(sc)) {
+        out.lead = &sc;
+        break;
+      }
+    if (!out.lead)
+      for (const Score& sc : st.scores)
+        if (st.in_structure(sc)) {
+          if (st.significant(sc)) out.lead = &sc;
+          break;
+        }
+    // Another structure: the best named candidate is no part of the
+    // smooth function's (another direction or other variables) and its
+    // fitted contribution hardly correlates with the smooth function's (a
+    // candidate of other variables may still fit the same structure: a
+    // drift y·t of τ 300 s is a function of y for most of a measurement).
+    out.other_structure =
+        best_named &&
+        (st.share_of(*best_named, st.g_best.direction) < 0.5 || !st.in_structure(*best_named)) &&
+        abs_correlation(st.contribution(*best_named->c), st.generic_fit()) <
+            st.o.other_structure_corr;
+    if (out.lead && out.lead != best_named && out.lead->d > out.lead->thr &&
+        out.lead->d >= st.o.name_ratio * st.g_best_d) {
+      out.lead_explains = true;
+    }
+  }
+  if (out.lead && !out.lead_explains && st.have_generic &&
+      out.lead->d < st.o.name_ratio * st.g_best_d && st.o.combinations > 1) {
+    std::vector<const Score*> combo{out.lead};
+    double d_combo = out.lead->d, cost_combo = st.cost(out.lead->c->term);
+    // Partners: among the 40 largest candidates, parts of the structure
+    // the smooth function explains (in_structure), each significant and
+    // above the partner floor in what it adds.
+    auto may_join = [&](const Score& s, const std::vector<const Score*>& members) {
+      return std::find(members.begin(), members.end(), &s) == members.end() && st.in_structure(s);
+    };
+    const std::size_t shortlist = std::min<std::size_t>(st.scores.size(), 40);
+    // The pool of out.partners: the shortlist, and a drift of the structure at
+    // every time constant of its grid (its scan chose the time constant
+    // that fits the residual alone; beside the others another may fit).
+    std::vector<const Score*> pool;
+    for (std::size_t i = 0; i < shortlist; ++i) {
+      const Score& sc = st.scores[i];
+      pool.push_back(&sc);
+      if (sc.c->term.kind != TermKind::thermal_drift || !st.in_structure(sc)) continue;
+      for (const ScanFamily& f : st.cs.scanned) {
+        const Term& base = f.base;
+        if (base.kind != TermKind::thermal_drift || base.axis != sc.c->term.axis ||
+            base.direction != sc.c->term.direction || base.with_axis != sc.c->term.with_axis)
+          continue;
+        for (double tau : f.grid) {
+          if (tau == sc.c->term.tau_s) continue;
+          Term t = sc.c->term;
+          t.tau_s = tau;
+          Cached c{t, term_columns(st.pb, t), Mat(), Mat(), {}};
+          c.CtC = c.C.transpose() * c.C;
+          c.QtC = st.Q.transpose() * c.C;
+          out.rescanned.push_back(std::move(c));
+          Score alt{&out.rescanned.back(),
+                    delta_rss(out.rescanned.back().C, out.rescanned.back().CtC,
+                              out.rescanned.back().QtC, st.r),
+                    0.0};
+          out.rescanned_scores.push_back(alt);
+          pool.push_back(&out.rescanned_scores.back());
+        }
+      }
+    }
+    Eigen::Index k_combo = out.lead->c->C.cols();
+    for (int m = 1; m < st.o.combinations; ++m) {
+      const Score* add = nullptr;
+      double d_add = d_combo, ic_add = 0.0;
+      Eigen::Index k_add = 0;
+      for (const Score* sp : pool) {
+        const Score& s = *sp;
+        if (!may_join(s, combo)) continue;
+        // One time constant per drift family in a combination.
+        bool same_family = false;
+        for (const Score* mb : combo)
+          same_family = same_family || (mb->c->term.kind == TermKind::thermal_drift &&
+                                        s.c->term.kind == TermKind::thermal_drift &&
+                                        mb->c->term.axis == s.c->term.axis &&
+                                        mb->c->term.direction == s.c->term.direction &&
+                                        mb->c->term.with_axis == s.c->term.with_axis);
+        if (same_family) continue;
+        std::vector<const Score*> with = combo;
+        with.push_back(&s);
+        const double dj = st.together(with);
+        // What it adds must pass its χ² and `partner_floor_share` of the
+        // practical floor, in units of the residual variance the
+        // combination leaves (not what the candidate alone leaves: that
+        // still holds the structure the others explain).
+        const Eigen::Index kj = k_combo + s.c->C.cols();
+        const double s2j =
+            std::max(st.rr - dj, 1e-300) / std::max(st.dof_base - static_cast<double>(kj), 1.0);
+        const double thr_added =
+            s2j * std::max(chi2_upper_quantile(s.c->term.columns(), st.o.alpha / st.tests_named),
+                           st.o.partner_floor_share * st.lambda);
+        // The partner that adds most on the criterion (a searched cycle
+        // that fits a line as well as a one-column squareness costs more).
+        const double ic = st.ic_gain(dj - d_combo, st.cost(s.c->term));
+        if (dj - d_combo > thr_added && (!add || ic > ic_add)) {
+          k_add = kj;
+          add = &s;
+          d_add = dj;
+          ic_add = ic;
+        }
+      }
+      if (!add) break;
+      combo.push_back(add);
+      k_combo = k_add;
+      d_combo = d_add;
+      cost_combo += st.cost(add->c->term);
+    }
+    if (combo.size() > 1 && d_combo >= st.o.name_ratio * st.g_best_d &&
+        st.ic_gain(d_combo, cost_combo) >= st.ic_gain(st.g_best_d, st.g_best.columns())) {
+      out.combination_wins = true;
+      out.partners.assign(combo.begin() + 1, combo.end());
+      out.d_partners = d_combo;
+      std::string names;
+      for (const Score* c : combo) names += (names.empty() ? "" : " + ") + c->c->term.label();
+      log.push_back(fmt::format(
+          "step {}: {} (ΔRSS {:.6g}) explain what {} explains (ΔRSS {:.6g}) at lower cost",
+          step + 1, names, d_combo, st.g_best.label(), st.g_best_d));
+      // A partner the data do not prefer over another candidate in its
+      // place (the combination with the other removes less by no more
+      // than a one-column χ² at `alpha`) is reported with it as ambiguous.
+      const double swap_margin = st.s2_ic * chi2_upper_quantile(1, st.o.alpha);
+      out.partner_rivals.resize(out.partners.size());
+      for (std::size_t m = 1; m < combo.size(); ++m)
+        for (std::size_t i = 0; i < shortlist; ++i) {
+          const Score& s = st.scores[i];
+          if (!may_join(s, combo)) continue;
+          const Term& pt = combo[m]->c->term;
+          if (s.c->term.kind == pt.kind && s.c->term.axis == pt.axis &&
+              s.c->term.direction == pt.direction && s.c->term.with_axis == pt.with_axis)
+            continue;  // the same effect (another period or time constant)
+          std::vector<const Score*> swapped = combo;
+          swapped[m] = &s;
+          if (st.together(swapped) >= d_combo - swap_margin)
+            out.partner_rivals[m - 1].push_back(s.c->term);
+        }
+    }
+  }
+}
+
+}  // namespace abbe::diagnose::selection
