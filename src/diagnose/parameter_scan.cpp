@@ -64,7 +64,7 @@ Term scan_parameter(const ScanFamily& f, const ScanInput& in, PowerCache& power_
     // The peak between the grid's frequencies: a parabola through the
     // best power and its two neighbours (a period a quarter step off
     // beats against the data over a long travel).
-    if (best > 0 && best + 1 < pow.size()) {
+    if (in.refine_period && best > 0 && best + 1 < pow.size()) {
       const double pm = pow[best - 1], p0 = pow[best], pp = pow[best + 1];
       const double curv = pm - 2.0 * p0 + pp;
       if (curv < 0.0) {

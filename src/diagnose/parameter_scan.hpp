@@ -21,6 +21,7 @@ struct ScanInput {
   const std::vector<std::size_t>& set_of;  // each point's set (index in pb.sets)
   std::size_t stride = 1;                  // every stride-th point is used
   double alias_power = 0.9;                // SelectionOptions::alias_power
+  bool refine_period = true;               // SelectionOptions::refine_period
 };
 
 // Per axis, the periodogram sums over the frequency grid, shared by the

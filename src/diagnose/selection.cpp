@@ -247,7 +247,7 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     // evaluate the best of each family exactly.
     std::vector<Cached> scanned;
     selection::PowerCache power_cache;
-    const selection::ScanInput scan_in{pb, R, W, set_of, stride, o.alias_power};
+    const selection::ScanInput scan_in{pb, R, W, set_of, stride, o.alias_power, o.refine_period};
     for (const ScanFamily& f : cs.scanned) {
       std::vector<double> aliases;
       const Term t = scan_parameter(f, scan_in, power_cache, aliases);

@@ -53,6 +53,11 @@ struct SelectionOptions {
   // neighbour) reaches this share of the best peak's power (aliasing).
   double alias_power = 0.9;
   std::size_t scan_points = 20000;  // points used to locate a period peak
+  // The period of a cycle between two frequencies of the scan grid: the
+  // peak refined by a parabola through the best power and its neighbours
+  // (false: the grid's best frequency; a quarter step off over a long
+  // travel the cycle beats against the data).
+  bool refine_period = true;
   // Parsimony between competing explanations of one structure: a cheaper
   // significant named candidate whose fitted contribution correlates with
   // the largest one's above `competing_corr` takes its place when its
