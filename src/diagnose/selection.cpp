@@ -325,7 +325,6 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     if (structure.lead_explains || structure.combination_wins) best_named = structure.lead;
     const bool combination_wins = structure.combination_wins;
     const bool lead_explains = structure.lead_explains;
-    const bool other_structure = structure.other_structure;
     const std::vector<const Score*>& partners = structure.partners;
     const double d_partners = structure.d_partners;
     const std::vector<std::vector<Term>>& partner_rivals = structure.partner_rivals;
@@ -338,7 +337,7 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     std::vector<Term> with_pick;  // the partners of a winning combination
     std::vector<std::vector<std::string>> with_amb;
     std::vector<std::string> with_separation;
-    if (best_named && (!have_generic || combination_wins || lead_explains || other_structure ||
+    if (best_named && (!have_generic || combination_wins || lead_explains ||
                        best_named->d >= o.name_ratio * g_best_d)) {
       pick = best_named->c->term;
       C = best_named->c->C;

@@ -73,15 +73,6 @@ double Step::together(const std::vector<const Score*>& members) const {
   return delta_rss(Cj, CtCj, QtCj, r);
 }
 
-Vec Step::generic_fit() const {
-  Mat Cg = term_columns(pb, g_best);
-  if (Q.cols() > 0) Cg -= Q * (Q.transpose() * Cg);
-  Mat G = Cg.transpose() * Cg;
-  G.diagonal().array() += 1e-12 * std::max(G.trace(), 1e-300) / static_cast<double>(G.rows());
-  const Vec beta = G.ldlt().solve(Cg.transpose() * r);
-  return Vec(Cg * beta);
-}
-
 double Step::share_of(const Score& sc, int direction) const {
   const std::string key = sc.c->term.label();
   auto it = share_cache.find(key);

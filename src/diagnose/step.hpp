@@ -59,8 +59,6 @@ struct Step {
   Vec contribution(const Cached& c) const;
   // ΔRSS of several candidates together (orthogonal to the selected span).
   double together(const std::vector<const Score*>& members) const;
-  // The smooth function's fitted contribution (orthogonal to the selected span).
-  Vec generic_fit() const;
   // A candidate is a part of the structure the best smooth function
   // explains when it is a function of its variables only, moving at least
   // half along its direction (not, e.g., an arm offset that moves X and Y

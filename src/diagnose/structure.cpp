@@ -16,22 +16,12 @@ void explain_structure(const Step& st, const Score* best_named, int step, Struct
         out.lead = &sc;
         break;
       }
-    if (!out.lead)
+    if (!out.lead && st.o.lead_below_floor)
       for (const Score& sc : st.scores)
         if (st.in_structure(sc)) {
           if (st.significant(sc)) out.lead = &sc;
           break;
         }
-    // Another structure: the best named candidate is no part of the
-    // smooth function's (another direction or other variables) and its
-    // fitted contribution hardly correlates with the smooth function's (a
-    // candidate of other variables may still fit the same structure: a
-    // drift y·t of τ 300 s is a function of y for most of a measurement).
-    out.other_structure =
-        best_named &&
-        (st.share_of(*best_named, st.g_best.direction) < 0.5 || !st.in_structure(*best_named)) &&
-        abs_correlation(st.contribution(*best_named->c), st.generic_fit()) <
-            st.o.other_structure_corr;
     if (out.lead && out.lead != best_named && out.lead->d > out.lead->thr &&
         out.lead->d >= st.o.name_ratio * st.g_best_d) {
       out.lead_explains = true;

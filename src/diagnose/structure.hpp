@@ -1,8 +1,7 @@
 #pragma once
 // The structure a smooth function finds, explained by catalogue effects
-// (docs/diagnosis.md, step 3): the named part of it that leads, another
-// structure named first, and a combination of catalogue effects that
-// explains it whole at a lower cost.
+// (docs/diagnosis.md, step 3): the named part of it that leads and a
+// combination of catalogue effects that explains it whole at a lower cost.
 #include <deque>
 #include <string>
 #include <vector>
@@ -15,7 +14,6 @@ namespace abbe::diagnose::selection {
 struct StructureChoice {
   const Score* lead = nullptr;    // the named part of the structure that leads
   bool lead_explains = false;     // the lead alone explains the structure
-  bool other_structure = false;   // the best named candidate explains another structure
   bool combination_wins = false;  // the lead with `partners` explains it
   std::vector<const Score*> partners;
   double d_partners = 0.0;                        // ΔRSS of the whole combination
@@ -30,11 +28,8 @@ struct StructureChoice {
 // can: its structure is explained from the best named candidate that is a
 // part of it (or, where none passes the floors alone, the largest
 // significant part: e.g. a coupling whose linear parts take half of it),
-// alone or in a combination. The best named candidate may explain another
-// structure (two effects in the data): then, if the smooth function's
-// structure has no named explanation, the other is named first and the
-// smooth function competes again at the next step. `out` must outlive the
-// step (partners may point into its re-scanned drifts).
+// alone or in a combination (lead_below_floor). `out` must outlive the step
+// (partners may point into its re-scanned drifts).
 void explain_structure(const Step& s, const Score* best_named, int step, StructureChoice& out,
                        std::vector<std::string>& log);
 

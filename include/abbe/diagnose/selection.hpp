@@ -77,13 +77,10 @@ struct SelectionOptions {
   // of its own, but not so small that the model's own table error (a few
   // tenths of a µm, present in every data set) fills the place.
   double partner_floor_share = 0.5;
-  // Two effects in the data: where the smooth function explains more than
-  // the best named candidate and no named explanation of its structure is
-  // found, the best named candidate is still taken first when it explains
-  // another structure — it is no part of the smooth function's (another
-  // direction, or other variables) and its fitted contribution correlates
-  // below this with the smooth function's.
-  double other_structure_corr = 0.3;
+  // Where no named part of the smooth function's structure passes the
+  // floors alone, the largest significant part leads a combination (false:
+  // no combination then).
+  bool lead_below_floor = true;
   // The flexibility of a smooth `unexplained` function that wins a step is
   // chosen by the held-out SSE among these Legendre degrees (one variable;
   // per variable of a pair); empty: the candidates' fixed degree.
