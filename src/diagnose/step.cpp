@@ -73,7 +73,9 @@ double Step::together(const std::vector<const Score*>& members) const {
   return delta_rss(Cj, CtCj, QtCj, r);
 }
 
-double Step::share_of(const Score& sc, int direction) const {
+bool Step::in_structure(const Score& sc) const {
+  if (!have_generic || !within_variables(sc.c->term, g_best.vars)) return false;
+  // Its share along each direction, once per candidate (by label).
   const std::string key = sc.c->term.label();
   auto it = share_cache.find(key);
   if (it == share_cache.end()) {
@@ -81,12 +83,7 @@ double Step::share_of(const Score& sc, int direction) const {
     for (int i = 0; i < 3; ++i) sh[static_cast<std::size_t>(i)] = share_along(pb, sc.c->term, i);
     it = share_cache.emplace(key, sh).first;
   }
-  return it->second[static_cast<std::size_t>(direction)];
-}
-
-bool Step::in_structure(const Score& sc) const {
-  return have_generic && within_variables(sc.c->term, g_best.vars) &&
-         share_of(sc, g_best.direction) >= 0.5;
+  return it->second[static_cast<std::size_t>(g_best.direction)] >= 0.5;
 }
 
 bool Step::significant(const Score& sc) const {

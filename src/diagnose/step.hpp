@@ -64,7 +64,6 @@ struct Step {
   // half along its direction (not, e.g., an arm offset that moves X and Y
   // beside a structure in Z; a reversal counts, it follows the rows of a
   // walk).
-  double share_of(const Score& sc, int direction) const;
   bool in_structure(const Score& sc) const;
   // Above its χ² alone (not necessarily the practical floor).
   bool significant(const Score& sc) const;
