@@ -271,6 +271,8 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     for (const Cached& c : scanned) consider(c);
     std::sort(scores.begin(), scores.end(),
               [](const Score& a, const Score& b) { return a.d > b.d; });
+    // σ̂² of the information criterion: the least residual variance any
+    // candidate leaves (a structure still in the residual does not inflate it).
     double s2_ic = rr / dof_base;
     for (const Score& s : scores)
       s2_ic = std::min(s2_ic,

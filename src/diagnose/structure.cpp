@@ -38,7 +38,7 @@ void explain_structure(const Step& st, const Score* best_named, int step, Struct
       return std::find(members.begin(), members.end(), &s) == members.end() && st.in_structure(s);
     };
     const std::size_t shortlist = std::min<std::size_t>(st.scores.size(), 40);
-    // The pool of out.partners: the shortlist, and a drift of the structure at
+    // The pool of partners: the shortlist, and a drift of the structure at
     // every time constant of its grid (its scan chose the time constant
     // that fits the residual alone; beside the others another may fit).
     std::vector<const Score*> pool;
