@@ -1,8 +1,10 @@
-// The period of a cycle found by the selection's scan (parameter_scan.cpp):
-// the periodogram's grid steps a quarter of 1/travel, and the peak between
-// two grid frequencies is refined by a parabola (SelectionOptions::
-// refine_period). Each case is also run without the refinement, to show the
-// test could fail without it.
+// The searched parameters of the selection's scan (parameter_scan.cpp).
+// The period of a cycle: the periodogram's grid steps a quarter of
+// 1/travel, and the peak between two grid frequencies is refined by a
+// parabola (SelectionOptions::refine_period; that case is also run without
+// the refinement, to show the test could fail without it). The time
+// constant of a drift: the largest projection of the residual on the
+// drift's column without its mean per set (each set's offset is datum).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,6 +15,7 @@
 #include "abbe/diagnose/candidates.hpp"
 #include "abbe/diagnose/selection.hpp"
 #include "diagnose_test_problem.hpp"
+#include "src/diagnose/parameter_scan.hpp"
 
 namespace abbe::diagnose {
 namespace {
@@ -71,6 +74,59 @@ TEST(DiagnosePeriodScan, APeriodBetweenTheGridsFrequenciesIsRefined) {
   }
   EXPECT_EQ(close, seeds);
   EXPECT_GT(off_without, 0) << "without the refinement the period is as close: no test";
+}
+
+TEST(DiagnosePeriodScan, ADriftsTimeConstantIsFoundWhateverEachSetsOffset) {
+  // Three sets (runs of one line along X, 20 min apart, each with an
+  // unknown offset of up to ±20 µm, the datum): dX = 4 µm·(1 − e^(−t/τ))
+  // for τ of the grid; the scan gets the residual after the datum, as the
+  // selection does, and must return τ (and no aliases, for a drift). With
+  // the column's full norm instead of its norm without each set's mean, the
+  // scan returns 300 s for all three (measured by switching that off).
+  const std::vector<double> grid = CandidateOptions{}.tau_s;
+  for (double tau : {600.0, 1800.0, 3600.0}) {
+    Problem pb;
+    std::mt19937_64 rng(static_cast<std::uint64_t>(tau));
+    std::normal_distribution<double> noise(0.0, 0.1);
+    std::uniform_real_distribution<double> offset(-20.0, 20.0);
+    std::vector<double> y;
+    double t = 0.0;
+    for (int set = 0; set < 3; ++set, t += 1200.0) {
+      const double off = offset(rng);
+      for (int i = 0; i <= 80; ++i, t += 10.0) {
+        PointContext pc;
+        pc.p = pc.s = Eigen::Vector3d(-900.0 + 10.0 * i, -250.0, -200.0);
+        pc.t = t;
+        pc.set = "run" + std::to_string(set);
+        pb.obs.push_back({static_cast<std::uint32_t>(pb.points.size()), Eigen::Vector3d::UnitX()});
+        y.push_back(off + 4.0 * (1.0 - std::exp(-t / tau)) + noise(rng));
+        pb.points.push_back(pc);
+        pb.lines.push_back(pb.points.size() + 1);
+      }
+    }
+    test::finish_problem(pb, y, "run0", {true, false, false}, {-900, -250, -200},
+                         {-100, -250, -200});
+    pb.sets = {"run0", "run1", "run2"};
+    // The residual after the datum: each set's mean removed.
+    Eigen::VectorXd r = pb.y;
+    for (int set = 0; set < 3; ++set) {
+      auto seg = r.segment(81 * set, 81);
+      seg.array() -= seg.mean();
+    }
+    Eigen::MatrixXd R, W;
+    selection::point_sums(pb, r, R, W);
+    std::vector<std::size_t> set_of(pb.points.size());
+    for (std::size_t p = 0; p < set_of.size(); ++p) set_of[p] = p / 81;
+    ScanFamily f;
+    f.base = test::make_term(TermKind::thermal_drift, 0, 0);
+    f.grid = grid;
+    selection::PowerCache power;
+    std::vector<double> aliases;
+    const Term found =
+        selection::scan_parameter(f, {pb, R, W, set_of, 1, 0.9, true}, power, aliases);
+    EXPECT_EQ(found.tau_s, tau);
+    EXPECT_TRUE(aliases.empty());
+  }
 }
 
 }  // namespace
