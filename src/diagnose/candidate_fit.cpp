@@ -57,17 +57,15 @@ double abs_correlation(const Vec& a, const Vec& b) {
   return std::abs(a.dot(b)) / std::max(a.norm() * b.norm(), 1e-300);
 }
 
-void append_orthonormal(Mat& Q, const Mat& C) {
-  for (Eigen::Index c = 0; c < C.cols(); ++c) {
-    Vec q = C.col(c);
-    const double n0 = q.norm();
-    for (int pass = 0; pass < 2; ++pass)
-      if (Q.cols() > 0) q -= Q * (Q.transpose() * q);
-    const double n = q.norm();
-    if (!(n > 1e-10 * n0) || n0 == 0.0) continue;
-    Q.conservativeResize(Eigen::NoChange, Q.cols() + 1);
-    Q.col(Q.cols() - 1) = q / n;
+double removed_by(const Mat& C, const Mat& Q, const Vec& r) {
+  const Vec b = C.transpose() * r;
+  Mat G = C.transpose() * C;
+  if (Q.cols() > 0) {
+    const Mat QtC = Q.transpose() * C;
+    G.noalias() -= QtC.transpose() * QtC;
   }
+  G.diagonal().array() += 1e-12 * std::max(G.trace(), 1e-300) / static_cast<double>(G.rows());
+  return b.dot(G.ldlt().solve(b));
 }
 
 }  // namespace abbe::diagnose::selection

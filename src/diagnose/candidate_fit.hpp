@@ -39,8 +39,8 @@ double motion_squared(const Problem& pb, const Term& t);
 // |cos| of the angle between two fitted contributions.
 double abs_correlation(const Vec& a, const Vec& b);
 
-// Q extended by the part of C's columns outside its span (two-pass
-// Gram–Schmidt; a column already in the span is dropped).
-void append_orthonormal(Mat& Q, const Mat& C);
+// What the columns C remove of r beside the orthonormal span Q (r ⟂ Q), with
+// a tiny ridge for near-dependent columns (a smooth family's): bᵀG⁻¹b.
+double removed_by(const Mat& C, const Mat& Q, const Vec& r);
 
 }  // namespace abbe::diagnose::selection

@@ -60,13 +60,9 @@ void fit_chosen(const Mat& X, const Vec& y, const Mat& Qd, const Chosen& ch, Sel
   res.sigma_um = std::sqrt(s2);
   const Vec r_datum = y - Qd * (Qd.transpose() * y);
   // SS a term removes on its own from `target` (after the datum for the named stage).
+  const Mat none(n, 0);
   auto alone = [&](std::size_t i, const Vec& target, bool smooth) {
-    Mat C = X.middleCols(start[i], chosen[i].columns());
-    if (!smooth && Qd.cols() > 0) C -= Qd * (Qd.transpose() * C);
-    Mat G = C.transpose() * C;
-    G.diagonal().array() += 1e-12 * std::max(G.trace(), 1e-300) / static_cast<double>(G.rows());
-    const Vec b = C.transpose() * target;
-    return b.dot(G.ldlt().solve(b));
+    return removed_by(X.middleCols(start[i], chosen[i].columns()), smooth ? none : Qd, target);
   };
   for (const StageFit* f : {&named_fit, &smooth_fit}) {
     const bool smooth = f == &smooth_fit;

@@ -15,11 +15,11 @@
 #include "candidate_fit.hpp"
 #include "final_fit.hpp"
 #include "parameter_scan.hpp"
+#include "span.hpp"
 #include "structure.hpp"
 
 namespace abbe::diagnose {
 using selection::abs_correlation;
-using selection::append_orthonormal;
 using selection::Cached;
 using selection::delta_rss;
 using selection::fit_chosen;
@@ -31,6 +31,7 @@ using selection::Score;
 using selection::Step;
 using selection::StructureChoice;
 using selection::Vec;
+using span::append_orthonormal;
 
 std::vector<int> point_folds(std::size_t points, int folds, std::uint64_t seed) {
   std::vector<std::size_t> order(points);
@@ -123,19 +124,6 @@ bool choose_smooth_degree(const Problem& pb, const SelectionOptions& o, const Ma
     }
   }
   return pick.degree != fixed_degree;
-}
-
-// ΔRSS of adding the columns C to the orthonormal span Q (r ⟂ Q), with a
-// tiny ridge for a smooth family's near-dependent columns.
-double delta_rss_of(const Mat& C, const Mat& Q, const Vec& r) {
-  const Vec b = C.transpose() * r;
-  Mat G = C.transpose() * C;
-  if (Q.cols() > 0) {
-    const Mat QtC = Q.transpose() * C;
-    G.noalias() -= QtC.transpose() * QtC;
-  }
-  G.diagonal().array() += 1e-12 * std::max(G.trace(), 1e-300) / static_cast<double>(G.rows());
-  return b.dot(G.ldlt().solve(b));
 }
 
 }  // namespace
@@ -278,8 +266,12 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
       s2_ic = std::min(s2_ic,
                        std::max(rr - s.d, 1e-300) / std::max(dof_base - s.c->term.columns(), 1.0));
     // The smooth function's fields are set once it is found (below).
-    Step step_view{pb,          o,     cs,     Q,           r,     rr,     dof_base, lambda,
-                   tests_named, s2_ic, scores, share_cache, false, Term{}, 0.0};
+    Step step_view(pb, o, cs, Q, r, scores, share_cache);
+    step_view.rr = rr;
+    step_view.dof_base = dof_base;
+    step_view.lambda = lambda;
+    step_view.tests_named = tests_named;
+    step_view.s2_ic = s2_ic;
     const Score* best_named = nullptr;
     for (const Score& s : scores)
       if (s.d > s.thr) {
@@ -325,11 +317,6 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     StructureChoice structure;
     explain_structure(step_view, best_named, step, structure, res.log);
     if (structure.lead_explains || structure.combination_wins) best_named = structure.lead;
-    const bool combination_wins = structure.combination_wins;
-    const bool lead_explains = structure.lead_explains;
-    const std::vector<const Score*>& partners = structure.partners;
-    const double d_partners = structure.d_partners;
-    const std::vector<std::vector<Term>>& partner_rivals = structure.partner_rivals;
 
     Term pick;
     Mat C;
@@ -339,36 +326,34 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     std::vector<Term> with_pick;  // the partners of a winning combination
     std::vector<std::vector<std::string>> with_amb;
     std::vector<std::string> with_separation;
-    if (best_named && (!have_generic || combination_wins || lead_explains ||
+    if (best_named && (!have_generic || structure.combination_wins || structure.lead_explains ||
                        best_named->d >= o.name_ratio * g_best_d)) {
       pick = best_named->c->term;
       C = best_named->c->C;
       d_pick = best_named->d;
-      auto ambiguity = [&](const Score& target, std::vector<std::string>& names) {
-        return step_view.rivals(target, names);
-      };
-      separation = ambiguity(*best_named, amb);
+      separation = step_view.rivals(*best_named, amb);
       // A combination that won against a smooth function enters whole: its
       // members explain the structure together (a partner alone may be
       // below the practical floor, e.g. the squareness part of an
       // off-centre coupling), so each is kept with it, with its own rivals.
-      for (std::size_t m = 0; m < partners.size(); ++m) {
-        const Score* s = partners[m];
+      for (std::size_t m = 0; m < structure.partners.size(); ++m) {
+        const Score* s = structure.partners[m];
+        const std::vector<Term>& swapped_in = structure.partner_rivals[m];
         Mat Cn(n, C.cols() + s->c->C.cols());
         Cn << C, s->c->C;
         C = std::move(Cn);
         with_pick.push_back(s->c->term);
         with_amb.emplace_back();
-        std::string sep = ambiguity(*s, with_amb.back());
-        for (const Term& t : partner_rivals[m])
+        std::string sep = step_view.rivals(*s, with_amb.back());
+        for (const Term& t : swapped_in)
           if (std::find(with_amb.back().begin(), with_amb.back().end(), t.label()) ==
               with_amb.back().end())
             with_amb.back().push_back(t.label());
-        if (sep.empty() && !partner_rivals[m].empty())
-          sep = separating_measurement(s->c->term, partner_rivals[m], {});
+        if (sep.empty() && !swapped_in.empty())
+          sep = separating_measurement(s->c->term, swapped_in, {});
         with_separation.push_back(sep);
-        d_pick = d_partners;
       }
+      if (!structure.partners.empty()) d_pick = structure.d_partners;
     } else if (have_generic) {
       pick = g_best;
       C = term_columns(pb, pick);
@@ -387,7 +372,7 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     if (pick.kind == TermKind::unexplained) {
       const int fixed_degree = pick.degree;
       if (choose_smooth_degree(pb, o, X, y, folds, pick, C, Xn, cv)) {
-        d_pick = delta_rss_of(C, Q, r);
+        d_pick = selection::removed_by(C, Q, r);
         res.log.push_back(fmt::format("step {}: {} degree {} (held-out SSE; candidates' {})",
                                       step + 1, pick.label(), pick.degree, fixed_degree));
       }

@@ -2,19 +2,23 @@
 
 namespace abbe::diagnose::span {
 
-Eigen::MatrixXd orthonormal(const Eigen::MatrixXd& A) {
-  Eigen::MatrixXd Q(A.rows(), 0);
-  for (Eigen::Index c = 0; c < A.cols(); ++c) {
-    Eigen::VectorXd q = A.col(c);
+void append_orthonormal(Eigen::MatrixXd& Q, const Eigen::MatrixXd& C, double rel_tol) {
+  for (Eigen::Index c = 0; c < C.cols(); ++c) {
+    Eigen::VectorXd q = C.col(c);
     const double n0 = q.norm();
     if (n0 == 0.0) continue;
     for (int pass = 0; pass < 2; ++pass)
       if (Q.cols() > 0) q -= Q * (Q.transpose() * q);
     const double n = q.norm();
-    if (!(n > 1e-9 * n0)) continue;
+    if (!(n > rel_tol * n0)) continue;
     Q.conservativeResize(Eigen::NoChange, Q.cols() + 1);
     Q.col(Q.cols() - 1) = q / n;
   }
+}
+
+Eigen::MatrixXd orthonormal(const Eigen::MatrixXd& A) {
+  Eigen::MatrixXd Q(A.rows(), 0);
+  append_orthonormal(Q, A, 1e-9);
   return Q;
 }
 

@@ -10,6 +10,11 @@
 
 namespace abbe::diagnose::span {
 
+// Q (orthonormal columns) extended by the part of C's columns outside its
+// span, two-pass Gram–Schmidt; a column whose part outside is at most
+// `rel_tol` of its norm (or zero) is dropped.
+void append_orthonormal(Eigen::MatrixXd& Q, const Eigen::MatrixXd& C, double rel_tol = 1e-10);
+
 // Orthonormal basis of the span of A's columns; a column already in the
 // span of the ones before it (or zero) is dropped.
 Eigen::MatrixXd orthonormal(const Eigen::MatrixXd& A);

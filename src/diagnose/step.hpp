@@ -33,17 +33,28 @@ struct Score {
 
 // What a selection step knows when it weighs its candidates.
 struct Step {
+  Step(const Problem& problem, const SelectionOptions& options, const CandidateSet& candidates,
+       const Mat& span, const Vec& residual, const std::vector<Score>& scored,
+       std::map<std::string, std::array<double, 3>>& shares)
+      : pb(problem),
+        o(options),
+        cs(candidates),
+        Q(span),
+        r(residual),
+        scores(scored),
+        share_cache(shares) {}
+
   const Problem& pb;
   const SelectionOptions& o;
   const CandidateSet& cs;
-  const Mat& Q;  // the selected span, orthonormal
-  const Vec& r;  // the residual, ⟂ Q
-  double rr = 0.0, dof_base = 0.0;
-  double lambda = 0.0;               // the practical floor's non-centrality, n·min_effect_rms²
-  double tests_named = 1.0;          // named candidates tested per step (the χ²'s correction)
-  double s2_ic = 0.0;                // σ̂² of the information criterion
-  const std::vector<Score>& scores;  // by ΔRSS, largest first
+  const Mat& Q;                                               // the selected span, orthonormal
+  const Vec& r;                                               // the residual, ⟂ Q
+  const std::vector<Score>& scores;                           // by ΔRSS, largest first
   std::map<std::string, std::array<double, 3>>& share_cache;  // by label, per direction
+  double rr = 0.0, dof_base = 0.0;  // the residual's SS and degrees of freedom
+  double lambda = 0.0;              // the practical floor's non-centrality, n·min_effect_rms²
+  double tests_named = 1.0;         // named candidates tested per step (the χ²'s correction)
+  double s2_ic = 0.0;               // σ̂² of the information criterion
   // The best smooth function above its floors (have_generic), with its ΔRSS.
   bool have_generic = false;
   Term g_best;

@@ -230,10 +230,8 @@ TEST(DiagnoseParsimony, ACorrelatedCandidateTheDataRejectIsNoRival) {
         pc.p = pc.s = Eigen::Vector3d(-500.0, -250.0, z);
         pc.t = t;
         pc.set = "line";
-        pb.obs.push_back({static_cast<std::uint32_t>(pb.points.size()), Eigen::Vector3d::UnitZ()});
-        y.push_back(20.0 * (z / 400.0) * (1.0 - std::exp(-t / 1800.0)) + noise(rng));
-        pb.points.push_back(pc);
-        pb.lines.push_back(pb.points.size() + 1);
+        test::add_reading(pb, y, pc, Eigen::Vector3d::UnitZ(),
+                          20.0 * (z / 400.0) * (1.0 - std::exp(-t / 1800.0)) + noise(rng));
       }
     test::finish_problem(pb, y, "line", {false, false, true}, {-500, -250, -400}, {-500, -250, 0});
     CandidateSet cs = test::datum_and(pb, TermKind::scale, 2, 2);

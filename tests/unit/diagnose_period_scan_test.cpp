@@ -36,10 +36,8 @@ Problem line_with_cycle(std::uint64_t seed, double period_mm) {
     PointContext pc;
     pc.p = pc.s = Eigen::Vector3d(-900.0 + 2.5 * i, -250.0, -200.0);
     pc.set = "line";
-    pb.obs.push_back({static_cast<std::uint32_t>(pb.points.size()), Eigen::Vector3d::UnitX()});
-    y.push_back(3.0 * std::sin(6.283185307179586 * pc.s.x() / period_mm + ph) + noise(rng));
-    pb.points.push_back(pc);
-    pb.lines.push_back(pb.points.size() + 1);
+    test::add_reading(pb, y, pc, Eigen::Vector3d::UnitX(),
+                      3.0 * std::sin(6.283185307179586 * pc.s.x() / period_mm + ph) + noise(rng));
   }
   test::finish_problem(pb, y, "line", {true, false, false}, lo, hi);
   return pb;
@@ -98,10 +96,8 @@ TEST(DiagnosePeriodScan, ADriftsTimeConstantIsFoundWhateverEachSetsOffset) {
         pc.p = pc.s = Eigen::Vector3d(-900.0 + 10.0 * i, -250.0, -200.0);
         pc.t = t;
         pc.set = "run" + std::to_string(set);
-        pb.obs.push_back({static_cast<std::uint32_t>(pb.points.size()), Eigen::Vector3d::UnitX()});
-        y.push_back(off + 4.0 * (1.0 - std::exp(-t / tau)) + noise(rng));
-        pb.points.push_back(pc);
-        pb.lines.push_back(pb.points.size() + 1);
+        test::add_reading(pb, y, pc, Eigen::Vector3d::UnitX(),
+                          off + 4.0 * (1.0 - std::exp(-t / tau)) + noise(rng));
       }
     }
     test::finish_problem(pb, y, "run0", {true, false, false}, {-900, -250, -200},

@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,16 @@ inline void finish_problem(Problem& pb, const std::vector<double>& y, const std:
   }
   pb.travel_mid = 0.5 * (lo + hi);
   pb.travel_half = (0.5 * (hi - lo)).cwiseMax(1e-9);
+}
+
+// One point read along one direction u (a laser line, a probe): the point,
+// its observation, the observed value and its file line.
+inline void add_reading(Problem& pb, std::vector<double>& y, const PointContext& pc,
+                        const Eigen::Vector3d& u, double value) {
+  pb.obs.push_back({static_cast<std::uint32_t>(pb.points.size()), u});
+  y.push_back(value);
+  pb.points.push_back(pc);
+  pb.lines.push_back(pb.points.size() + 1);
 }
 
 // A term of `kind` on `axis`, acting in `direction` (-1: none).
