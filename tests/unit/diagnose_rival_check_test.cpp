@@ -39,12 +39,7 @@ Problem make_problem(const std::vector<Reading>& rd, Truth truth, std::uint64_t 
     pc.p = pc.s = r.s;
     pc.set = r.set;
     pc.t = r.t;
-    Observation ob;
-    ob.point = static_cast<std::uint32_t>(pb.points.size());
-    ob.u = r.u;
-    pb.points.push_back(pc);
-    pb.obs.push_back(ob);
-    y.push_back(r.u.dot(truth(pc)) + noise(rng));
+    test::add_reading(pb, y, pc, r.u, r.u.dot(truth(pc)) + noise(rng));
     lo = lo.cwiseMin(r.s);
     hi = hi.cwiseMax(r.s);
   }
