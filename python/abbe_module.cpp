@@ -239,10 +239,16 @@ py::dict py_predict(const std::shared_ptr<machine::Machine>& machine, const py::
 }
 
 py::object py_diagnose(const std::shared_ptr<machine::Machine>& machine, const py::object& measured,
-                       const std::string& model_name, int folds, std::uint64_t seed) {
-  const std::string file =
-      py::str(py::module_::import("os").attr("fspath")(measured)).cast<std::string>();
+                       const std::string& model_name, int folds, std::uint64_t seed,
+                       const py::object& extend) {
+  auto path_of = [](const py::object& p) {
+    return py::str(py::module_::import("os").attr("fspath")(p)).cast<std::string>();
+  };
+  const std::string file = path_of(measured);
+  std::optional<diagnose::Overlay> overlay;
+  if (!extend.is_none()) overlay = diagnose::Overlay::load(path_of(extend));
   diagnose::DiagnoseOptions opt;
+  if (overlay) opt.extend = &*overlay;
   const auto kind = model::parse_model_kind(model_name);
   if (!kind)
     throw py::value_error("unknown model \"" + model_name + "\" (" +
@@ -442,8 +448,10 @@ PYBIND11_MODULE(abbe, m) {
         "model: a name, a comma-separated list or \"all\".");
   m.def("diagnose", &py_diagnose, py::arg("machine"), py::arg("measured"), py::kw_only(),
         py::arg("model") = "ae-arm", py::arg("folds") = 5, py::arg("seed") = 1,
+        py::arg("extend") = py::none(),
         "Diagnosis of measured data (CSV) against the machine's model: the JSON report of "
-        "`abbe diagnose` as a dict.");
+        "`abbe diagnose` as a dict. extend: an earlier overlay (YAML path) added to the model "
+        "first; the report's extend_check says what it does on these data.");
   m.def("compensate", &py_compensate, py::arg("machine"), py::arg("program") = py::none(),
         py::kw_only(), py::arg("code") = py::none(), py::arg("model") = "ae-arm",
         py::arg("tol_um") = 1.0, py::arg("step") = 5.0, py::arg("dialect") = "linuxcnc",

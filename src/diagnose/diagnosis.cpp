@@ -149,6 +149,14 @@ Diagnosis diagnose(const machine::Machine& machine, const io::MeasuredData& data
                    const DiagnoseOptions& o) {
   const Problem pb = build_problem(machine, data, o.model, o.extend);
   Diagnosis d = diagnose_problem(pb, o);
+  if (o.extend) {
+    std::vector<std::uint32_t> drop;
+    for (const Outlier& out : d.outliers) drop.push_back(out.point);
+    std::sort(drop.begin(), drop.end());
+    d.extend_check =
+        check_transfer(without_points(build_problem(machine, data, o.model, nullptr), drop),
+                       without_points(pb, drop), o.extend->terms.size(), o.candidates);
+  }
   d.machine = machine.name();
   d.measured_file = data.file;
   return d;

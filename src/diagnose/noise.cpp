@@ -18,6 +18,10 @@ double robust_sigma(std::vector<double>& diffs) {
   return 1.482602218505602 * *mid / std::sqrt(2.0);
 }
 
+// Three consecutive points are a run when their two steps differ by at
+// most this share of the longer one (equal spacing on a line).
+constexpr double kRunTolerance = 0.2;
+
 }  // namespace
 
 NoiseEstimate estimate_noise(const Problem& pb) {
@@ -51,20 +55,33 @@ NoiseEstimate estimate_noise(const Problem& pb) {
   }
   // Neighbours in measurement order: second differences of consecutive
   // observations of the same set along the same direction (a trend along
-  // the run — a scale, a drift — cancels).
-  std::map<std::tuple<std::string, long long, long long, long long>, std::pair<double, int>> prev;
-  std::map<std::tuple<std::string, long long, long long, long long>, double> prev2;
+  // the run — a scale, a drift, a set-up rotation — cancels). Only where
+  // the three points are equally spaced on a line: between points taken in
+  // no spatial order (the holes of a plate in drilling order) a second
+  // difference holds the whole structure, not the noise.
+  struct Last {
+    double y1 = 0.0, y2 = 0.0;
+    Eigen::Vector3d p1, p2;
+    int seen = 0;
+  };
+  std::map<std::tuple<std::string, long long, long long, long long>, Last> prev;
   std::vector<double> nb;
   for (std::size_t o = 0; o < pb.obs.size(); ++o) {
     const Observation& ob = pb.obs[o];
     const PointContext& pc = pb.points[ob.point];
     const auto k = std::make_tuple(pc.set, q(ob.u.x(), 1e-6), q(ob.u.y(), 1e-6), q(ob.u.z(), 1e-6));
     const double y = pb.y[static_cast<Eigen::Index>(o)];
-    auto& [p1, seen] = prev[k];
-    if (seen >= 2) nb.push_back((y - 2.0 * p1 + prev2[k]) * std::sqrt(2.0 / 6.0));
-    prev2[k] = p1;
-    p1 = y;
-    seen = std::min(seen + 1, 2);
+    Last& l = prev[k];
+    if (l.seen >= 2) {
+      const Eigen::Vector3d a = l.p1 - l.p2, b = pc.p - l.p1;
+      if ((b - a).norm() <= kRunTolerance * std::max(a.norm(), b.norm()))
+        nb.push_back((y - 2.0 * l.y1 + l.y2) * std::sqrt(2.0 / 6.0));
+    }
+    l.y2 = l.y1;
+    l.p2 = l.p1;
+    l.y1 = y;
+    l.p1 = pc.p;
+    l.seen = std::min(l.seen + 1, 2);
   }
   if (nb.size() >= 10) {
     est.pairs = nb.size();

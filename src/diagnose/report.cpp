@@ -164,6 +164,11 @@ std::string report_json(const Diagnosis& d) {
   j["noise_um"] = d.noise_um;
   j["noise_independent_um"] = d.noise_independent_um;
   j["noise_method"] = d.noise_method;
+  if (d.extend_check.done)
+    j["extend_check"] = {{"terms", d.extend_check.terms},
+                         {"rms_without_um", d.extend_check.rms_without_um},
+                         {"rms_with_um", d.extend_check.rms_with_um},
+                         {"change_percent", d.extend_check.change_percent()}};
   j["steps"] = d.log;
   return j.dump(2) + "\n";
 }
@@ -217,10 +222,19 @@ std::string report_text(const Diagnosis& d) {
       "%); noise σ ≈ {:.3f} µm\n",
       d.baseline.rms_um, d.extended.rms_um, d.folds, d.baseline_holdout_rms_um, d.holdout_rms_um,
       d.gain_percent, d.noise_um);
+  if (d.extend_check.done)
+    s += fmt::format(
+        "the earlier overlay (--extend, {} term{}) on these data: rms after the datum {:.3f} → "
+        "{:.3f} µm ({:+.1f} %)\n",
+        d.extend_check.terms, d.extend_check.terms == 1 ? "" : "s", d.extend_check.rms_without_um,
+        d.extend_check.rms_with_um, d.extend_check.change_percent());
   s += dynamic_text(d);
   if (d.noise_method != "none" && !d.noise_method.empty())
     s += fmt::format("noise from the data alone ({}): σ ≈ {:.3f} µm\n", d.noise_method,
                      d.noise_independent_um);
+  else if (d.noise_method == "none")
+    s += "noise from the data alone: not available (no repeated points, no runs of equally "
+         "spaced points)\n";
   return s;
 }
 

@@ -78,6 +78,10 @@ void render_diagnose_report(HtmlPage& page, const DiagnosisForReport& r) {
   if (!d.noise_method.empty() && d.noise_method != "none")
     page.add_paragraph(fmt::format("Noise from the data alone ({}): {:.3f} µm per observation.",
                                    d.noise_method, d.noise_independent_um));
+  else if (d.noise_method == "none")
+    page.add_paragraph(
+        "Noise from the data alone: not available (no repeated points, no runs of equally spaced "
+        "points).");
   if (!d.datum.empty()) {
     std::string datum;
     for (const auto& st : d.datum)

@@ -79,6 +79,25 @@ if(NOT rot)
   message(FATAL_ERROR "plate 8131: rotation not found in the datum:\n${run_out}")
 endif()
 
+# One plate's extended model on a plate of the same batch (8132): the
+# summary and the JSON say what it does after 8132's own datum
+# (tests/unit/diagnose_plugplate_test.cpp: 7.93 → 6.75 µm).
+run(${ABBE} diagnose --machine ${P}/machine.yaml --measured ${WORK}/p1.csv
+    --overlay ${WORK}/p1-overlay.yaml)
+run(${ABBE} import plugplate ${P}/D8132_1 -o ${WORK}/p2.csv)
+run(${ABBE} diagnose --machine ${P}/machine.yaml --measured ${WORK}/p2.csv
+    --extend ${WORK}/p1-overlay.yaml --out ${WORK}/p2.json)
+string(REGEX MATCH "the earlier overlay \\(--extend, 1 term\\) on these data: rms after the datum 7\\.9[0-9]+ → 6\\.[0-9]+ µm \\(\\+1[0-9]\\.[0-9] %\\)"
+       tr "${run_out}")
+if(NOT tr)
+  message(FATAL_ERROR "8131's model on 8132: no transfer line:\n${run_out}")
+endif()
+file(READ ${WORK}/p2.json js3)
+string(JSON change GET "${js3}" extend_check change_percent)
+if(change LESS 10)
+  message(FATAL_ERROR "8131's model on 8132: ${change} %, expected about +15 %")
+endif()
+
 # Errors: exit code 1 with file and line.
 file(WRITE ${WORK}/bad.csv "x,y,z,dx\n1,2,3,4\n1,2,zz,4\n")
 expect_failure("bad.csv:3:5" ${ABBE} diagnose --machine ${M}/machine.yaml --measured ${WORK}/bad.csv)

@@ -140,6 +140,24 @@ def test_diagnose_returns_report_dict(machine):
     assert {"htm", "ae-arm", "dual"} <= {m["model"] for m in d["models"]}
 
 
+def test_diagnose_with_an_earlier_overlay(tmp_path):
+    # Plate 8131's extended model on plate 8132 (same batch): the report says
+    # what it does there after 8132's own datum, as `abbe diagnose --extend`.
+    plates = ROOT / "tests/data/plugplate"
+    plate_machine = abbe.Machine(plates / "machine.yaml")
+    for plate in ("D8131_1", "D8132_1"):
+        cli_text("import", "plugplate", plates / plate, "-o", tmp_path / f"{plate}.csv")
+    overlay = tmp_path / "8131.yaml"
+    cli_text("diagnose", "--machine", plates / "machine.yaml", "--measured",
+             tmp_path / "D8131_1.csv", "--overlay", overlay)
+    d = abbe.diagnose(plate_machine, tmp_path / "D8132_1.csv", extend=overlay)
+    check = d["extend_check"]
+    assert check["terms"] == 1
+    assert check["rms_with_um"] < check["rms_without_um"]
+    assert check["change_percent"] > 10
+    assert "extend_check" not in abbe.diagnose(plate_machine, tmp_path / "D8132_1.csv")
+
+
 def test_compensate_returns_program(machine, monkeypatch):
     # One date for the provenance block of both runs.
     monkeypatch.setenv("SOURCE_DATE_EPOCH", "0")

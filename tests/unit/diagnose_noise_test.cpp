@@ -4,6 +4,7 @@
 // inflate it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "abbe/diagnose/noise.hpp"
@@ -66,6 +67,54 @@ TEST(DiagnoseNoise, TooFewDifferencesGiveNoEstimate) {
   pb.y.conservativeResize(5);
   const NoiseEstimate e = estimate_noise(pb);
   EXPECT_EQ(e.method, "none");
+  EXPECT_EQ(e.sigma_um, 0.0);
+}
+
+// A 13 × 9 plate (50 mm pitch, dx and dy) set up 500 µrad rotated, noise
+// 0.5 µm; its holes in row order (serpentine) or in a scattered order (as
+// a plate's drilling order lists them).
+Problem plate(bool scattered) {
+  std::vector<Eigen::Vector3d> holes;
+  for (int r = 0; r < 9; ++r)
+    for (int c = 0; c < 13; ++c) holes.emplace_back(50.0 * (r % 2 ? 12 - c : c), 50.0 * r, 0.0);
+  std::mt19937_64 rng(11);
+  if (scattered) std::shuffle(holes.begin(), holes.end(), rng);
+  std::normal_distribution<double> n(0.0, 0.5);
+  Problem pb;
+  std::vector<double> y;
+  for (const Eigen::Vector3d& p : holes) {
+    PointContext pc;
+    pc.p = p;
+    pc.s = p;
+    pc.set = "plate";
+    pb.points.push_back(pc);
+    for (int i = 0; i < 2; ++i) {
+      Observation ob;
+      ob.point = static_cast<std::uint32_t>(pb.points.size() - 1);
+      ob.u = i == 0 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+      pb.obs.push_back(ob);
+      // A rotation θ about Z: d = θ·(−y, x), θ = 500 µrad (µm per mm: 0.5).
+      y.push_back(0.5 * (i == 0 ? -p.y() : p.x()) + n(rng));
+    }
+  }
+  pb.y = Eigen::Map<Eigen::VectorXd>(y.data(), static_cast<Eigen::Index>(y.size()));
+  pb.sets = {"plate"};
+  pb.direction_present = {true, true, false};
+  return pb;
+}
+
+TEST(DiagnoseNoise, RowsOfAPlateGiveTheNoiseWhateverItsRotation) {
+  const NoiseEstimate e = estimate_noise(plate(false));
+  EXPECT_EQ(e.method, "neighbour differences");
+  EXPECT_NEAR(e.sigma_um, 0.5, 0.1);
+}
+
+// Holes in no spatial order: a second difference of three of them holds the
+// rotation's 0.5 µm per mm over hundreds of mm, not the noise (it gave
+// σ ≈ 77 µm before only equally spaced runs counted).
+TEST(DiagnoseNoise, ScatteredPointsGiveNoEstimate) {
+  const NoiseEstimate e = estimate_noise(plate(true));
+  EXPECT_EQ(e.method, "none") << e.sigma_um << " µm from " << e.pairs << " differences";
   EXPECT_EQ(e.sigma_um, 0.0);
 }
 

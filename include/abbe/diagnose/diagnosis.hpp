@@ -15,6 +15,7 @@
 #include "abbe/diagnose/residuals.hpp"
 #include "abbe/diagnose/rival_check.hpp"
 #include "abbe/diagnose/selection.hpp"
+#include "abbe/diagnose/transfer.hpp"
 #include "abbe/io/measured_data.hpp"
 #include "abbe/machine/machine.hpp"
 #include "abbe/model/model_kind.hpp"
@@ -61,6 +62,9 @@ struct Diagnosis {
   std::vector<std::string> circles;
   std::vector<DynamicFinding> dynamic;
   int folds = 0;
+  // With `extend`: what the earlier overlay does on these data (transfer.hpp),
+  // on the points left after the outliers.
+  TransferCheck extend_check;
   std::vector<std::string> log;
 };
 

@@ -1,0 +1,36 @@
+#pragma once
+// What an overlay fitted on other data does on these data (docs/diagnosis.md,
+// "Transfer"): the residual after the datum — refitted here, a new
+// measurement has its own — without and with the overlay's terms. `abbe
+// diagnose --extend OVERLAY` reports it, so one plate's model can be
+// checked on another plate.
+#include <cstddef>
+
+#include "abbe/diagnose/candidates.hpp"
+#include "abbe/diagnose/overlay.hpp"
+#include "abbe/diagnose/residuals.hpp"
+#include "abbe/io/measured_data.hpp"
+#include "abbe/machine/machine.hpp"
+#include "abbe/model/model_kind.hpp"
+
+namespace abbe::diagnose {
+
+struct TransferCheck {
+  bool done = false;
+  std::size_t terms = 0;        // the overlay's terms
+  double rms_without_um = 0.0;  // after the datum: the model alone
+  double rms_with_um = 0.0;     // after the datum: the model and the overlay
+  // + when the overlay lowers the RMS: 100·(1 − with/without).
+  double change_percent() const;
+};
+
+// `without` and `with`: the same points, the model's residual without and
+// with the overlay (build_problem with extend = nullptr and = &overlay).
+TransferCheck check_transfer(const Problem& without, const Problem& with, std::size_t terms,
+                             const CandidateOptions& options = {});
+
+TransferCheck check_transfer(const machine::Machine& machine, const io::MeasuredData& data,
+                             model::ModelKind model, const Overlay& overlay,
+                             const CandidateOptions& options = {});
+
+}  // namespace abbe::diagnose
