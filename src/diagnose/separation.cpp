@@ -49,6 +49,23 @@ std::string separating_measurement(const Term& chosen, const std::vector<Term>& 
         axis_name(chosen.axis), periods);
   }
   if (rivals.empty()) return "";
+  // d_i ∝ s_j against d_j ∝ s_i: they differ by a rotation about the third
+  // axis only, so they fit alike where the data do not fix that rotation (it
+  // is in the datum of a re-placed plate): one out-of-squareness of the two
+  // axes either way.
+  for (const Term& r : rivals)
+    if (chosen.kind == TermKind::squareness && r.kind == TermKind::squareness &&
+        r.axis == chosen.direction && r.direction == chosen.axis && chosen.axis >= 0 &&
+        chosen.direction >= 0)
+      return fmt::format(
+          "d{} ∝ {} and d{} ∝ {} differ by a rotation about {} alone, which these data do not fix "
+          "(e.g. the fitted rotation of a re-placed plate): both are one out-of-squareness of {} "
+          "and {}; to say which axis is off, measure the direction of {} or of {} against a "
+          "reference",
+          axis_name(chosen.direction), variable_name(chosen.axis), axis_name(r.direction),
+          variable_name(r.axis), axis_name(3 - chosen.axis - chosen.direction),
+          axis_name(chosen.axis), axis_name(chosen.direction), axis_name(chosen.axis),
+          axis_name(chosen.direction));
   for (const Term& r : rivals)
     if (depends_on_time(r) != depends_on_time(chosen))
       return "measure the points again in another order or after a pause (in this design time "

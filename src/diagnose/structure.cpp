@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "abbe/diagnose/statistics.hpp"
+#include "span.hpp"
 
 namespace abbe::diagnose::selection {
 
@@ -68,6 +69,24 @@ void explain_structure(const Step& st, const Score* best_named, int step, Struct
         }
       }
     }
+    // The smooth function's columns beside the selected span: a cyclic
+    // partner must be significant beyond them too.
+    Mat G;
+    if (st.o.cyclic_partner_beyond_smooth) {
+      G = term_columns(st.pb, st.g_best);
+      if (st.Q.cols() > 0) G -= st.Q * (st.Q.transpose() * G);
+    }
+    auto beyond_smooth = [&](const std::vector<const Score*>& others, const Score& s) {
+      Mat A(st.r.size(), 0);
+      for (const Score* m : others) span::append_orthonormal(A, m->c->C - st.Q * m->c->QtC, 1e-9);
+      span::append_orthonormal(A, G, 1e-9);
+      const Vec rA = st.r - A * (A.transpose() * st.r);
+      const Mat Cs = span::residual_of(A, s.c->C - st.Q * s.c->QtC);
+      const double d = removed_by(Cs, Mat(st.r.size(), 0), rA);
+      const double k_all = static_cast<double>(A.cols() + Cs.cols());
+      const double s2 = std::max(rA.squaredNorm() - d, 1e-300) / std::max(st.dof_base - k_all, 1.0);
+      return d > s2 * chi2_upper_quantile(s.c->term.columns(), st.o.alpha / st.tests_named);
+    };
     Eigen::Index k_combo = out.lead->c->C.cols();
     for (int m = 1; m < st.o.combinations; ++m) {
       const Score* add = nullptr;
@@ -101,7 +120,8 @@ void explain_structure(const Step& st, const Score* best_named, int step, Struct
         // The partner that adds most on the criterion (a searched cycle
         // that fits a line as well as a one-column squareness costs more).
         const double ic = st.ic_gain(dj - d_combo, st.cost(s.c->term));
-        if (dj - d_combo > thr_added && (!add || ic > ic_add)) {
+        if (dj - d_combo > thr_added && (!add || ic > ic_add) &&
+            (s.c->term.kind != TermKind::cyclic || G.cols() == 0 || beyond_smooth(combo, s))) {
           k_add = kj;
           add = &s;
           d_add = dj;

@@ -48,6 +48,20 @@ TEST(DiagnoseSeparation, DifferentDrivingAxesAskForThemToVaryApart) {
   EXPECT_NE(s.find("where X and Z vary apart"), std::string::npos) << s;
 }
 
+TEST(DiagnoseSeparation, SwappedSquarenessIsOneOutOfSquarenessOfAPlate) {
+  // A plate's rotation is datum: d_X ∝ y and d_Y ∝ x fit it alike (the
+  // real plates 1597A and 2130); not "X and Y vary apart".
+  const std::string s = separating_measurement(term(TermKind::squareness, 1, 0),
+                                               {term(TermKind::squareness, 0, 1)}, {});
+  EXPECT_NE(s.find("dX ∝ y and dY ∝ x differ by a rotation about Z alone"), std::string::npos) << s;
+  EXPECT_NE(s.find("one out-of-squareness of Y and X"), std::string::npos) << s;
+  EXPECT_EQ(s.find("vary apart"), std::string::npos) << s;
+  // Squareness against another squareness that is not its swap: as before.
+  const std::string t = separating_measurement(term(TermKind::squareness, 1, 0),
+                                               {term(TermKind::squareness, 2, 0)}, {});
+  EXPECT_NE(t.find("vary apart"), std::string::npos) << t;
+}
+
 TEST(DiagnoseSeparation, OtherwiseTheGeneralAdvice) {
   // Same driving axis, no time: nothing specific can be said.
   const std::string s =

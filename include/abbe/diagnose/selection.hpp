@@ -77,6 +77,13 @@ struct SelectionOptions {
   // of its own, but not so small that the model's own table error (a few
   // tenths of a µm, present in every data set) fills the place.
   double partner_floor_share = 0.5;
+  // A cyclic partner of a combination must also be significant in what it
+  // adds beside the smooth function it competes with (with the others): a
+  // cycle is a function the smooth family does not resolve, so a real one
+  // still adds; one whose period the scan chose because its columns, on
+  // scattered points, happen to fit part of the smooth structure adds
+  // nothing (false: tested against the combination's others only).
+  bool cyclic_partner_beyond_smooth = true;
   // Where no named part of the smooth function's structure passes the
   // floors alone, the largest significant part leads a combination (false:
   // no combination then).

@@ -4,6 +4,9 @@
 // coincide, or a period aliases on the sampling), diagnose names neither;
 // this says what to measure next so that they differ:
 //   aliased periods             → sample that axis at irregular spacing;
+//   squareness i→j against j→i  → (a rotation apart, the datum's) one
+//                                  out-of-squareness: measure one axis's
+//                                  direction against a reference;
 //   one depends on time, one not → measure the points again in another
 //                                  order or after a pause;
 //   driven by different axes    → measure where those axes vary apart;
