@@ -30,8 +30,6 @@ void explain_structure(const Step& st, const Score* best_named, int step, Struct
   }
   if (out.lead && !out.lead_explains && st.have_generic &&
       out.lead->d < st.o.name_ratio * st.g_best_d && st.o.combinations > 1) {
-    std::vector<const Score*> combo{out.lead};
-    double d_combo = out.lead->d, cost_combo = st.cost(out.lead->c->term);
     // Partners: among the 40 largest candidates, parts of the structure
     // the smooth function explains (in_structure), each significant and
     // above the partner floor in what it adds.
@@ -87,55 +85,90 @@ void explain_structure(const Step& st, const Score* best_named, int step, Struct
       const double s2 = std::max(rA.squaredNorm() - d, 1e-300) / std::max(st.dof_base - k_all, 1.0);
       return d > s2 * chi2_upper_quantile(s.c->term.columns(), st.o.alpha / st.tests_named);
     };
-    Eigen::Index k_combo = out.lead->c->C.cols();
-    for (int m = 1; m < st.o.combinations; ++m) {
-      const Score* add = nullptr;
-      double d_add = d_combo, ic_add = 0.0;
-      Eigen::Index k_add = 0;
-      for (const Score* sp : pool) {
-        const Score& s = *sp;
-        if (!may_join(s, combo)) continue;
-        // One time constant per drift family in a combination.
-        bool same_family = false;
-        for (const Score* mb : combo)
-          same_family = same_family || (mb->c->term.kind == TermKind::thermal_drift &&
-                                        s.c->term.kind == TermKind::thermal_drift &&
-                                        mb->c->term.axis == s.c->term.axis &&
-                                        mb->c->term.direction == s.c->term.direction &&
-                                        mb->c->term.with_axis == s.c->term.with_axis);
-        if (same_family) continue;
-        std::vector<const Score*> with = combo;
-        with.push_back(&s);
-        const double dj = st.together(with);
-        // What it adds must pass its χ² and `partner_floor_share` of the
-        // practical floor, in units of the residual variance the
-        // combination leaves (not what the candidate alone leaves: that
-        // still holds the structure the others explain).
-        const Eigen::Index kj = k_combo + s.c->C.cols();
-        const double s2j =
-            std::max(st.rr - dj, 1e-300) / std::max(st.dof_base - static_cast<double>(kj), 1.0);
-        const double thr_added =
-            s2j * std::max(chi2_upper_quantile(s.c->term.columns(), st.o.alpha / st.tests_named),
-                           st.o.partner_floor_share * st.lambda);
-        // The partner that adds most on the criterion (a searched cycle
-        // that fits a line as well as a one-column squareness costs more).
-        const double ic = st.ic_gain(dj - d_combo, st.cost(s.c->term));
-        if (dj - d_combo > thr_added && (!add || ic > ic_add) &&
-            (s.c->term.kind != TermKind::cyclic || G.cols() == 0 || beyond_smooth(combo, s))) {
-          k_add = kj;
-          add = &s;
-          d_add = dj;
-          ic_add = ic;
+    // Greedy from one lead: the partner that adds most on the criterion,
+    // up to `combinations` members.
+    struct Combo {
+      std::vector<const Score*> members;
+      double d = 0.0, cost = 0.0;
+    };
+    auto grow = [&](const Score* lead) {
+      Combo cb{{lead}, lead->d, st.cost(lead->c->term)};
+      std::vector<const Score*>& combo = cb.members;
+      double& d_combo = cb.d;
+      double& cost_combo = cb.cost;
+      Eigen::Index k_combo = lead->c->C.cols();
+      for (int m = 1; m < st.o.combinations; ++m) {
+        const Score* add = nullptr;
+        double d_add = d_combo, ic_add = 0.0;
+        Eigen::Index k_add = 0;
+        for (const Score* sp : pool) {
+          const Score& s = *sp;
+          if (!may_join(s, combo)) continue;
+          // One time constant per drift family in a combination.
+          bool same_family = false;
+          for (const Score* mb : combo)
+            same_family = same_family || (mb->c->term.kind == TermKind::thermal_drift &&
+                                          s.c->term.kind == TermKind::thermal_drift &&
+                                          mb->c->term.axis == s.c->term.axis &&
+                                          mb->c->term.direction == s.c->term.direction &&
+                                          mb->c->term.with_axis == s.c->term.with_axis);
+          if (same_family) continue;
+          std::vector<const Score*> with = combo;
+          with.push_back(&s);
+          const double dj = st.together(with);
+          // What it adds must pass its χ² and `partner_floor_share` of the
+          // practical floor, in units of the residual variance the
+          // combination leaves (not what the candidate alone leaves: that
+          // still holds the structure the others explain).
+          const Eigen::Index kj = k_combo + s.c->C.cols();
+          const double s2j =
+              std::max(st.rr - dj, 1e-300) / std::max(st.dof_base - static_cast<double>(kj), 1.0);
+          const double thr_added =
+              s2j * std::max(chi2_upper_quantile(s.c->term.columns(), st.o.alpha / st.tests_named),
+                             st.o.partner_floor_share * st.lambda);
+          // The partner that adds most on the criterion (a searched cycle
+          // that fits a line as well as a one-column squareness costs more).
+          const double ic = st.ic_gain(dj - d_combo, st.cost(s.c->term));
+          if (dj - d_combo > thr_added && (!add || ic > ic_add) &&
+              (s.c->term.kind != TermKind::cyclic || G.cols() == 0 || beyond_smooth(combo, s))) {
+            k_add = kj;
+            add = &s;
+            d_add = dj;
+            ic_add = ic;
+          }
         }
+        if (!add) break;
+        combo.push_back(add);
+        k_combo = k_add;
+        d_combo = d_add;
+        cost_combo += st.cost(add->c->term);
       }
-      if (!add) break;
-      combo.push_back(add);
-      k_combo = k_add;
-      d_combo = d_add;
-      cost_combo += st.cost(add->c->term);
+      return cb;
+    };
+    // The combination from the lead; where it does not explain the
+    // structure, from the next significant parts of it (`combination_leads`;
+    // not an arm offset: it carries the model's own table error): the best
+    // on the criterion of those that explain the structure wins.
+    auto valid = [&](const Combo& cb) {
+      return cb.members.size() > 1 && cb.d >= st.o.name_ratio * st.g_best_d &&
+             st.ic_gain(cb.d, cb.cost) >= st.ic_gain(st.g_best_d, st.g_best.columns());
+    };
+    Combo best = grow(out.lead);
+    int leads = 1;
+    for (std::size_t i = 0; i < shortlist && leads < st.o.combination_leads && !valid(best); ++i) {
+      const Score& sc = st.scores[i];
+      if (&sc == out.lead || !st.in_structure(sc) || !st.significant(sc) ||
+          sc.c->term.kind == TermKind::arm_offset)
+        continue;
+      ++leads;
+      Combo cb = grow(&sc);
+      if (valid(cb) && (!valid(best) || st.ic_gain(cb.d, cb.cost) > st.ic_gain(best.d, best.cost)))
+        best = std::move(cb);
     }
-    if (combo.size() > 1 && d_combo >= st.o.name_ratio * st.g_best_d &&
-        st.ic_gain(d_combo, cost_combo) >= st.ic_gain(st.g_best_d, st.g_best.columns())) {
+    if (valid(best)) out.lead = best.members.front();
+    const std::vector<const Score*>& combo = best.members;
+    const double d_combo = best.d;
+    if (valid(best)) {
       out.combination_wins = true;
       out.partners.assign(combo.begin() + 1, combo.end());
       out.d_partners = d_combo;

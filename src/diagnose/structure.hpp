@@ -28,7 +28,9 @@ struct StructureChoice {
 // can: its structure is explained from the best named candidate that is a
 // part of it (or, where none passes the floors alone, the largest
 // significant part: e.g. a coupling whose linear parts take half of it),
-// alone or in a combination (lead_below_floor). `out` must outlive the step
+// alone or in a combination (lead_below_floor); a combination that does not
+// explain it is grown again from the next significant parts
+// (combination_leads). `out` must outlive the step
 // (partners may point into its re-scanned drifts).
 void explain_structure(const Step& s, const Score* best_named, int step, StructureChoice& out,
                        std::vector<std::string>& log);

@@ -71,6 +71,14 @@ struct SelectionOptions {
   // this many significant named candidates (greedy) compete with it on the
   // same criterion (1: no combinations).
   int combinations = 3;
+  // Where the combination grown from the lead does not explain the
+  // structure, it is grown again from the next significant parts of it (by
+  // ΔRSS; not an arm offset, which carries the model's own table error), up
+  // to this many leads in all; the best on the criterion of those that
+  // explain it wins (1: from the lead alone; e.g. a drift that grows with
+  // the position leads its own combination where an aliased cycle or a
+  // scale came first).
+  int combination_leads = 3;
   // A partner of a combination must add, beyond the others, this share of
   // the practical floor's sum of squares (n·min_effect_rms²·σ̂²; 0.5: an
   // RMS of 0.21 σ̂): a part of one structure may be smaller than an effect
