@@ -154,16 +154,22 @@ void explain_structure(const Step& st, const Score* best_named, int step, Struct
              st.ic_gain(cb.d, cb.cost) >= st.ic_gain(st.g_best_d, st.g_best.columns());
     };
     Combo best = grow(out.lead);
-    int leads = 1;
-    for (std::size_t i = 0; i < shortlist && leads < st.o.combination_leads && !valid(best); ++i) {
-      const Score& sc = st.scores[i];
-      if (&sc == out.lead || !st.in_structure(sc) || !st.significant(sc) ||
-          sc.c->term.kind == TermKind::arm_offset)
-        continue;
-      ++leads;
-      Combo cb = grow(&sc);
-      if (valid(cb) && (!valid(best) || st.ic_gain(cb.d, cb.cost) > st.ic_gain(best.d, best.cost)))
-        best = std::move(cb);
+    if (!valid(best)) {
+      std::vector<const Score*> others;
+      for (std::size_t i = 0; i < shortlist; ++i) {
+        const Score& sc = st.scores[i];
+        if (static_cast<int>(others.size()) + 1 >= st.o.combination_leads) break;
+        if (&sc == out.lead || !st.in_structure(sc) || !st.significant(sc) ||
+            sc.c->term.kind == TermKind::arm_offset)
+          continue;
+        others.push_back(&sc);
+      }
+      for (const Score* lead : others) {
+        Combo cb = grow(lead);
+        if (valid(cb) &&
+            (!valid(best) || st.ic_gain(cb.d, cb.cost) > st.ic_gain(best.d, best.cost)))
+          best = std::move(cb);
+      }
     }
     if (valid(best)) out.lead = best.members.front();
     const std::vector<const Score*>& combo = best.members;
