@@ -24,7 +24,11 @@ struct Setup {
   abbe::io::MeasuredData data;
 };
 
-Setup make_setup(int points) {
+// effects 0: a reversal of Y and a drift of Z (each a step of its own);
+// 1: a coupling x·y→X with a scale X (one structure, dX(x, y), that a
+// combination of the two explains: the structure search of step 3 with its
+// leads and partners).
+Setup make_setup(int points, int effects) {
   abbe::sim::GeneratorOptions go;
   go.seed = 7;
   go.noise_scale = 0.0;
@@ -35,8 +39,12 @@ Setup make_setup(int points) {
   std::ofstream(dir / "errors.csv") << abbe::sim::table_to_csv(r);
   abbe::machine::Machine m = abbe::machine::Machine::parse(
       abbe::sim::machine_to_yaml(g, r, "errors.csv"), "<bench>", dir.string());
-  g.truth.effects = {abbe::sim::parse_effect("reversal:Y:3um"),
-                     abbe::sim::parse_effect("thermal_drift:Z:4um:tau=1800")};
+  if (effects == 0)
+    g.truth.effects = {abbe::sim::parse_effect("reversal:Y:3um"),
+                       abbe::sim::parse_effect("thermal_drift:Z:4um:tau=1800")};
+  else
+    g.truth.effects = {abbe::sim::parse_effect("coupling:X:4um:with=Y,dir=X"),
+                       abbe::sim::parse_effect("scale:X:6ppm")};
   Eigen::Vector3d lo, hi;
   abbe::sim::default_box(g.truth, g.truth.tool_length, lo, hi);
   std::mt19937_64 rng(1);
@@ -57,9 +65,10 @@ Setup make_setup(int points) {
 }
 
 // range(0): points; range(1): 1 with the swap test after the fit
-// (rival_check.hpp), 0 without — its cost as a ratio in the same run.
+// (rival_check.hpp), 0 without — its cost as a ratio in the same run;
+// range(2): the hidden effects (make_setup).
 void BM_Diagnose(benchmark::State& state) {
-  const Setup s = make_setup(static_cast<int>(state.range(0)));
+  const Setup s = make_setup(static_cast<int>(state.range(0)), static_cast<int>(state.range(2)));
   abbe::diagnose::DiagnoseOptions o;
   o.rivals.enabled = state.range(1) != 0;
   std::size_t effects = 0;
@@ -72,9 +81,10 @@ void BM_Diagnose(benchmark::State& state) {
   state.counters["effects"] = static_cast<double>(effects);
 }
 BENCHMARK(BM_Diagnose)
-    ->Args({10000, 1})
-    ->Args({100000, 1})
-    ->Args({100000, 0})
+    ->Args({10000, 1, 0})
+    ->Args({100000, 1, 0})
+    ->Args({100000, 0, 0})
+    ->Args({100000, 1, 1})
     ->Unit(benchmark::kSecond)
     ->Iterations(1);
 
