@@ -156,6 +156,7 @@ Diagnosis diagnose(const machine::Machine& machine, const io::MeasuredData& data
     d.extend_check =
         check_transfer(without_points(build_problem(machine, data, o.model, nullptr), drop),
                        without_points(pb, drop), o.extend->terms.size(), o.candidates);
+    add_overlay_warnings(*o.extend, machine.name(), model::to_string(o.model), pb, d.extend_check);
   }
   d.machine = machine.name();
   d.measured_file = data.file;

@@ -168,7 +168,10 @@ std::string report_json(const Diagnosis& d) {
     j["extend_check"] = {{"terms", d.extend_check.terms},
                          {"rms_without_um", d.extend_check.rms_without_um},
                          {"rms_with_um", d.extend_check.rms_with_um},
-                         {"change_percent", d.extend_check.change_percent()}};
+                         {"change_percent", d.extend_check.change_percent()},
+                         {"points", d.extend_check.points},
+                         {"outside_domain", d.extend_check.outside},
+                         {"warnings", d.extend_check.warnings}};
   j["steps"] = d.log;
   return j.dump(2) + "\n";
 }

@@ -1,5 +1,7 @@
 #include "abbe/diagnose/transfer.hpp"
 
+#include <fmt/format.h>
+
 #include <stdexcept>
 
 #include "abbe/diagnose/selection.hpp"
@@ -40,12 +42,37 @@ TransferCheck check_transfer(const Problem& without, const Problem& with, std::s
   return c;
 }
 
+void add_overlay_warnings(const Overlay& overlay, const std::string& machine_name,
+                          const std::string& model_name, const Problem& problem,
+                          TransferCheck& check) {
+  const std::string name = overlay.file.empty() ? "the overlay" : overlay.file;
+  if (!overlay.machine.empty() && overlay.machine != machine_name)
+    check.warnings.push_back(
+        fmt::format("{} was fitted for machine \"{}\", these data are diagnosed against \"{}\"",
+                    name, overlay.machine, machine_name));
+  if (overlay.base_model != model_name)
+    check.warnings.push_back(fmt::format("{} was fitted on the {} model, it is added to {}", name,
+                                         overlay.base_model, model_name));
+  check.points = problem.points.size();
+  check.outside = 0;
+  const bool with_time = overlay.time_dependent();
+  for (const PointContext& pc : problem.points)
+    check.outside += overlay.domain.contains(pc, with_time) ? 0 : 1;
+  if (check.outside > 0)
+    check.warnings.push_back(
+        fmt::format("{} of the {} points lie outside the domain {} was fitted on ({}): its smooth, "
+                    "polynomial and time terms are held at their boundary values there",
+                    check.outside, check.points, name, overlay.domain.text(with_time)));
+}
+
 TransferCheck check_transfer(const machine::Machine& machine, const io::MeasuredData& data,
                              model::ModelKind model, const Overlay& overlay,
                              const CandidateOptions& options) {
-  return check_transfer(build_problem(machine, data, model, nullptr),
-                        build_problem(machine, data, model, &overlay), overlay.terms.size(),
-                        options);
+  const Problem with = build_problem(machine, data, model, &overlay);
+  TransferCheck c = check_transfer(build_problem(machine, data, model, nullptr), with,
+                                   overlay.terms.size(), options);
+  add_overlay_warnings(overlay, machine.name(), model::to_string(model), with, c);
+  return c;
 }
 
 }  // namespace abbe::diagnose

@@ -182,6 +182,33 @@ TEST(DiagnosePlugPlate, ScaleAndSquarenessBeyondTheSetup) {
   }
 }
 
+// What a transfer cannot vouch for is said: points outside the box the
+// model was fitted on (two of 8132's holes lie outside 8131's), another
+// base model, another machine.
+TEST(DiagnosePlugPlate, TransferSaysWhatItCannotVouchFor) {
+  const io::MeasuredData a = io::load_plugplate(kDir + "D8131_1");
+  const io::MeasuredData b = io::load_plugplate(kDir + "D8132_1");
+  Overlay ov = make_overlay(diagnose(plate_machine(), a, DiagnoseOptions{}), nullptr);
+  const TransferCheck same = check_transfer(plate_machine(), b, model::ModelKind::ae_arm, ov);
+  EXPECT_EQ(same.points, 82u);
+  EXPECT_EQ(same.outside, 2u);
+  ASSERT_EQ(same.warnings.size(), 1u);
+  EXPECT_NE(same.warnings[0].find("2 of the 82 points lie outside the domain"), std::string::npos)
+      << same.warnings[0];
+  const TransferCheck htm = check_transfer(plate_machine(), b, model::ModelKind::htm, ov);
+  ASSERT_EQ(htm.warnings.size(), 2u);
+  EXPECT_NE(htm.warnings[0].find("fitted on the ae-arm model, it is added to htm"),
+            std::string::npos)
+      << htm.warnings[0];
+  ov.machine = "another machine";
+  ov.domain.known = false;  // an overlay written without its domain: nothing outside
+  const TransferCheck other = check_transfer(plate_machine(), b, model::ModelKind::ae_arm, ov);
+  EXPECT_EQ(other.outside, 0u);
+  ASSERT_EQ(other.warnings.size(), 1u);
+  EXPECT_NE(other.warnings[0].find("was fitted for machine \"another machine\""), std::string::npos)
+      << other.warnings[0];
+}
+
 // Plate 8133 (82 holes in no spatial order): at step 1 a cycle of X in Y
 // with a period of 10.9 mm and 3.5 µm, chosen by the scan on a residual
 // that still holds the smooth structure, joined a squareness and a scale Y

@@ -2,6 +2,7 @@
 // which catalogued effect explains it, the extended model (overlay) and its
 // held-out gain (docs/diagnosis.md).
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include <cstdio>
 #include <memory>
@@ -62,6 +63,7 @@ int run_diagnose(const DiagnoseCliOptions& o, const GlobalOptions& g) {
     };
   const diagnose::Diagnosis d = diagnose::diagnose(machine, data, opt);
   progress.finish();
+  for (const std::string& w : d.extend_check.warnings) spdlog::warn("{}", w);
   if (!o.out.empty()) io::write_file_atomically(o.out, diagnose::report_json(d));
   if (!o.overlay.empty())
     io::write_file_atomically(o.overlay, diagnose::make_overlay(d, opt.extend).to_yaml());

@@ -5,6 +5,8 @@
 // diagnose --extend OVERLAY` reports it, so one plate's model can be
 // checked on another plate.
 #include <cstddef>
+#include <string>
+#include <vector>
 
 #include "abbe/diagnose/candidates.hpp"
 #include "abbe/diagnose/overlay.hpp"
@@ -20,9 +22,22 @@ struct TransferCheck {
   std::size_t terms = 0;        // the overlay's terms
   double rms_without_um = 0.0;  // after the datum: the model alone
   double rms_with_um = 0.0;     // after the datum: the model and the overlay
+  std::size_t points = 0;       // the points checked
+  std::size_t outside = 0;      // of them outside the overlay's domain (box, time window)
+  // What the user should know before trusting the numbers: the overlay was
+  // fitted for another machine or on another model, or points lie outside
+  // its domain (its smooth and time terms are held there).
+  std::vector<std::string> warnings;
   // + when the overlay lowers the RMS: 100·(1 − with/without).
   double change_percent() const;
 };
+
+// The warnings of a TransferCheck for an overlay applied to these points,
+// diagnosed against `machine_name` with `model_name`; fills `points` and
+// `outside` of `check` too.
+void add_overlay_warnings(const Overlay& overlay, const std::string& machine_name,
+                          const std::string& model_name, const Problem& problem,
+                          TransferCheck& check);
 
 // `without` and `with`: the same points, the model's residual without and
 // with the overlay (build_problem with extend = nullptr and = &overlay).
