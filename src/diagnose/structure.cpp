@@ -9,6 +9,201 @@
 
 namespace abbe::diagnose::selection {
 
+namespace {
+
+// Partners and leads come from the 40 largest candidates.
+constexpr std::size_t kShortlist = 40;
+
+// Not yet a member, and a part of the structure the smooth function explains.
+bool may_join(const Step& st, const Score& s, const std::vector<const Score*>& members) {
+  return std::find(members.begin(), members.end(), &s) == members.end() && st.in_structure(s);
+}
+
+// Two drifts of one family (axis, direction, position factor): a
+// combination holds one time constant per family.
+bool same_drift_family(const Term& a, const Term& b) {
+  return a.kind == TermKind::thermal_drift && b.kind == TermKind::thermal_drift &&
+         a.axis == b.axis && a.direction == b.direction && a.with_axis == b.with_axis;
+}
+
+// The pool of partners: the shortlist, and a drift of the structure at every
+// time constant of its grid (its scan chose the time constant that fits the
+// residual alone; beside the others another may fit). The re-scanned drifts
+// are kept in `out`.
+std::vector<const Score*> partner_pool(const Step& st, std::size_t shortlist,
+                                       StructureChoice& out) {
+  std::vector<const Score*> pool;
+  for (std::size_t i = 0; i < shortlist; ++i) {
+    const Score& sc = st.scores[i];
+    pool.push_back(&sc);
+    if (sc.c->term.kind != TermKind::thermal_drift || !st.in_structure(sc)) continue;
+    for (const ScanFamily& f : st.cs.scanned) {
+      if (!same_drift_family(f.base, sc.c->term)) continue;
+      for (double tau : f.grid) {
+        if (tau == sc.c->term.tau_s) continue;
+        Term t = sc.c->term;
+        t.tau_s = tau;
+        Cached c{t, term_columns(st.pb, t), Mat(), Mat(), {}};
+        c.CtC = c.C.transpose() * c.C;
+        c.QtC = st.Q.transpose() * c.C;
+        out.rescanned.push_back(std::move(c));
+        const Cached& rc = out.rescanned.back();
+        out.rescanned_scores.push_back(Score{&rc, delta_rss(rc.C, rc.CtC, rc.QtC, st.r), 0.0});
+        pool.push_back(&out.rescanned_scores.back());
+      }
+    }
+  }
+  return pool;
+}
+
+// The smooth function's columns beside the selected span, computed when a
+// cyclic partner first asks (cyclic_partner_beyond_smooth).
+class SmoothSpan {
+ public:
+  explicit SmoothSpan(const Step& st) : st_(st) {}
+
+  // The cycle `s` is significant in what it adds beside `others` and the
+  // smooth function (χ² of its columns at alpha / tests_named).
+  bool adds(const std::vector<const Score*>& others, const Score& s) {
+    if (!computed_) {
+      G_ = term_columns(st_.pb, st_.g_best);
+      if (st_.Q.cols() > 0) G_ -= st_.Q * (st_.Q.transpose() * G_);
+      computed_ = true;
+    }
+    if (G_.cols() == 0) return true;
+    Mat A(st_.r.size(), 0);
+    for (const Score* m : others) span::append_orthonormal(A, m->c->C - st_.Q * m->c->QtC, 1e-9);
+    span::append_orthonormal(A, G_, 1e-9);
+    const Vec rA = st_.r - A * (A.transpose() * st_.r);
+    const Mat Cs = span::residual_of(A, s.c->C - st_.Q * s.c->QtC);
+    const double d = removed_by(Cs, Mat(st_.r.size(), 0), rA);
+    const double k_all = static_cast<double>(A.cols() + Cs.cols());
+    const double s2 = std::max(rA.squaredNorm() - d, 1e-300) / std::max(st_.dof_base - k_all, 1.0);
+    return d > s2 * chi2_upper_quantile(s.c->term.columns(), st_.o.alpha / st_.tests_named);
+  }
+
+ private:
+  const Step& st_;
+  bool computed_ = false;
+  Mat G_;
+};
+
+// A combination: its members (the lead first), what they remove together
+// and their cost on the criterion.
+struct Combo {
+  std::vector<const Score*> members;
+  double d = 0.0, cost = 0.0;
+};
+
+// Greedy from one lead: the partner that adds most on the criterion, up to
+// `combinations` members.
+Combo grow(const Step& st, const Score* lead, const std::vector<const Score*>& pool,
+           SmoothSpan& smooth) {
+  Combo cb{{lead}, lead->d, st.cost(lead->c->term)};
+  Eigen::Index k_combo = lead->c->C.cols();
+  for (int m = 1; m < st.o.combinations; ++m) {
+    const Score* add = nullptr;
+    double d_add = cb.d, ic_add = 0.0;
+    Eigen::Index k_add = 0;
+    for (const Score* sp : pool) {
+      const Score& s = *sp;
+      if (!may_join(st, s, cb.members)) continue;
+      bool same_family = false;
+      for (const Score* mb : cb.members)
+        same_family = same_family || same_drift_family(mb->c->term, s.c->term);
+      if (same_family) continue;
+      std::vector<const Score*> with = cb.members;
+      with.push_back(&s);
+      const double dj = st.together(with);
+      // What it adds must pass its χ² and `partner_floor_share` of the
+      // practical floor, in units of the residual variance the combination
+      // leaves (not what the candidate alone leaves: that still holds the
+      // structure the others explain).
+      const Eigen::Index kj = k_combo + s.c->C.cols();
+      const double s2j =
+          std::max(st.rr - dj, 1e-300) / std::max(st.dof_base - static_cast<double>(kj), 1.0);
+      const double thr_added =
+          s2j * std::max(chi2_upper_quantile(s.c->term.columns(), st.o.alpha / st.tests_named),
+                         st.o.partner_floor_share * st.lambda);
+      // The partner that adds most on the criterion (a searched cycle that
+      // fits a line as well as a one-column squareness costs more).
+      const double ic = st.ic_gain(dj - cb.d, st.cost(s.c->term));
+      if (dj - cb.d > thr_added && (!add || ic > ic_add) &&
+          (s.c->term.kind != TermKind::cyclic || !st.o.cyclic_partner_beyond_smooth ||
+           smooth.adds(cb.members, s))) {
+        k_add = kj;
+        add = &s;
+        d_add = dj;
+        ic_add = ic;
+      }
+    }
+    if (!add) break;
+    cb.members.push_back(add);
+    k_combo = k_add;
+    cb.d = d_add;
+    cb.cost += st.cost(add->c->term);
+  }
+  return cb;
+}
+
+// It explains the structure: at least `name_ratio` of the smooth function's
+// ΔRSS with a criterion at least as good.
+bool explains(const Step& st, const Combo& cb) {
+  return cb.members.size() > 1 && cb.d >= st.o.name_ratio * st.g_best_d &&
+         st.ic_gain(cb.d, cb.cost) >= st.ic_gain(st.g_best_d, st.g_best.columns());
+}
+
+// The combination from the lead; where it does not explain the structure,
+// from the next significant parts of it (`combination_leads`; not an arm
+// offset: it carries the model's own table error): the best on the
+// criterion of those that explain the structure.
+Combo best_combination(const Step& st, const Score* lead, std::size_t shortlist,
+                       const std::vector<const Score*>& pool) {
+  SmoothSpan smooth(st);
+  Combo best = grow(st, lead, pool, smooth);
+  if (explains(st, best)) return best;
+  std::vector<const Score*> others;
+  for (std::size_t i = 0; i < shortlist; ++i) {
+    const Score& sc = st.scores[i];
+    if (static_cast<int>(others.size()) + 1 >= st.o.combination_leads) break;
+    if (&sc == lead || !st.in_structure(sc) || !st.significant(sc) ||
+        sc.c->term.kind == TermKind::arm_offset)
+      continue;
+    others.push_back(&sc);
+  }
+  for (const Score* other : others) {
+    Combo cb = grow(st, other, pool, smooth);
+    if (explains(st, cb) &&
+        (!explains(st, best) || st.ic_gain(cb.d, cb.cost) > st.ic_gain(best.d, best.cost)))
+      best = std::move(cb);
+  }
+  return best;
+}
+
+// A partner the data do not prefer over another candidate in its place (the
+// combination with the other removes less by no more than a one-column χ²
+// at `alpha`) is reported with it as ambiguous.
+std::vector<std::vector<Term>> partner_rivals(const Step& st, const Combo& combo,
+                                              std::size_t shortlist) {
+  const double swap_margin = st.s2_ic * chi2_upper_quantile(1, st.o.alpha);
+  std::vector<std::vector<Term>> rivals(combo.members.size() - 1);
+  for (std::size_t m = 1; m < combo.members.size(); ++m)
+    for (std::size_t i = 0; i < shortlist; ++i) {
+      const Score& s = st.scores[i];
+      if (!may_join(st, s, combo.members)) continue;
+      const Term& pt = combo.members[m]->c->term;
+      if (s.c->term.kind == pt.kind && s.c->term.axis == pt.axis &&
+          s.c->term.direction == pt.direction && s.c->term.with_axis == pt.with_axis)
+        continue;  // the same effect (another period or time constant)
+      std::vector<const Score*> swapped = combo.members;
+      swapped[m] = &s;
+      if (st.together(swapped) >= combo.d - swap_margin) rivals[m - 1].push_back(s.c->term);
+    }
+  return rivals;
+}
+
+}  // namespace
+
 void explain_structure(const Step& st, const Score* best_named, int step, StructureChoice& out,
                        std::vector<std::string>& log) {
   if (st.have_generic && (!best_named || best_named->d < st.o.name_ratio * st.g_best_d)) {
@@ -28,181 +223,26 @@ void explain_structure(const Step& st, const Score* best_named, int step, Struct
       out.lead_explains = true;
     }
   }
-  if (out.lead && !out.lead_explains && st.have_generic &&
-      out.lead->d < st.o.name_ratio * st.g_best_d && st.o.combinations > 1) {
-    // Partners: among the 40 largest candidates, parts of the structure
-    // the smooth function explains (in_structure), each significant and
-    // above the partner floor in what it adds.
-    auto may_join = [&](const Score& s, const std::vector<const Score*>& members) {
-      return std::find(members.begin(), members.end(), &s) == members.end() && st.in_structure(s);
-    };
-    const std::size_t shortlist = std::min<std::size_t>(st.scores.size(), 40);
-    // The pool of partners: the shortlist, and a drift of the structure at
-    // every time constant of its grid (its scan chose the time constant
-    // that fits the residual alone; beside the others another may fit).
-    std::vector<const Score*> pool;
-    for (std::size_t i = 0; i < shortlist; ++i) {
-      const Score& sc = st.scores[i];
-      pool.push_back(&sc);
-      if (sc.c->term.kind != TermKind::thermal_drift || !st.in_structure(sc)) continue;
-      for (const ScanFamily& f : st.cs.scanned) {
-        const Term& base = f.base;
-        if (base.kind != TermKind::thermal_drift || base.axis != sc.c->term.axis ||
-            base.direction != sc.c->term.direction || base.with_axis != sc.c->term.with_axis)
-          continue;
-        for (double tau : f.grid) {
-          if (tau == sc.c->term.tau_s) continue;
-          Term t = sc.c->term;
-          t.tau_s = tau;
-          Cached c{t, term_columns(st.pb, t), Mat(), Mat(), {}};
-          c.CtC = c.C.transpose() * c.C;
-          c.QtC = st.Q.transpose() * c.C;
-          out.rescanned.push_back(std::move(c));
-          Score alt{&out.rescanned.back(),
-                    delta_rss(out.rescanned.back().C, out.rescanned.back().CtC,
-                              out.rescanned.back().QtC, st.r),
-                    0.0};
-          out.rescanned_scores.push_back(alt);
-          pool.push_back(&out.rescanned_scores.back());
-        }
-      }
-    }
-    // The smooth function's columns beside the selected span: a cyclic
-    // partner must be significant beyond them too.
-    Mat G;
-    if (st.o.cyclic_partner_beyond_smooth) {
-      G = term_columns(st.pb, st.g_best);
-      if (st.Q.cols() > 0) G -= st.Q * (st.Q.transpose() * G);
-    }
-    auto beyond_smooth = [&](const std::vector<const Score*>& others, const Score& s) {
-      Mat A(st.r.size(), 0);
-      for (const Score* m : others) span::append_orthonormal(A, m->c->C - st.Q * m->c->QtC, 1e-9);
-      span::append_orthonormal(A, G, 1e-9);
-      const Vec rA = st.r - A * (A.transpose() * st.r);
-      const Mat Cs = span::residual_of(A, s.c->C - st.Q * s.c->QtC);
-      const double d = removed_by(Cs, Mat(st.r.size(), 0), rA);
-      const double k_all = static_cast<double>(A.cols() + Cs.cols());
-      const double s2 = std::max(rA.squaredNorm() - d, 1e-300) / std::max(st.dof_base - k_all, 1.0);
-      return d > s2 * chi2_upper_quantile(s.c->term.columns(), st.o.alpha / st.tests_named);
-    };
-    // Greedy from one lead: the partner that adds most on the criterion,
-    // up to `combinations` members.
-    struct Combo {
-      std::vector<const Score*> members;
-      double d = 0.0, cost = 0.0;
-    };
-    auto grow = [&](const Score* lead) {
-      Combo cb{{lead}, lead->d, st.cost(lead->c->term)};
-      std::vector<const Score*>& combo = cb.members;
-      double& d_combo = cb.d;
-      double& cost_combo = cb.cost;
-      Eigen::Index k_combo = lead->c->C.cols();
-      for (int m = 1; m < st.o.combinations; ++m) {
-        const Score* add = nullptr;
-        double d_add = d_combo, ic_add = 0.0;
-        Eigen::Index k_add = 0;
-        for (const Score* sp : pool) {
-          const Score& s = *sp;
-          if (!may_join(s, combo)) continue;
-          // One time constant per drift family in a combination.
-          bool same_family = false;
-          for (const Score* mb : combo)
-            same_family = same_family || (mb->c->term.kind == TermKind::thermal_drift &&
-                                          s.c->term.kind == TermKind::thermal_drift &&
-                                          mb->c->term.axis == s.c->term.axis &&
-                                          mb->c->term.direction == s.c->term.direction &&
-                                          mb->c->term.with_axis == s.c->term.with_axis);
-          if (same_family) continue;
-          std::vector<const Score*> with = combo;
-          with.push_back(&s);
-          const double dj = st.together(with);
-          // What it adds must pass its χ² and `partner_floor_share` of the
-          // practical floor, in units of the residual variance the
-          // combination leaves (not what the candidate alone leaves: that
-          // still holds the structure the others explain).
-          const Eigen::Index kj = k_combo + s.c->C.cols();
-          const double s2j =
-              std::max(st.rr - dj, 1e-300) / std::max(st.dof_base - static_cast<double>(kj), 1.0);
-          const double thr_added =
-              s2j * std::max(chi2_upper_quantile(s.c->term.columns(), st.o.alpha / st.tests_named),
-                             st.o.partner_floor_share * st.lambda);
-          // The partner that adds most on the criterion (a searched cycle
-          // that fits a line as well as a one-column squareness costs more).
-          const double ic = st.ic_gain(dj - d_combo, st.cost(s.c->term));
-          if (dj - d_combo > thr_added && (!add || ic > ic_add) &&
-              (s.c->term.kind != TermKind::cyclic || G.cols() == 0 || beyond_smooth(combo, s))) {
-            k_add = kj;
-            add = &s;
-            d_add = dj;
-            ic_add = ic;
-          }
-        }
-        if (!add) break;
-        combo.push_back(add);
-        k_combo = k_add;
-        d_combo = d_add;
-        cost_combo += st.cost(add->c->term);
-      }
-      return cb;
-    };
-    // The combination from the lead; where it does not explain the
-    // structure, from the next significant parts of it (`combination_leads`;
-    // not an arm offset: it carries the model's own table error): the best
-    // on the criterion of those that explain the structure wins.
-    auto valid = [&](const Combo& cb) {
-      return cb.members.size() > 1 && cb.d >= st.o.name_ratio * st.g_best_d &&
-             st.ic_gain(cb.d, cb.cost) >= st.ic_gain(st.g_best_d, st.g_best.columns());
-    };
-    Combo best = grow(out.lead);
-    if (!valid(best)) {
-      std::vector<const Score*> others;
-      for (std::size_t i = 0; i < shortlist; ++i) {
-        const Score& sc = st.scores[i];
-        if (static_cast<int>(others.size()) + 1 >= st.o.combination_leads) break;
-        if (&sc == out.lead || !st.in_structure(sc) || !st.significant(sc) ||
-            sc.c->term.kind == TermKind::arm_offset)
-          continue;
-        others.push_back(&sc);
-      }
-      for (const Score* lead : others) {
-        Combo cb = grow(lead);
-        if (valid(cb) &&
-            (!valid(best) || st.ic_gain(cb.d, cb.cost) > st.ic_gain(best.d, best.cost)))
-          best = std::move(cb);
-      }
-    }
-    if (valid(best)) out.lead = best.members.front();
-    const std::vector<const Score*>& combo = best.members;
-    const double d_combo = best.d;
-    if (valid(best)) {
-      out.combination_wins = true;
-      out.partners.assign(combo.begin() + 1, combo.end());
-      out.d_partners = d_combo;
-      std::string names;
-      for (const Score* c : combo) names += (names.empty() ? "" : " + ") + c->c->term.label();
-      log.push_back(fmt::format(
-          "step {}: {} (ΔRSS {:.6g}) explain what {} explains (ΔRSS {:.6g}) at lower cost",
-          step + 1, names, d_combo, st.g_best.label(), st.g_best_d));
-      // A partner the data do not prefer over another candidate in its
-      // place (the combination with the other removes less by no more
-      // than a one-column χ² at `alpha`) is reported with it as ambiguous.
-      const double swap_margin = st.s2_ic * chi2_upper_quantile(1, st.o.alpha);
-      out.partner_rivals.resize(out.partners.size());
-      for (std::size_t m = 1; m < combo.size(); ++m)
-        for (std::size_t i = 0; i < shortlist; ++i) {
-          const Score& s = st.scores[i];
-          if (!may_join(s, combo)) continue;
-          const Term& pt = combo[m]->c->term;
-          if (s.c->term.kind == pt.kind && s.c->term.axis == pt.axis &&
-              s.c->term.direction == pt.direction && s.c->term.with_axis == pt.with_axis)
-            continue;  // the same effect (another period or time constant)
-          std::vector<const Score*> swapped = combo;
-          swapped[m] = &s;
-          if (st.together(swapped) >= d_combo - swap_margin)
-            out.partner_rivals[m - 1].push_back(s.c->term);
-        }
-    }
-  }
+  if (!out.lead || out.lead_explains || !st.have_generic ||
+      out.lead->d >= st.o.name_ratio * st.g_best_d || st.o.combinations <= 1)
+    return;
+  // Partners: among the largest candidates, parts of the structure the
+  // smooth function explains (in_structure), each significant and above the
+  // partner floor in what it adds.
+  const std::size_t shortlist = std::min(st.scores.size(), kShortlist);
+  const std::vector<const Score*> pool = partner_pool(st, shortlist, out);
+  const Combo best = best_combination(st, out.lead, shortlist, pool);
+  if (!explains(st, best)) return;
+  out.lead = best.members.front();
+  out.combination_wins = true;
+  out.partners.assign(best.members.begin() + 1, best.members.end());
+  out.d_partners = best.d;
+  std::string names;
+  for (const Score* c : best.members) names += (names.empty() ? "" : " + ") + c->c->term.label();
+  log.push_back(
+      fmt::format("step {}: {} (ΔRSS {:.6g}) explain what {} explains (ΔRSS {:.6g}) at lower cost",
+                  step + 1, names, best.d, st.g_best.label(), st.g_best_d));
+  out.partner_rivals = partner_rivals(st, best, shortlist);
 }
 
 }  // namespace abbe::diagnose::selection

@@ -5,8 +5,9 @@
 // direction of approach) when the data have enough of them, else from the
 // second differences of neighbours in measurement order (same set, same
 // measured direction, three points equally spaced on a line; a trend along
-// the run cancels); "none" when the design has neither (scattered points). Robust (median absolute difference), so that
-// a reversal step or a gross outlier does not inflate it.
+// the run cancels); "none" when the design has neither (scattered points).
+// Robust (median absolute difference), so that a reversal step or a gross
+// outlier does not inflate it.
 #include <cstddef>
 #include <string>
 
