@@ -121,6 +121,7 @@ Diagnosis diagnose_problem(const Problem& full, const DiagnoseOptions& o) {
   for (std::string& line : mark_unrejected_rivals(pb, d.datum, d.effects, fit.candidates,
                                                   o.selection.searched_cost, o.rivals))
     d.log.push_back(std::move(line));
+  d.isotropic = isotropic_scale(d.effects);
   d.extended = residual_stats(pb, sel.residual);
   d.extended.model = pb.base_model + "+effects";
   const double np = std::max<double>(static_cast<double>(d.n_points), 1.0);

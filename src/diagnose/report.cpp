@@ -47,6 +47,21 @@ bool value_significant(const Term& t) {
   return std::abs(p[0].second) > e[0].second;
 }
 
+std::string isotropic_text(const Diagnosis& d) {
+  const IsotropicScale& iso = d.isotropic;
+  if (!iso.found) return "";
+  std::string axes;
+  for (int a : iso.axes) axes += fmt::format("{}scale {}", axes.empty() ? "" : ", ", axis_name(a));
+  return fmt::format(
+      "isotropic scale: {} agree (χ² {:.2f} for {} degree{} of freedom): {:+.3g} ± {:.2g} ppm, "
+      "consistent with one temperature difference ({:+.1f} K on steel at {:g} ppm/K, {:+.1f} K "
+      "on aluminium at {:g} ppm/K) rather than a laser compensation error, which differs per "
+      "axis\n",
+      axes, iso.chi2, iso.axes.size() - 1, iso.axes.size() == 2 ? "" : "s", iso.ppm, iso.u_ppm,
+      iso.kelvin_steel(), kExpansionSteelPpmPerK, iso.kelvin_aluminium(),
+      kExpansionAluminiumPpmPerK);
+}
+
 std::string outliers_text(const Diagnosis& d, std::size_t max_listed) {
   if (d.outliers.empty()) return "";
   std::string s = fmt::format(
@@ -164,6 +179,17 @@ std::string report_json(const Diagnosis& d) {
   j["noise_um"] = d.noise_um;
   j["noise_independent_um"] = d.noise_independent_um;
   j["noise_method"] = d.noise_method;
+  if (d.isotropic.found) {
+    json axes = json::array();
+    for (int a : d.isotropic.axes) axes.push_back(std::string(1, axis_name(a)));
+    j["isotropic_scale"] = {{"axes", axes},
+                            {"ppm", d.isotropic.ppm},
+                            {"u_ppm", d.isotropic.u_ppm},
+                            {"chi2", d.isotropic.chi2},
+                            {"dof", d.isotropic.axes.size() - 1},
+                            {"delta_t_steel_k", d.isotropic.kelvin_steel()},
+                            {"delta_t_aluminium_k", d.isotropic.kelvin_aluminium()}};
+  }
   if (d.extend_check.done)
     j["extend_check"] = {{"terms", d.extend_check.terms},
                          {"rms_without_um", d.extend_check.rms_without_um},
@@ -225,6 +251,7 @@ std::string report_text(const Diagnosis& d) {
       "%); noise σ ≈ {:.3f} µm\n",
       d.baseline.rms_um, d.extended.rms_um, d.folds, d.baseline_holdout_rms_um, d.holdout_rms_um,
       d.gain_percent, d.noise_um);
+  s += isotropic_text(d);
   if (d.extend_check.done)
     s += fmt::format(
         "the earlier overlay (--extend, {} term{}) on these data: rms after the datum {:.3f} → "

@@ -113,6 +113,7 @@ void render_diagnose_report(HtmlPage& page, const DiagnosisForReport& r) {
   }
   page.add_table(e);
   if (d.effects.empty()) page.add_note("No effect stands out of the noise.");
+  if (d.isotropic.found) page.add_paragraph(diagnose::isotropic_text(d));
   if (!d.circles.empty()) page.add_paragraph(diagnose::dynamic_text(d));
   if (!d.outliers.empty()) {
     Table o = make_table(

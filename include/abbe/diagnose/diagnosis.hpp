@@ -9,6 +9,7 @@
 #include "abbe/diagnose/candidates.hpp"
 #include "abbe/diagnose/design_ambiguity.hpp"
 #include "abbe/diagnose/dynamic.hpp"
+#include "abbe/diagnose/isotropic_scale.hpp"
 #include "abbe/diagnose/noise.hpp"
 #include "abbe/diagnose/outliers.hpp"
 #include "abbe/diagnose/overlay.hpp"
@@ -62,6 +63,9 @@ struct Diagnosis {
   std::vector<std::string> circles;
   std::vector<DynamicFinding> dynamic;
   int folds = 0;
+  // Named scales of several axes that agree: one isotropic scale
+  // (isotropic_scale.hpp).
+  IsotropicScale isotropic;
   // With `extend`: what the earlier overlay does on these data (transfer.hpp),
   // on the points left after the outliers.
   TransferCheck extend_check;
@@ -84,6 +88,8 @@ std::string effect_value_text(const Term& t);
 bool value_significant(const Term& t);
 // The circular-test lines of the summary ("" without circles).
 std::string dynamic_text(const Diagnosis& d);
+// The isotropic-scale line of the summary ("" when none).
+std::string isotropic_text(const Diagnosis& d);
 // The outliers line of the summary ("" when none), listing at most `max_listed`.
 std::string outliers_text(const Diagnosis& d, std::size_t max_listed);
 // The selected effects as an overlay (extended model).
