@@ -95,7 +95,10 @@ const CommandRegistrar registrar(
       add_output_option(sub, o->out, "Write the JSON report to FILE");
       add_hidden_alias(sub, "--out", o->out);
       sub.add_option("--overlay", o->overlay, "Write the extended model (overlay YAML) to FILE");
-      sub.add_option("--extend", o->extend, "Add an earlier overlay to the model first");
+      sub.add_option("--extend", o->extend,
+                     "Add an earlier overlay to the model first, and say what it does on these "
+                     "data (RMS after their own datum without and with it; warnings outside its "
+                     "domain)");
       sub.add_option("--folds", o->folds, "Folds of the held-out check")
           ->check(CLI::Range(2, 50))
           ->capture_default_str();
