@@ -154,10 +154,12 @@ Diagnosis diagnose(const machine::Machine& machine, const io::MeasuredData& data
     std::vector<std::uint32_t> drop;
     for (const Outlier& out : d.outliers) drop.push_back(out.point);
     std::sort(drop.begin(), drop.end());
+    const Problem with = without_points(pb, drop);
     d.extend_check =
-        check_transfer(without_points(build_problem(machine, data, o.model, nullptr), drop),
-                       without_points(pb, drop), o.extend->terms.size(), o.candidates);
-    add_overlay_warnings(*o.extend, machine.name(), model::to_string(o.model), pb, d.extend_check);
+        check_transfer(without_points(build_problem(machine, data, o.model, nullptr), drop), with,
+                       o.extend->terms.size());
+    add_overlay_warnings(*o.extend, machine.name(), model::to_string(o.model), with,
+                         d.extend_check);
   }
   d.machine = machine.name();
   d.measured_file = data.file;

@@ -26,16 +26,23 @@ Eigen::MatrixXd residual_of(const Eigen::MatrixXd& Q, const Eigen::MatrixXd& C) 
   return Q.cols() > 0 ? Eigen::MatrixXd(C - Q * (Q.transpose() * C)) : C;
 }
 
-Eigen::MatrixXd datum_columns(const Problem& pb, const std::vector<SelectedTerm>& datum) {
+Eigen::MatrixXd columns_of(const Problem& pb, const std::vector<Term>& terms) {
   Eigen::Index k = 0;
-  for (const SelectedTerm& d : datum) k += d.term.columns();
+  for (const Term& t : terms) k += t.columns();
   Eigen::MatrixXd D(static_cast<Eigen::Index>(pb.obs.size()), k);
   Eigen::Index c = 0;
-  for (const SelectedTerm& d : datum) {
-    D.middleCols(c, d.term.columns()) = term_columns(pb, d.term);
-    c += d.term.columns();
+  for (const Term& t : terms) {
+    D.middleCols(c, t.columns()) = term_columns(pb, t);
+    c += t.columns();
   }
   return D;
+}
+
+Eigen::MatrixXd datum_columns(const Problem& pb, const std::vector<SelectedTerm>& datum) {
+  std::vector<Term> terms;
+  terms.reserve(datum.size());
+  for (const SelectedTerm& d : datum) terms.push_back(d.term);
+  return columns_of(pb, terms);
 }
 
 Eigen::MatrixXd basis_of(const Eigen::MatrixXd& D, const std::vector<Eigen::MatrixXd>& blocks,

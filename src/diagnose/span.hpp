@@ -22,7 +22,9 @@ Eigen::MatrixXd orthonormal(const Eigen::MatrixXd& A);
 // C minus its projection on the span of the orthonormal columns of Q.
 Eigen::MatrixXd residual_of(const Eigen::MatrixXd& Q, const Eigen::MatrixXd& C);
 
-// The datum terms' columns side by side (observations × their columns).
+// The terms' columns side by side (observations × their columns).
+Eigen::MatrixXd columns_of(const Problem& problem, const std::vector<Term>& terms);
+// The same for fitted datum terms.
 Eigen::MatrixXd datum_columns(const Problem& problem, const std::vector<SelectedTerm>& datum);
 
 // Orthonormal basis of "everything else of the fit": the columns D and the

@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 
+#include "abbe/diagnose/candidates.hpp"
 #include "abbe/diagnose/selection.hpp"
 #include "span.hpp"
 
@@ -11,16 +12,11 @@ namespace abbe::diagnose {
 
 namespace {
 
-// The RMS (residual_stats) of y after the least-squares fit of the datum.
-double rms_after_datum(const Problem& pb, const CandidateOptions& options) {
-  const std::vector<Term> datum = build_candidates(pb, options).datum;
-  Eigen::MatrixXd D(static_cast<Eigen::Index>(pb.obs.size()), 0);
-  for (const Term& t : datum) {
-    const Eigen::MatrixXd c = term_columns(pb, t);
-    D.conservativeResize(Eigen::NoChange, D.cols() + c.cols());
-    D.rightCols(c.cols()) = c;
-  }
-  const Eigen::MatrixXd Q = span::orthonormal(D);
+// The RMS (residual_stats) of y after the least-squares fit of the datum
+// (which does not depend on the candidate options).
+double rms_after_datum(const Problem& pb) {
+  const Eigen::MatrixXd Q =
+      span::orthonormal(span::columns_of(pb, build_candidates(pb, CandidateOptions{}).datum));
   return residual_stats(pb, span::residual_of(Q, pb.y)).rms_um;
 }
 
@@ -30,15 +26,14 @@ double TransferCheck::change_percent() const {
   return rms_without_um > 0.0 ? 100.0 * (1.0 - rms_with_um / rms_without_um) : 0.0;
 }
 
-TransferCheck check_transfer(const Problem& without, const Problem& with, std::size_t terms,
-                             const CandidateOptions& options) {
+TransferCheck check_transfer(const Problem& without, const Problem& with, std::size_t terms) {
   if (without.obs.size() != with.obs.size())
     throw std::invalid_argument("check_transfer: the two problems hold different observations");
   TransferCheck c;
   c.done = true;
   c.terms = terms;
-  c.rms_without_um = rms_after_datum(without, options);
-  c.rms_with_um = rms_after_datum(with, options);
+  c.rms_without_um = rms_after_datum(without);
+  c.rms_with_um = rms_after_datum(with);
   return c;
 }
 
@@ -66,11 +61,10 @@ void add_overlay_warnings(const Overlay& overlay, const std::string& machine_nam
 }
 
 TransferCheck check_transfer(const machine::Machine& machine, const io::MeasuredData& data,
-                             model::ModelKind model, const Overlay& overlay,
-                             const CandidateOptions& options) {
+                             model::ModelKind model, const Overlay& overlay) {
   const Problem with = build_problem(machine, data, model, &overlay);
-  TransferCheck c = check_transfer(build_problem(machine, data, model, nullptr), with,
-                                   overlay.terms.size(), options);
+  TransferCheck c =
+      check_transfer(build_problem(machine, data, model, nullptr), with, overlay.terms.size());
   add_overlay_warnings(overlay, machine.name(), model::to_string(model), with, c);
   return c;
 }

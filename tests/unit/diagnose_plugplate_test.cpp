@@ -83,6 +83,23 @@ const machine::Machine& plate_machine() {
   return m;
 }
 
+// A report of tests/data/plugplate as measured data, and its diagnosis with
+// the default options: read and diagnosed once for all the tests.
+const io::MeasuredData& plate_data(const std::string& file) {
+  static std::map<std::string, io::MeasuredData> cache;
+  auto it = cache.find(file);
+  if (it == cache.end()) it = cache.emplace(file, io::load_plugplate(kDir + file)).first;
+  return it->second;
+}
+
+const Diagnosis& plate_diagnosis(const std::string& file) {
+  static std::map<std::string, Diagnosis> cache;
+  auto it = cache.find(file);
+  if (it == cache.end())
+    it = cache.emplace(file, diagnose(plate_machine(), plate_data(file), DiagnoseOptions{})).first;
+  return it->second;
+}
+
 // The plates with the owners' fit beside the report.
 const std::map<std::string, std::string>& published_fits() {
   static const std::map<std::string, std::string> fits{{"D8131_1", "fit_8131_1_2014-10-14.txt"},
@@ -95,8 +112,7 @@ const std::map<std::string, std::string>& published_fits() {
 TEST(DiagnosePlugPlate, SetupEqualsThePublishedFitWithinRounding) {
   for (const auto& [plate, fit_file] : published_fits()) {
     const PublishedFit pub = read_fit(fit_file);
-    const io::MeasuredData data = io::load_plugplate(kDir + plate);
-    const Diagnosis d = diagnose(plate_machine(), data, DiagnoseOptions{});
+    const Diagnosis& d = plate_diagnosis(plate);
     std::cout << report_text(d);
     const PlateSetup s = setup_of(d);
     ASSERT_TRUE(s.found) << plate;
@@ -162,7 +178,7 @@ LinearMap fit_linear_map(const Problem& pb, const std::string& set) {
 TEST(DiagnosePlugPlate, ScaleAndSquarenessBeyondTheSetup) {
   for (const auto& [plate, fit_file] : published_fits()) {
     const PublishedFit pub = read_fit(fit_file);
-    const io::MeasuredData data = io::load_plugplate(kDir + plate);
+    const io::MeasuredData& data = plate_data(plate);
     const Problem pb = build_problem(plate_machine(), data, model::ModelKind::ae_arm, nullptr);
     const LinearMap m = fit_linear_map(pb, data.rows[0].set);
     std::cout << plate << ": scale X " << m.sx << " ppm, scale Y " << m.sy << " ppm, squareness "
@@ -206,7 +222,7 @@ const std::vector<std::string>& plate_files() {
 // and measuring. No other plate shows two named scales.
 TEST(DiagnosePlugPlate, TwoPlatesShowAnIsotropicScale) {
   for (const std::string& f : plate_files()) {
-    const Diagnosis d = diagnose(plate_machine(), io::load_plugplate(kDir + f), DiagnoseOptions{});
+    const Diagnosis& d = plate_diagnosis(f);
     const bool expected = f == "D1597A_redrilled_meas_2011" || f == "D2130_1";
     EXPECT_EQ(d.isotropic.found, expected) << f << ": " << isotropic_text(d);
     if (!d.isotropic.found) continue;
@@ -222,9 +238,8 @@ TEST(DiagnosePlugPlate, TwoPlatesShowAnIsotropicScale) {
 // model was fitted on (two of 8132's holes lie outside 8131's), another
 // base model, another machine.
 TEST(DiagnosePlugPlate, TransferSaysWhatItCannotVouchFor) {
-  const io::MeasuredData a = io::load_plugplate(kDir + "D8131_1");
-  const io::MeasuredData b = io::load_plugplate(kDir + "D8132_1");
-  Overlay ov = make_overlay(diagnose(plate_machine(), a, DiagnoseOptions{}), nullptr);
+  const io::MeasuredData& b = plate_data("D8132_1");
+  Overlay ov = make_overlay(plate_diagnosis("D8131_1"), nullptr);
   const TransferCheck same = check_transfer(plate_machine(), b, model::ModelKind::ae_arm, ov);
   EXPECT_EQ(same.points, 82u);
   EXPECT_EQ(same.outside, 2u);
@@ -254,7 +269,7 @@ TEST(DiagnosePlugPlate, TransferSaysWhatItCannotVouchFor) {
 // worse. Without it the plate's model does better on its batch (8131,
 // 8132: +14.6 → +19.7 %, +8.7 → +18.1 %; docs/diagnosis.md).
 TEST(DiagnosePlugPlate, NoCycleFromTheSmoothStructureOfAScatteredPlate) {
-  const io::MeasuredData data = io::load_plugplate(kDir + "D8133_1");
+  const io::MeasuredData& data = plate_data("D8133_1");
   auto cycles = [&](bool beyond_smooth) {
     DiagnoseOptions o;
     o.selection.cyclic_partner_beyond_smooth = beyond_smooth;
@@ -286,20 +301,16 @@ bool same_batch(const std::string& a, const std::string& b) {
 // (check_transfer, as `abbe diagnose --extend` reports it). Printed as the
 // table of docs/diagnosis.md ("Transfer").
 TEST(DiagnosePlugPlate, TransferOverAllOrderedPairsOfThePlates) {
-  std::vector<io::MeasuredData> data;
   std::vector<Overlay> overlays;
-  for (const std::string& f : plate_files()) {
-    data.push_back(io::load_plugplate(kDir + f));
-    overlays.push_back(
-        make_overlay(diagnose(plate_machine(), data.back(), DiagnoseOptions{}), nullptr));
-  }
-  const std::size_t n = data.size();
+  for (const std::string& f : plate_files())
+    overlays.push_back(make_overlay(plate_diagnosis(f), nullptr));
+  const std::size_t n = plate_files().size();
   int pairs = 0, better = 0, worse = 0, worse_5 = 0, batch_pairs = 0;
   for (std::size_t a = 0; a < n; ++a)
     for (std::size_t b = 0; b < n; ++b) {
       if (a == b) continue;
-      const TransferCheck c =
-          check_transfer(plate_machine(), data[b], model::ModelKind::ae_arm, overlays[a]);
+      const TransferCheck c = check_transfer(plate_machine(), plate_data(plate_files()[b]),
+                                             model::ModelKind::ae_arm, overlays[a]);
       std::cout << plate_files()[a] << " → " << plate_files()[b] << ": " << c.terms
                 << " terms, RMS after the datum " << c.rms_without_um << " → " << c.rms_with_um
                 << " µm (" << c.change_percent() << " %)\n";

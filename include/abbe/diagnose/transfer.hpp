@@ -8,7 +8,6 @@
 #include <string>
 #include <vector>
 
-#include "abbe/diagnose/candidates.hpp"
 #include "abbe/diagnose/overlay.hpp"
 #include "abbe/diagnose/residuals.hpp"
 #include "abbe/io/measured_data.hpp"
@@ -41,11 +40,9 @@ void add_overlay_warnings(const Overlay& overlay, const std::string& machine_nam
 
 // `without` and `with`: the same points, the model's residual without and
 // with the overlay (build_problem with extend = nullptr and = &overlay).
-TransferCheck check_transfer(const Problem& without, const Problem& with, std::size_t terms,
-                             const CandidateOptions& options = {});
+TransferCheck check_transfer(const Problem& without, const Problem& with, std::size_t terms);
 
 TransferCheck check_transfer(const machine::Machine& machine, const io::MeasuredData& data,
-                             model::ModelKind model, const Overlay& overlay,
-                             const CandidateOptions& options = {});
+                             model::ModelKind model, const Overlay& overlay);
 
 }  // namespace abbe::diagnose
