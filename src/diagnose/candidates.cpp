@@ -11,14 +11,39 @@ CandidateSet build_candidates(const Problem& pb, const CandidateOptions& o) {
     const auto i = static_cast<std::size_t>(v);
     return pb.var_hi[i] - pb.var_lo[i] > 1e-9;
   };
-  std::array<bool, 3> moves{false, false, false};  // some point has a nonzero direction sign
+  // What a term of direction i can be seen by: the variables' range and the
+  // direction signs over the observations that measure direction i (a laser
+  // line along X measures d_x at one y and z only: a d_x ∝ y is its datum).
+  std::array<std::array<double, 4>, 3> lo_in{}, hi_in{};
+  std::array<std::array<unsigned, 3>, 3> signs_in{};  // bit 0: v_j < 0 seen, bit 1: v_j > 0
+  for (auto& row : lo_in) row.fill(1e300);
+  for (auto& row : hi_in) row.fill(-1e300);
+  for (const Observation& ob : pb.obs) {
+    const PointContext& pc = pb.points[ob.point];
+    for (std::size_t i = 0; i < 3; ++i) {
+      if (std::abs(ob.u[static_cast<Eigen::Index>(i)]) <= 1e-9) continue;
+      for (std::size_t v = 0; v < 4; ++v) {
+        const double x = v < 3 ? pc.s[static_cast<Eigen::Index>(v)] : pc.t;
+        lo_in[i][v] = std::min(lo_in[i][v], x);
+        hi_in[i][v] = std::max(hi_in[i][v], x);
+      }
+      for (std::size_t j = 0; j < 3; ++j)
+        if (pc.dir[j] != 0) signs_in[i][j] |= pc.dir[j] < 0 ? 1u : 2u;
+    }
+  }
+  auto varies_in = [&](int v, int i) {
+    const auto a = static_cast<std::size_t>(i), b = static_cast<std::size_t>(v);
+    return hi_in[a][b] - lo_in[a][b] > 1e-9;
+  };
+  // Both signs of v_j among them: else a reversal is a constant (datum).
+  auto reverses_in = [&](int j, int i) {
+    return signs_in[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] == 3u;
+  };
   bool model_delta = false;
   std::array<bool, 3> eps{false, false, false};
   for (const PointContext& pc : pb.points) {
-    for (std::size_t j = 0; j < 3; ++j) {
-      if (pc.dir[j] != 0) moves[j] = true;
+    for (std::size_t j = 0; j < 3; ++j)
       if (pc.eps_urad[j].squaredNorm() > 0.0) eps[j] = true;
-    }
     if (pc.model_delta_um.squaredNorm() > 1e-18) model_delta = true;
   }
   auto present = [&](int i) { return pb.direction_present[static_cast<std::size_t>(i)]; };
@@ -36,14 +61,14 @@ CandidateSet build_candidates(const Problem& pb, const CandidateOptions& o) {
   for (int j = 0; j < 3; ++j) {
     for (int i = 0; i < 3; ++i) {
       if (!present(i)) continue;
-      if (varies(j)) {
+      if (varies_in(j, i)) {
         Term t;
         t.kind = i == j ? TermKind::scale : TermKind::squareness;
         t.axis = j;
         t.direction = i;
         add(t);
       }
-      if (moves[static_cast<std::size_t>(j)]) {
+      if (reverses_in(j, i)) {
         Term t;
         t.kind = TermKind::reversal;
         t.axis = j;
@@ -51,7 +76,7 @@ CandidateSet build_candidates(const Problem& pb, const CandidateOptions& o) {
         add(t);
       }
       for (int k = j + 1; k < 3; ++k)
-        if (varies(j) && varies(k)) {
+        if (varies_in(j, i) && varies_in(k, i)) {
           Term t;
           t.kind = TermKind::coupling;
           t.axis = j;
@@ -61,7 +86,7 @@ CandidateSet build_candidates(const Problem& pb, const CandidateOptions& o) {
           t.half = pb.travel_half;
           add(t);
         }
-      if (varies(j)) {
+      if (varies_in(j, i)) {
         ScanFamily f;
         f.base.kind = TermKind::cyclic;
         f.base.axis = j;
@@ -85,21 +110,20 @@ CandidateSet build_candidates(const Problem& pb, const CandidateOptions& o) {
         add(t);
       }
   }
-  if (varies(3))
-    for (int i = 0; i < 3; ++i) {
-      if (!present(i)) continue;
-      for (int w = -1; w < 3; ++w) {
-        if (w >= 0 && !varies(w)) continue;
-        ScanFamily f;
-        f.base.kind = TermKind::thermal_drift;
-        f.base.axis = w >= 0 ? w : i;
-        f.base.direction = i;
-        f.base.with_axis = w;
-        f.grid = o.tau_s;
-        cs.named_tests += static_cast<int>(f.grid.size());
-        cs.scanned.push_back(std::move(f));
-      }
+  for (int i = 0; i < 3; ++i) {
+    if (!present(i) || !varies_in(3, i)) continue;
+    for (int w = -1; w < 3; ++w) {
+      if (w >= 0 && !varies_in(w, i)) continue;
+      ScanFamily f;
+      f.base.kind = TermKind::thermal_drift;
+      f.base.axis = w >= 0 ? w : i;
+      f.base.direction = i;
+      f.base.with_axis = w;
+      f.grid = o.tau_s;
+      cs.named_tests += static_cast<int>(f.grid.size());
+      cs.scanned.push_back(std::move(f));
     }
+  }
   // Setup: the offset per set and direction is the datum (always fitted);
   // a rotation per set about each axis around the set's centroid is a
   // candidate, except for a plate (a set in one plane whose normal direction

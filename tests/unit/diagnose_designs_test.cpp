@@ -78,12 +78,15 @@ const testing::VirtualMachine& noisy_vm() {
 }
 
 // ---------------------------------------------------------------- designs
-enum class Design { grid, plane, toolpath, ballbar, diagonals };
+enum class Design { grid, plane, toolpath, ballbar, diagonals, axis_lines };
 const char* design_name(Design d) {
-  static const char* const names[] = {"grid 12x8x5, serpentine both ways (dx dy dz)",
-                                      "one plate at one Z (dx dy)", "toolpath at one Z (dx dy dz)",
-                                      "ballbar XY/XZ/YZ both ways (dn)",
-                                      "four body diagonals (along the line)"};
+  static const char* const names[] = {
+      "grid 12x8x5, serpentine both ways (dx dy dz)",
+      "one plate at one Z (dx dy)",
+      "toolpath at one Z (dx dy dz)",
+      "ballbar XY/XZ/YZ both ways (dn)",
+      "four body diagonals (along the line)",
+      "laser lines along X, Y, Z, 5 runs both ways (along the line)"};
   return names[static_cast<int>(d)];
 }
 
@@ -232,6 +235,39 @@ std::vector<Sample> make_design(Design d) {
         const std::string set = fmt::format("diag{}", k + 1);
         for (int i = 0; i <= m; ++i) push(a + u * (len * i / m), set, u);
         for (int i = m; i >= 0; --i) push(a + u * (len * i / m), set, u);
+      }
+      break;
+    }
+    case Design::axis_lines: {
+      // ISO 230-2: a laser line along each axis through the box centre
+      // (inset 20 mm), 21 targets at irregular spacing (each step 0.7–1.3 ×
+      // the mean, the same targets in every run), five runs there and back;
+      // one set per line (the laser is re-aligned for each axis).
+      const Eigen::Vector3d c = 0.5 * (b.lo + b.hi);
+      std::mt19937_64 targets_rng(230);
+      std::uniform_real_distribution<double> jitter(-0.3, 0.3);
+      for (int a = 0; a < 3; ++a) {
+        const double lo = b.lo[a] + 20.0, hi = b.hi[a] - 20.0;
+        std::vector<double> steps(20);
+        double sum = 0.0;
+        for (double& st : steps) sum += st = 1.0 + jitter(targets_rng);
+        std::vector<double> pos{lo};
+        for (double st : steps) pos.push_back(pos.back() + (hi - lo) * st / sum);
+        const std::string set = fmt::format("line{}", "XYZ"[a]);
+        Eigen::Vector3d n = Eigen::Vector3d::Zero();
+        n[a] = 1.0;
+        for (int run = 0; run < 5; ++run) {
+          for (double x : pos) {
+            Eigen::Vector3d p = c;
+            p[a] = x;
+            push(p, set, n);
+          }
+          for (auto it = pos.rbegin(); it != pos.rend(); ++it) {
+            Eigen::Vector3d p = c;
+            p[a] = *it;
+            push(p, set, n);
+          }
+        }
       }
       break;
     }
@@ -398,6 +434,14 @@ bool identifiable(Design d, const Hidden& h) {
       // (A drift proportional to the position is a scale growing in time:
       // not told apart either.)
       return h.shape == Shape::drift && !h.proportional;
+    case Design::axis_lines:
+      // Each line measures its own axis's displacement at fixed other
+      // coordinates: a squareness (d_j ∝ s_i, i ≠ j) is not measured or is a
+      // constant of the line's datum and a coupling is a scale of the line's
+      // axis. Scale, reversal, a pitch error (the targets' irregular spacing
+      // is there to resolve it) and a drift (five runs spread in time) are
+      // told apart.
+      return h.shape != Shape::squareness && h.shape != Shape::coupling;
   }
   return false;
 }
@@ -799,6 +843,9 @@ TEST(DiagnoseDesigns, Plane) { check(sweep(Design::plane), {0.93, 0.02, 0.02, 0.
 TEST(DiagnoseDesigns, Toolpath) { check(sweep(Design::toolpath), {0.92, 0.06, 0.05, 0.95, 0.95}); }
 TEST(DiagnoseDesigns, Ballbar) { check(sweep(Design::ballbar), {0.9, 0.02, 0.02, 0.95, 0.9}); }
 TEST(DiagnoseDesigns, Diagonals) { check(sweep(Design::diagonals), {0.0, 0.02, 0.04, 0.95, 0.0}); }
+TEST(DiagnoseDesigns, AxisLines) {
+  check(sweep(Design::axis_lines), {0.93, 0.02, 0.02, 0.95, 0.95});
+}
 
 // Two effects together on the grid (issue 16: "both named"): two
 // identifiable hidden shapes of different kinds or axes, each 3–20× the
