@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "abbe/diagnose/candidates.hpp"
 #include "abbe/diagnose/statistics.hpp"
 #include "span.hpp"
 
@@ -43,6 +44,46 @@ bool depends_on_time(const Term& t) {
   if (t.kind == TermKind::thermal_drift) return true;
   return t.kind == TermKind::unexplained &&
          std::find(t.vars.begin(), t.vars.end(), 3) != t.vars.end();
+}
+
+// d_i ∝ s_a: the scale of a (i = a) or the squareness a→i.
+Term position_term(int a, int i) {
+  Term t;
+  t.kind = a == i ? TermKind::scale : TermKind::squareness;
+  t.axis = a;
+  t.direction = i;
+  return t;
+}
+
+// A swap test of effect e: what it removes given everything else of the fit
+// (the datum and the other effects), the one-column χ² margin at `alpha`,
+// and what a stand-in removes in its place.
+struct SwapTest {
+  bool valid = false;
+  Mat QA;
+  Vec rA;
+  double d_e = 0.0, margin = 0.0;
+  double removes(const Mat& C) const {
+    const Mat Qc = orthonormal(residual_of(QA, C));
+    return Qc.cols() > 0 ? (Qc.transpose() * rA).squaredNorm() : 0.0;
+  }
+};
+
+SwapTest swap_test(const Problem& pb, const Mat& D, const std::vector<Mat>& cols, std::size_t e,
+                   double alpha) {
+  SwapTest sw;
+  std::vector<bool> others(cols.size(), true);
+  others[e] = false;
+  sw.QA = span::basis_of(D, cols, others);
+  sw.rA = residual_of(sw.QA, pb.y);
+  const Mat Qe = orthonormal(residual_of(sw.QA, cols[e]));
+  if (Qe.cols() == 0) return sw;
+  sw.d_e = (Qe.transpose() * sw.rA).squaredNorm();
+  const double dof = static_cast<double>(pb.y.size() - sw.QA.cols() - Qe.cols());
+  const double s2 = std::max(sw.rA.squaredNorm() - sw.d_e, 0.0) / std::max(dof, 1.0);
+  sw.margin = s2 * chi2_upper_quantile(1, alpha);
+  sw.valid = true;
+  return sw;
 }
 
 void add_alternative(SelectedTerm& st, const std::string& alt) {
@@ -88,12 +129,15 @@ std::vector<std::string> mark_design_ambiguities(const Problem& pb,
     mask.push_back(direction_mask(pb, st.term));
   }
 
+  const Mat D = span::datum_columns(pb, datum);
+  const std::vector<double> taus = o.tau_s.empty() ? CandidateOptions{}.tau_s : o.tau_s;
   if (o.levelled_axes) {
     const auto levelled = levelled_axes(pb, o, min_period_mm);
     for (int j = 0; j < 3; ++j) {
       const std::vector<double>& lv = levelled[static_cast<std::size_t>(j)];
       if (lv.empty()) continue;
-      bool any = false;
+      // (With time in the data any effect may be one a drift could stand in for.)
+      bool any = pb.var_hi[3] > pb.var_lo[3] || lv.size() <= o.few_levels;
       for (const SelectedTerm& st : effects)
         any = any || generic_of(st.term, j) || depends_on_time(st.term);
       if (!any) continue;
@@ -147,22 +191,123 @@ std::vector<std::string> mark_design_ambiguities(const Problem& pb,
         t_within += (t - mean) * (t - mean);
       }
       const bool time_follows = t_total > 0.0 && t_within <= o.level_share_left * t_total;
+      const bool time_mostly_follows = t_total > 0.0 && t_within <= o.time_share_left * t_total;
+      const std::string order_text = fmt::format(
+          "measure the points again in another order or after a pause (in this design time and "
+          "{} vary together: {} walks its {} levels in order)",
+          axis_name(j), axis_name(j), lv.size());
       for (std::size_t e = 0; e < effects.size(); ++e) {
         const Term& et = effects[e].term;
         if (!time_follows || !depends_on_time(et) || et.direction < 0) continue;
-        Term position;
-        position.kind = et.direction == j ? TermKind::scale : TermKind::squareness;
-        position.axis = j;
-        position.direction = et.direction;
-        add_alternative(effects[e], position.label());
+        add_alternative(effects[e], position_term(j, et.direction).label());
+        add_alternative(effects[e], levels_text);
+        if (effects[e].separate_by.empty()) effects[e].separate_by = order_text;
+        log.push_back(fmt::format("design: {} is a function of the {} levels of {} as much",
+                                  et.label(), lv.size(), variable_name(j)));
+      }
+      // Where time mostly follows the levels, the data decide (a swap test):
+      // a static effect is ambiguous with a drift in its direction (at any
+      // time constant of the grid) that removes as much in its place, and a
+      // drift not already ambiguous by the design with the static terms it
+      // becomes when t follows s_j (a scale or squareness of j, of its own
+      // axis w for a drift ∝ s_w, or their coupling).
+      for (std::size_t e = 0; time_mostly_follows && e < effects.size(); ++e) {
+        const Term& et = effects[e].term;
+        if (et.kind == TermKind::unexplained || et.direction < 0 ||
+            !effects[e].ambiguous_with.empty())
+          continue;
+        const bool timed = depends_on_time(et);
+        if (!timed && !in_span[e]) continue;
+        // Each stand-in: one or two static terms together (a drift ∝ s_w·t
+        // with t following s_j is a coupling w·j and parts linear in s_w and
+        // s_j), or a drift at one time constant.
+        std::vector<std::vector<Term>> stand_ins;
+        if (timed) {
+          std::vector<Term> parts{position_term(j, et.direction)};
+          if (et.with_axis >= 0 && et.with_axis != j) {
+            parts.push_back(position_term(et.with_axis, et.direction));
+            Term c;
+            c.kind = TermKind::coupling;
+            c.axis = std::min(j, et.with_axis);
+            c.with_axis = std::max(j, et.with_axis);
+            c.direction = et.direction;
+            c.centre = pb.travel_mid;
+            c.half = pb.travel_half;
+            parts.push_back(c);
+          }
+          for (std::size_t a = 0; a < parts.size(); ++a) {
+            stand_ins.push_back({parts[a]});
+            for (std::size_t b = a + 1; b < parts.size(); ++b)
+              stand_ins.push_back({parts[a], parts[b]});
+          }
+        } else {
+          for (double tau : taus) {
+            Term drift;
+            drift.kind = TermKind::thermal_drift;
+            drift.axis = drift.direction = et.direction;
+            drift.tau_s = tau;
+            stand_ins.push_back({drift});
+          }
+        }
+        const SwapTest sw = swap_test(pb, D, cols, e, o.growth_alpha);
+        if (!sw.valid) continue;
+        double d_best = 0.0;
+        std::string best;
+        for (const std::vector<Term>& group : stand_ins) {
+          std::vector<Mat> gc;
+          std::string label;
+          for (const Term& c : group) {
+            bool selected = false;
+            for (const SelectedTerm& other : effects)
+              selected = selected || other.term.label() == c.label();
+            if (selected) continue;  // already in the fit
+            gc.push_back(term_columns(pb, c));
+            label += (label.empty() ? "" : " + ") + c.label();
+          }
+          if (gc.empty()) continue;
+          Mat C(pb.y.size(), 0);
+          for (const Mat& m : gc) {
+            C.conservativeResize(Eigen::NoChange, C.cols() + m.cols());
+            C.rightCols(m.cols()) = m;
+          }
+          const double d_c = sw.removes(C);
+          if (d_c > d_best) {
+            d_best = d_c;
+            best = label;
+          }
+        }
+        if (best.empty() || !(sw.d_e - d_best < sw.margin)) continue;
+        const std::string alt =
+            timed ? best : fmt::format("thermal_drift t→{}", axis_name(et.direction));
+        add_alternative(effects[e], alt);
+        if (effects[e].separate_by.empty()) effects[e].separate_by = order_text;
+        log.push_back(fmt::format(
+            "design: {} (ΔRSS {:.6g}) is not told from {} (ΔRSS {:.6g}): time mostly follows the "
+            "{} levels of {}",
+            et.label(), sw.d_e, alt, d_best, lv.size(), variable_name(j)));
+      }
+      // On at most `few_levels` levels a cycle of j with its period, phase
+      // and amplitude free fits every function of the levels (after the
+      // datum's offset, L − 1 ≤ 3 values): an effect that is one is a pitch
+      // error of j as much, whatever the data.
+      for (std::size_t e = 0; lv.size() <= o.few_levels && e < effects.size(); ++e) {
+        const Term& et = effects[e].term;
+        if (!in_span[e] || generic_of(et, j) || depends_on_time(et) ||
+            et.kind == TermKind::unexplained || et.direction < 0)
+          continue;
+        add_alternative(
+            effects[e],
+            fmt::format("cyclic {}→{} (a pitch error at any period the {} levels alias)",
+                        axis_name(j), axis_name(et.direction), lv.size()));
         add_alternative(effects[e], levels_text);
         if (effects[e].separate_by.empty())
           effects[e].separate_by = fmt::format(
-              "measure the points again in another order or after a pause (in this design "
-              "time and {} vary together: {} walks its {} levels in order)",
-              axis_name(j), axis_name(j), lv.size());
-        log.push_back(fmt::format("design: {} is a function of the {} levels of {} as much",
-                                  et.label(), lv.size(), variable_name(j)));
+              "measure {} at more levels, at irregular spacing ({} levels: a cycle of {} fits any "
+              "values on them)",
+              axis_name(j), lv.size(), axis_name(j));
+        log.push_back(
+            fmt::format("design: {} is a function of the {} levels of {}: a cycle fits it",
+                        et.label(), lv.size(), variable_name(j)));
       }
       for (std::size_t g = 0; g < effects.size(); ++g) {
         if (!in_span[g] || !generic_of(effects[g].term, j)) continue;
@@ -183,7 +328,6 @@ std::vector<std::string> mark_design_ambiguities(const Problem& pb,
   }
 
   if (o.growing_reversal) {
-    const Mat D = span::datum_columns(pb, datum);
     for (std::size_t rv = 0; rv < effects.size(); ++rv) {
       const Term& rt = effects[rv].term;
       if (rt.kind != TermKind::reversal || rt.axis < 0) continue;
@@ -199,23 +343,13 @@ std::vector<std::string> mark_design_ambiguities(const Problem& pb,
         const Term& et = effects[e].term;
         if (e == rv || et.kind == TermKind::unexplained || et.kind == TermKind::reversal) continue;
         if ((mask[e] & mask[rv]) == 0) continue;
-        // Everything else of the fit: the datum and the other effects.
-        std::vector<bool> others(effects.size(), true);
-        others[e] = false;
-        const Mat QA = span::basis_of(D, cols, others);
-        // What the effect and the growth each add to everything else.
-        const Vec rA = residual_of(QA, pb.y);
-        const Mat Qe = orthonormal(residual_of(QA, cols[e]));
-        const Vec gp = residual_of(QA, growth);
-        if (Qe.cols() == 0 || !(gp.norm() > 0.0)) continue;
-        const double d_e = (Qe.transpose() * rA).squaredNorm();
-        const double d_g = std::pow(gp.dot(rA), 2) / gp.squaredNorm();
-        const double dof = static_cast<double>(n - QA.cols() - Qe.cols());
-        const double s2 = std::max(rA.squaredNorm() - d_e, 0.0) / std::max(dof, 1.0);
-        // Not shown to be more than the growth: the data do not prefer it
-        // significantly (at `growth_alpha`, one column's χ²).
-        const double margin = s2 * chi2_upper_quantile(1, o.growth_alpha);
-        if (!(d_e - d_g < margin)) continue;
+        // What the effect and the growth each add to everything else of the
+        // fit; not shown to be more than the growth: the data do not prefer
+        // it significantly (at `growth_alpha`, one column's χ²).
+        const SwapTest sw = swap_test(pb, D, cols, e, o.growth_alpha);
+        if (!sw.valid) continue;
+        const double d_e = sw.d_e, d_g = sw.removes(growth);
+        if (!(d_g > 0.0) || !(d_e - d_g < sw.margin)) continue;
         const std::string alt = fmt::format("{} growing along {}", rt.label(), variable_name(j));
         add_alternative(effects[e], alt);
         if (effects[e].separate_by.empty())

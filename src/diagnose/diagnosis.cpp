@@ -115,8 +115,10 @@ Diagnosis diagnose_problem(const Problem& full, const DiagnoseOptions& o) {
   for (SelectedTerm& st : d.effects) st.significant = value_significant(st.term);
   d.datum = sel.datum;
   d.log = sel.log;
+  DesignAmbiguityOptions design = o.design;
+  if (design.tau_s.empty()) design.tau_s = o.candidates.tau_s;
   for (std::string& line :
-       mark_design_ambiguities(pb, d.datum, d.effects, o.design, o.candidates.min_period_mm))
+       mark_design_ambiguities(pb, d.datum, d.effects, design, o.candidates.min_period_mm))
     d.log.push_back(std::move(line));
   for (std::string& line : mark_unrejected_rivals(pb, d.datum, d.effects, fit.candidates,
                                                   o.selection.searched_cost, o.rivals))

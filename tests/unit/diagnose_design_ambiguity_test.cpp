@@ -220,5 +220,71 @@ TEST(DiagnoseDesignAmbiguity, DriftOnLevelsWalkedInOrderIsAmbiguousWithAScale) {
   }
 }
 
+// dz read at `levels` Z levels 100 mm apart, 20 points per level 30 mm apart
+// in x, walked level by level in order (10 s per point): time follows z.
+template <class Truth>
+Problem levels_in_order(int levels, Truth truth, double noise_um, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> noise(0.0, noise_um);
+  Problem pb;
+  std::vector<double> y;
+  for (int kz = 0; kz < levels; ++kz)
+    for (int i = 0; i < 20; ++i) {
+      PointContext pc = at(30.0 * i, 0.0);
+      pc.p.z() = pc.s.z() = 100.0 * kz;
+      pc.t = 10.0 * static_cast<double>(pb.points.size());
+      test::add_reading(pb, y, pc, Eigen::Vector3d::UnitZ(), truth(pc) + noise(rng));
+    }
+  test::finish_problem(pb, y, "a", {false, false, true}, {0.0, 0.0, 0.0},
+                       {570.0, 0.0, 100.0 * (levels - 1)});
+  pb.var_lo[3] = 0.0;
+  pb.var_hi[3] = pb.points.back().t;
+  return pb;
+}
+
+// On 3 (or 4) levels a cycle of Z with its period, phase and amplitude free
+// fits any values of the levels: a scale of Z there is a pitch error of Z
+// as much, whatever the data. On 6 levels it is not (with time in the data
+// the drift test alone decides; here the scale is clean and well resolved).
+TEST(DiagnoseDesignAmbiguity, AScaleOnThreeLevelsIsAPitchErrorAsMuch) {
+  for (const int levels : {3, 4, 6}) {
+    const Problem pb = levels_in_order(
+        levels, [](const PointContext& pc) { return 0.02 * pc.s.z(); }, 0.05, 7);
+    std::vector<SelectedTerm> eff{fitted(scale(2), {1.0})};
+    mark_design_ambiguities(pb, {}, eff, {}, 4.0);
+    if (levels <= 4) {
+      ASSERT_EQ(eff[0].ambiguous_with.size(), 2u) << levels;
+      EXPECT_NE(eff[0].ambiguous_with[0].find("cyclic Z→Z"), std::string::npos);
+      EXPECT_NE(eff[0].separate_by.find("more levels"), std::string::npos);
+    } else {
+      EXPECT_TRUE(eff[0].ambiguous_with.empty()) << eff[0].ambiguous_with.front();
+    }
+  }
+}
+
+// Time follows the 5 Z levels. A slow drift of Z in time (within each level
+// it moves by 1/5 of its course, below what 0.5 µm noise shows), selected
+// as a scale of Z: a drift in its place fits as well — ambiguous, "measure
+// in another order". A clean scale of Z (0.05 µm noise) rejects the drift,
+// whose course within each level the data do not show: it stays named.
+TEST(DiagnoseDesignAmbiguity, AScaleWhereTimeFollowsTheLevelsIsTestedAgainstADrift) {
+  for (const bool drift : {true, false}) {
+    const Problem pb = levels_in_order(
+        5,
+        [drift](const PointContext& pc) { return drift ? 2.0 * pc.t / 1000.0 : 0.005 * pc.s.z(); },
+        drift ? 0.5 : 0.05, 8);
+    std::vector<SelectedTerm> eff{fitted(scale(2), {1.0})};
+    const auto log = mark_design_ambiguities(pb, {}, eff, {}, 4.0);
+    if (drift) {
+      ASSERT_EQ(eff[0].ambiguous_with.size(), 1u);
+      EXPECT_EQ(eff[0].ambiguous_with[0], "thermal_drift t→Z");
+      EXPECT_NE(eff[0].separate_by.find("another order"), std::string::npos);
+    } else {
+      EXPECT_TRUE(eff[0].ambiguous_with.empty()) << eff[0].ambiguous_with.front();
+      EXPECT_TRUE(log.empty());
+    }
+  }
+}
+
 }  // namespace
 }  // namespace abbe::diagnose

@@ -16,7 +16,11 @@
 //    itself is (mostly) a function of such an axis's levels — the design
 //    walks the levels in order, e.g. a grid measured in one pass — a drift
 //    in time is ambiguous with a scale or squareness of that axis
-//    ("measure again in another order or after a pause").
+//    ("measure again in another order or after a pause"); and a static
+//    effect that is a function of those levels is ambiguous with a drift in
+//    its direction when a drift (at any time constant of the grid) in its
+//    place removes as much, or less by no more than a one-column χ² at
+//    `growth_alpha`.
 //  - A reversal that grows along its travel. Where the design drives the
 //    axis one way almost everywhere, sign(v_j)·s_j and s_j coincide: an
 //    effect linear in s_j beside a reversal of that axis (a scale, a drift
@@ -43,6 +47,18 @@ struct DesignAmbiguityOptions {
   // columns' sum of squares lies outside their span (an arm offset ε_j×Δ is
   // one up to the tables' direction-dependent part).
   double level_share_left = 0.1;
+  // On this many levels or fewer a cycle of the axis fits any values of
+  // the levels (period, phase and amplitude for L − 1 values).
+  std::size_t few_levels = 4;
+  // Time follows the levels (a drift is never a name there) when at most
+  // `level_share_left` of its variance is within levels; it mostly follows
+  // them (a static effect of the levels is tested against a drift in its
+  // place) when at most this share is (a one-pass walk of 3 levels leaves 1/9).
+  double time_share_left = 0.2;
+  // The drift's time constants tried in place of a static effect there (0:
+  // linear in t); empty: the candidates' default grid (CandidateOptions;
+  // diagnose_problem gives its own candidates' grid).
+  std::vector<double> tau_s;
   bool growing_reversal = true;
   double growth_alpha = 0.01;
 };
