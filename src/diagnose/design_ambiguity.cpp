@@ -190,21 +190,11 @@ std::vector<std::string> mark_design_ambiguities(const Problem& pb,
         const double mean = t_sum[level_of[p]] / t_n[level_of[p]];
         t_within += (t - mean) * (t - mean);
       }
-      const bool time_follows = t_total > 0.0 && t_within <= o.level_share_left * t_total;
       const bool time_mostly_follows = t_total > 0.0 && t_within <= o.time_share_left * t_total;
       const std::string order_text = fmt::format(
           "measure the points again in another order or after a pause (in this design time and "
           "{} vary together: {} walks its {} levels in order)",
           axis_name(j), axis_name(j), lv.size());
-      for (std::size_t e = 0; e < effects.size(); ++e) {
-        const Term& et = effects[e].term;
-        if (!time_follows || !depends_on_time(et) || et.direction < 0) continue;
-        add_alternative(effects[e], position_term(j, et.direction).label());
-        add_alternative(effects[e], levels_text);
-        if (effects[e].separate_by.empty()) effects[e].separate_by = order_text;
-        log.push_back(fmt::format("design: {} is a function of the {} levels of {} as much",
-                                  et.label(), lv.size(), variable_name(j)));
-      }
       // Where time mostly follows the levels, the data decide (a swap test):
       // a static effect is ambiguous with a drift in its direction (at any
       // time constant of the grid) that removes as much in its place, and a
@@ -218,9 +208,11 @@ std::vector<std::string> mark_design_ambiguities(const Problem& pb,
           continue;
         const bool timed = depends_on_time(et);
         if (!timed && !in_span[e]) continue;
-        // Each stand-in: one or two static terms together (a drift ∝ s_w·t
-        // with t following s_j is a coupling w·j and parts linear in s_w and
-        // s_j), or a drift at one time constant.
+        // Each stand-in: any function of the levels in the effect's direction
+        // (what a drift is on a design whose time is a function of s_j), or
+        // one or two static terms together (a drift ∝ s_w·t with t following
+        // s_j is a coupling w·j and parts linear in s_w and s_j), or, for a
+        // static effect, a drift at one time constant.
         std::vector<std::vector<Term>> stand_ins;
         if (timed) {
           std::vector<Term> parts{position_term(j, et.direction)};
@@ -253,6 +245,12 @@ std::vector<std::string> mark_design_ambiguities(const Problem& pb,
         if (!sw.valid) continue;
         double d_best = 0.0;
         std::string best;
+        if (timed) {
+          Mat levels_i(n, m);
+          for (Eigen::Index l = 0; l < m; ++l) levels_i.col(l) = L.col(3 * l + et.direction);
+          d_best = sw.removes(levels_i);
+          best = levels_text;
+        }
         for (const std::vector<Term>& group : stand_ins) {
           std::vector<Mat> gc;
           std::string label;
@@ -266,9 +264,9 @@ std::vector<std::string> mark_design_ambiguities(const Problem& pb,
           }
           if (gc.empty()) continue;
           Mat C(pb.y.size(), 0);
-          for (const Mat& m : gc) {
-            C.conservativeResize(Eigen::NoChange, C.cols() + m.cols());
-            C.rightCols(m.cols()) = m;
+          for (const Mat& mc : gc) {
+            C.conservativeResize(Eigen::NoChange, C.cols() + mc.cols());
+            C.rightCols(mc.cols()) = mc;
           }
           const double d_c = sw.removes(C);
           if (d_c > d_best) {

@@ -13,14 +13,17 @@
 //    scale, a squareness, an arm offset, a reversal constant per row), the
 //    split between them is the aliasing's, not the machine's: all of them
 //    are ambiguous ("sample that axis at irregular spacing"). Where time
-//    itself is (mostly) a function of such an axis's levels — the design
-//    walks the levels in order, e.g. a grid measured in one pass — a drift
-//    in time is ambiguous with a scale or squareness of that axis
-//    ("measure again in another order or after a pause"); and a static
-//    effect that is a function of those levels is ambiguous with a drift in
-//    its direction when a drift (at any time constant of the grid) in its
-//    place removes as much, or less by no more than a one-column χ² at
-//    `growth_alpha`.
+//    is mostly a function of such an axis's levels — the design walks the
+//    levels in order, e.g. a grid measured in one pass — the data decide by
+//    a swap test (the effect and a stand-in each added to everything else
+//    of the fit; the stand-in wins when it removes as much, or less by no
+//    more than a one-column χ² at `growth_alpha`): a drift in time is
+//    ambiguous with any function of the levels in its direction or with the
+//    static terms it becomes when t follows s_j, and a static effect of the
+//    levels with a drift in its direction ("measure again in another order
+//    or after a pause"). On at most `few_levels` levels a cycle of the axis
+//    fits any values of the levels: an effect that is a function of them is
+//    a pitch error as much ("measure that axis at more levels").
 //  - A reversal that grows along its travel. Where the design drives the
 //    axis one way almost everywhere, sign(v_j)·s_j and s_j coincide: an
 //    effect linear in s_j beside a reversal of that axis (a scale, a drift
@@ -50,10 +53,9 @@ struct DesignAmbiguityOptions {
   // On this many levels or fewer a cycle of the axis fits any values of
   // the levels (period, phase and amplitude for L − 1 values).
   std::size_t few_levels = 4;
-  // Time follows the levels (a drift is never a name there) when at most
-  // `level_share_left` of its variance is within levels; it mostly follows
-  // them (a static effect of the levels is tested against a drift in its
-  // place) when at most this share is (a one-pass walk of 3 levels leaves 1/9).
+  // Time mostly follows the levels (a drift and a static effect of the
+  // levels are tested against each other) when at most this share of its
+  // variance is within levels (a one-pass walk of 3 levels leaves 1/9).
   double time_share_left = 0.2;
   // The drift's time constants tried in place of a static effect there (0:
   // linear in t); empty: the candidates' default grid (CandidateOptions;
