@@ -861,6 +861,10 @@ TEST(DiagnoseDesigns, Plane) { check(sweep(Design::plane), {0.93, 0.02, 0.02, 0.
 TEST(DiagnoseDesigns, Toolpath) { check(sweep(Design::toolpath), {0.92, 0.06, 0.05, 0.95, 0.95}); }
 TEST(DiagnoseDesigns, Ballbar) { check(sweep(Design::ballbar), {0.9, 0.02, 0.02, 0.95, 0.9}); }
 TEST(DiagnoseDesigns, Diagonals) { check(sweep(Design::diagonals), {0.0, 0.02, 0.04, 0.95, 0.0}); }
+// A grid walked once (9 × 7 × 3): 81/88 named right, 1 wrong, 0/62 wrong
+// where not identifiable (200 seeds; 40 seeds: 16/18, 0, 0/12). ISO 230-2
+// laser lines along the three axes: 94/96, 1 wrong (an arm offset beside a
+// pitch error's cycles), 0/54 (40 seeds: 15/15, 0, 0/15).
 TEST(DiagnoseDesigns, GridOnePass) {
   check(sweep(Design::grid_one_pass), {0.85, 0.02, 0.02, 0.95, 0.85});
 }
