@@ -46,6 +46,63 @@ bool depends_on_time(const Term& t) {
          std::find(t.vars.begin(), t.vars.end(), 3) != t.vars.end();
 }
 
+// The functions of the levels of s_j, per direction: the columns
+// u_i·[level = l], without forming them (n × 3·levels). Each observation
+// lies in one level, so the span is a sum of one 3-column block per level,
+// and what it holds of a column is a 3 × 3 solve per level.
+class LevelSpan {
+ public:
+  LevelSpan(const Problem& pb, int j, const std::vector<double>& lv)
+      : pb_(pb), level_(pb.obs.size()), gram_(lv.size(), Eigen::Matrix3d::Zero()) {
+    for (std::size_t ob = 0; ob < pb.obs.size(); ++ob) {
+      const double s = pb.points[pb.obs[ob].point].s[j];
+      const auto l =
+          static_cast<std::size_t>(std::lower_bound(lv.begin(), lv.end(), s - 1e-3) - lv.begin());
+      level_[ob] = std::min(l, lv.size() - 1);
+      gram_[level_[ob]] += pb.obs[ob].u * pb.obs[ob].u.transpose();
+    }
+    for (Eigen::Matrix3d& g : gram_)
+      g = g.completeOrthogonalDecomposition().pseudoInverse().eval();  // G⁺ per level
+  }
+
+  // The squared norm of the columns of C projected on the span.
+  double projected(const Mat& C) const {
+    double sum = 0.0;
+    for (Eigen::Index c = 0; c < C.cols(); ++c) {
+      std::vector<Eigen::Vector3d> g(gram_.size(), Eigen::Vector3d::Zero());
+      for (std::size_t ob = 0; ob < level_.size(); ++ob)
+        g[level_[ob]] += pb_.obs[ob].u * C(static_cast<Eigen::Index>(ob), c);
+      for (std::size_t l = 0; l < g.size(); ++l) sum += g[l].dot(gram_[l] * g[l]);
+    }
+    return sum;
+  }
+
+  // What the functions of the levels in direction i (u_i·[level = l]) remove
+  // of r_A when added to the orthonormal span QA (r_A ⟂ QA): bᵀ M⁺ b with
+  // b = Cᵀ r_A and M = CᵀC − (QAᵀC)ᵀ(QAᵀC), each a sum over observations.
+  double removes_in_place(const Mat& QA, const Vec& rA, int i) const {
+    const auto m = static_cast<Eigen::Index>(gram_.size());
+    Vec b = Vec::Zero(m), diag = Vec::Zero(m);
+    Mat P = Mat::Zero(QA.cols(), m);
+    for (std::size_t ob = 0; ob < level_.size(); ++ob) {
+      const double c = pb_.obs[ob].u[i];
+      if (c == 0.0) continue;
+      const auto l = static_cast<Eigen::Index>(level_[ob]);
+      const auto row = static_cast<Eigen::Index>(ob);
+      b[l] += c * rA[row];
+      diag[l] += c * c;
+      if (QA.cols() > 0) P.col(l) += c * QA.row(row).transpose();
+    }
+    const Mat M = Mat(diag.asDiagonal()) - P.transpose() * P;
+    return b.dot(M.completeOrthogonalDecomposition().solve(b));
+  }
+
+ private:
+  const Problem& pb_;
+  std::vector<std::size_t> level_;     // per observation
+  std::vector<Eigen::Matrix3d> gram_;  // per level: (Σ u uᵀ)⁺
+};
+
 // d_i ∝ s_a: the scale of a (i = a) or the squareness a→i.
 Term position_term(int a, int i) {
   Term t;
@@ -121,7 +178,6 @@ std::vector<std::string> mark_design_ambiguities(const Problem& pb,
                                                  double min_period_mm) {
   std::vector<std::string> log;
   if (effects.empty() || pb.obs.empty()) return log;
-  const auto n = static_cast<Eigen::Index>(pb.obs.size());
   std::vector<Mat> cols;
   std::vector<unsigned> mask;
   for (const SelectedTerm& st : effects) {
@@ -142,22 +198,11 @@ std::vector<std::string> mark_design_ambiguities(const Problem& pb,
         any = any || generic_of(st.term, j) || depends_on_time(st.term);
       if (!any) continue;
       // Every function of the level of s_j, per direction: u_i · [level = l].
-      const auto m = static_cast<Eigen::Index>(lv.size());
-      Mat L = Mat::Zero(n, 3 * m);
-      for (std::size_t ob = 0; ob < pb.obs.size(); ++ob) {
-        const Observation& obs = pb.obs[ob];
-        const double s = pb.points[obs.point].s[j];
-        const auto l = static_cast<Eigen::Index>(std::lower_bound(lv.begin(), lv.end(), s - 1e-3) -
-                                                 lv.begin());
-        for (Eigen::Index i = 0; i < 3; ++i)
-          L(static_cast<Eigen::Index>(ob), 3 * std::min(l, m - 1) + i) = obs.u[i];
-      }
-      const Mat Q = orthonormal(L);
+      const LevelSpan levels(pb, j, lv);
       std::vector<bool> in_span(effects.size(), false);
       for (std::size_t e = 0; e < effects.size(); ++e) {
         const double total = cols[e].squaredNorm();
-        in_span[e] =
-            total > 0.0 && residual_of(Q, cols[e]).squaredNorm() <= o.level_share_left * total;
+        in_span[e] = total > 0.0 && total - levels.projected(cols[e]) <= o.level_share_left * total;
       }
       double gap = 1e300;
       for (std::size_t l = 1; l < lv.size(); ++l) gap = std::min(gap, lv[l] - lv[l - 1]);
@@ -246,9 +291,7 @@ std::vector<std::string> mark_design_ambiguities(const Problem& pb,
         double d_best = 0.0;
         std::string best;
         if (timed) {
-          Mat levels_i(n, m);
-          for (Eigen::Index l = 0; l < m; ++l) levels_i.col(l) = L.col(3 * l + et.direction);
-          d_best = sw.removes(levels_i);
+          d_best = levels.removes_in_place(sw.QA, sw.rA, et.direction);
           best = levels_text;
         }
         for (const std::vector<Term>& group : stand_ins) {

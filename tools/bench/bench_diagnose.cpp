@@ -64,6 +64,56 @@ Setup make_setup(int points, int effects) {
   return Setup{std::move(g), std::move(m), std::move(data)};
 }
 
+// A regular grid of about `points` points in nx × ny × nz levels (at most
+// 40 per axis: every axis levelled, design_ambiguity.hpp), walked level by
+// level in order (time follows Z), 0.1 s per point, with a drift of Z.
+Setup make_grid_setup(int points) {
+  Setup s = make_setup(1, 0);
+  s.generated.truth.effects = {abbe::sim::parse_effect("thermal_drift:Z:4um:tau=1800")};
+  Eigen::Vector3d lo, hi;
+  abbe::sim::default_box(s.generated.truth, s.generated.truth.tool_length, lo, hi);
+  const int nz = 35, ny = 38, nx = std::max(2, points / (ny * nz));
+  std::vector<abbe::sim::TipState> tips;
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        abbe::sim::TipState t;
+        const int ii = j % 2 == 0 ? i : nx - 1 - i;
+        t.p = {lo.x() + (hi.x() - lo.x()) * ii / (nx - 1.0),
+               lo.y() + (hi.y() - lo.y()) * j / (ny - 1.0),
+               hi.z() - (hi.z() - lo.z()) * k / (nz - 1.0)};
+        t.tool_length = s.generated.truth.tool_length;
+        t.dir = {j % 2 == 0 ? 1 : -1, 1, -1};
+        t.time = 0.1 * static_cast<double>(tips.size());
+        t.set = "grid";
+        tips.push_back(t);
+      }
+  s.data = abbe::sim::to_measured_data(abbe::sim::measure(s.generated.truth, tips, 0.5, 3),
+                                       "<bench grid>");
+  return s;
+}
+
+// range(0): points; range(1): 1 with the checks of what the design cannot
+// tell apart (design_ambiguity.hpp), 0 without — their cost as a ratio.
+void BM_DiagnoseGrid(benchmark::State& state) {
+  const Setup s = make_grid_setup(static_cast<int>(state.range(0)));
+  abbe::diagnose::DiagnoseOptions o;
+  o.design.levelled_axes = state.range(1) != 0;
+  std::size_t effects = 0;
+  for (auto _ : state) {
+    const abbe::diagnose::Diagnosis d = abbe::diagnose::diagnose(s.machine, s.data, o);
+    effects = d.effects.size();
+    benchmark::DoNotOptimize(effects);
+  }
+  state.counters["points"] = static_cast<double>(s.data.rows.size());
+  state.counters["effects"] = static_cast<double>(effects);
+}
+BENCHMARK(BM_DiagnoseGrid)
+    ->Args({100000, 1})
+    ->Args({100000, 0})
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1);
+
 // range(0): points; range(1): 1 with the swap test after the fit
 // (rival_check.hpp), 0 without — its cost as a ratio in the same run;
 // range(2): the hidden effects (make_setup).
