@@ -124,6 +124,7 @@ Diagnosis diagnose_problem(const Problem& full, const DiagnoseOptions& o) {
                                                   o.selection.searched_cost, o.rivals))
     d.log.push_back(std::move(line));
   d.isotropic = isotropic_scale(d.effects);
+  d.blind_spots = blind_spots(pb, design, o.candidates.min_period_mm, o.candidates.max_period_mm);
   d.extended = residual_stats(pb, sel.residual);
   d.extended.model = pb.base_model + "+effects";
   const double np = std::max<double>(static_cast<double>(d.n_points), 1.0);

@@ -102,6 +102,14 @@ std::string dynamic_text(const Diagnosis& d) {
   return s;
 }
 
+std::string blind_spots_text(const Diagnosis& d) {
+  if (d.blind_spots.empty()) return "";
+  std::string s = "not testable with these data (the design's blind spots):\n";
+  for (const BlindSpot& b : d.blind_spots)
+    s += fmt::format("  {}: {}; {}\n", b.what, b.reason, b.measure);
+  return s;
+}
+
 std::string report_json(const Diagnosis& d) {
   using nlohmann::json;
   json j;
@@ -198,6 +206,9 @@ std::string report_json(const Diagnosis& d) {
                          {"points", d.extend_check.points},
                          {"outside_domain", d.extend_check.outside},
                          {"warnings", d.extend_check.warnings}};
+  j["blind_spots"] = nlohmann::json::array();
+  for (const BlindSpot& b : d.blind_spots)
+    j["blind_spots"].push_back({{"what", b.what}, {"reason", b.reason}, {"measure", b.measure}});
   j["steps"] = d.log;
   return j.dump(2) + "\n";
 }
@@ -265,6 +276,7 @@ std::string report_text(const Diagnosis& d) {
   else if (d.noise_method == "none")
     s += "noise from the data alone: not available (no repeated points, no runs of equally "
          "spaced points)\n";
+  s += blind_spots_text(d);
   return s;
 }
 

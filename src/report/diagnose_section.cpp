@@ -114,6 +114,14 @@ void render_diagnose_report(HtmlPage& page, const DiagnosisForReport& r) {
   page.add_table(e);
   if (d.effects.empty()) page.add_note("No effect stands out of the noise.");
   if (d.isotropic.found) page.add_paragraph(diagnose::isotropic_text(d));
+  if (!d.blind_spots.empty()) {
+    Table b = make_table("diagnose-blind-spots",
+                         "Not testable with these data (the design's blind spots)",
+                         {"effect", "why", "what would add it"});
+    for (const diagnose::BlindSpot& spot : d.blind_spots)
+      b.rows.push_back({spot.what, spot.reason, spot.measure});
+    page.add_table(b);
+  }
   if (!d.circles.empty()) page.add_paragraph(diagnose::dynamic_text(d));
   if (!d.outliers.empty()) {
     Table o = make_table(

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "abbe/diagnose/blind_spots.hpp"
 #include "abbe/diagnose/candidates.hpp"
 #include "abbe/diagnose/design_ambiguity.hpp"
 #include "abbe/diagnose/dynamic.hpp"
@@ -69,6 +70,8 @@ struct Diagnosis {
   // With `extend`: what the earlier overlay does on these data (transfer.hpp),
   // on the points left after the outliers.
   TransferCheck extend_check;
+  // What the design cannot test at all (blind_spots.hpp).
+  std::vector<BlindSpot> blind_spots;
   std::vector<std::string> log;
 };
 
@@ -88,6 +91,8 @@ std::string effect_value_text(const Term& t);
 bool value_significant(const Term& t);
 // The circular-test lines of the summary ("" without circles).
 std::string dynamic_text(const Diagnosis& d);
+// The blind-spot lines of the summary ("" when none).
+std::string blind_spots_text(const Diagnosis& d);
 // The isotropic-scale line of the summary ("" when none).
 std::string isotropic_text(const Diagnosis& d);
 // The outliers line of the summary ("" when none), listing at most `max_listed`.

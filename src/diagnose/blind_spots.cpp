@@ -1,0 +1,123 @@
+#include "abbe/diagnose/blind_spots.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "abbe/diagnose/term.hpp"
+
+namespace abbe::diagnose {
+namespace {
+
+constexpr double kTiny = 1e-9;
+
+struct Range {
+  double lo = 1e300, hi = -1e300;
+  void add(double x) {
+    lo = std::min(lo, x);
+    hi = std::max(hi, x);
+  }
+  bool varies() const { return hi - lo > kTiny; }
+};
+
+}  // namespace
+
+std::vector<BlindSpot> blind_spots(const Problem& pb, const DesignAmbiguityOptions& design,
+                                   double min_period_mm, double max_period_mm) {
+  std::vector<BlindSpot> out;
+  if (pb.obs.empty()) return out;
+  // Over all points, and over the observations of each direction.
+  std::array<Range, 4> all;
+  std::array<Range, 3> tip;  // the tool tip's coordinates, for the text
+  std::array<std::array<Range, 4>, 3> in;
+  std::array<unsigned, 3> signs{0, 0, 0};  // bit 0: v_j < 0 seen, bit 1: v_j > 0
+  for (const PointContext& pc : pb.points) {
+    for (std::size_t v = 0; v < 3; ++v) {
+      all[v].add(pc.s[static_cast<Eigen::Index>(v)]);
+      tip[v].add(pc.p[static_cast<Eigen::Index>(v)]);
+    }
+    all[3].add(pc.t);
+    for (std::size_t j = 0; j < 3; ++j)
+      if (pc.dir[j] != 0) signs[j] |= pc.dir[j] < 0 ? 1u : 2u;
+  }
+  for (const Observation& ob : pb.obs) {
+    const PointContext& pc = pb.points[ob.point];
+    for (std::size_t i = 0; i < 3; ++i) {
+      if (std::abs(ob.u[static_cast<Eigen::Index>(i)]) <= kTiny) continue;
+      for (std::size_t v = 0; v < 3; ++v) in[i][v].add(pc.s[static_cast<Eigen::Index>(v)]);
+    }
+  }
+  auto present = [&](std::size_t i) { return pb.direction_present[i]; };
+
+  for (std::size_t i = 0; i < 3; ++i)
+    if (!present(i))
+      out.push_back({fmt::format("every effect in {} (d{})", axis_name(static_cast<int>(i)),
+                                 variable_name(static_cast<int>(i))),
+                     fmt::format("d{} is not measured", variable_name(static_cast<int>(i))),
+                     fmt::format("measure d{} as well", variable_name(static_cast<int>(i)))});
+  if (!all[3].varies())
+    out.push_back({"a drift in time (thermal_drift)",
+                   "the data have no time (t is the same for every point)",
+                   "record the time of each point (t, s since the start)"});
+  for (std::size_t j = 0; j < 3; ++j) {
+    const int a = static_cast<int>(j);
+    if (!all[j].varies()) {
+      out.push_back(
+          {fmt::format("every effect that varies with {} (scale, squareness, cycles, couplings "
+                       "with {})",
+                       variable_name(a), variable_name(a)),
+           fmt::format("{} stands at one position ({} = {:.6g} mm)", axis_name(a), variable_name(a),
+                       tip[j].lo),
+           fmt::format("measure at a second {} position (another plane)", axis_name(a))});
+    } else {
+      for (std::size_t i = 0; i < 3; ++i)
+        if (present(i) && !in[i][j].varies())
+          out.push_back(
+              {fmt::format("d{} as a function of {} (squareness or scale {}→{}, its cycles, "
+                           "couplings with {})",
+                           variable_name(static_cast<int>(i)), variable_name(a), axis_name(a),
+                           axis_name(static_cast<int>(i)), variable_name(a)),
+               fmt::format("d{} is measured at one {} only", variable_name(static_cast<int>(i)),
+                           variable_name(a)),
+               fmt::format("measure d{} at several {} positions",
+                           variable_name(static_cast<int>(i)), axis_name(a))});
+    }
+    // (An axis at one position, approached one way, makes a reversal of it
+    // a constant: the datum's, said above.)
+    if (signs[j] != 3u && all[j].varies())
+      out.push_back(
+          {fmt::format("a reversal of {} (backlash)", axis_name(a)),
+           signs[j] == 0u
+               ? fmt::format("the data carry no approach direction of {} (v{} is 0 or missing)",
+                             axis_name(a), variable_name(a))
+               : fmt::format("{} approaches every point from one side", axis_name(a)),
+           signs[j] == 0u
+               ? fmt::format("record v{}, the sign of {}'s last motion at each point",
+                             variable_name(a), axis_name(a))
+               : fmt::format("approach the points from both sides in {}", axis_name(a))});
+  }
+  const auto levels = levelled_axes(pb, design, min_period_mm);
+  for (std::size_t j = 0; j < 3; ++j) {
+    const std::vector<double>& lv = levels[j];
+    if (lv.empty()) continue;
+    double gap = 1e300;
+    for (std::size_t l = 1; l < lv.size(); ++l) gap = std::min(gap, lv[l] - lv[l - 1]);
+    const int a = static_cast<int>(j);
+    out.push_back(
+        {2.0 * gap > max_period_mm
+             ? fmt::format("a cycle of {} (a pitch error; every period of the catalogue, {:.4g}–"
+                           "{:.4g} mm)",
+                           axis_name(a), min_period_mm, max_period_mm)
+             : fmt::format("a cycle of {} shorter than {:.4g} mm (a pitch error)", axis_name(a),
+                           2.0 * gap),
+         fmt::format("{} stands on {} levels {:.4g} mm or more apart: they alias every shorter "
+                     "period",
+                     axis_name(a), lv.size(), gap),
+         fmt::format("sample {} at irregular spacing", axis_name(a))});
+  }
+  return out;
+}
+
+}  // namespace abbe::diagnose
