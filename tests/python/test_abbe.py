@@ -156,6 +156,10 @@ def test_diagnose_with_an_earlier_overlay(tmp_path):
     assert check["rms_with_um"] < check["rms_without_um"]
     assert check["change_percent"] > 10
     assert "extend_check" not in abbe.diagnose(plate_machine, tmp_path / "D8132_1.csv")
+    # What a plate cannot test: dz, time, approach directions, a second z.
+    blind = [b["what"] for b in d["blind_spots"]]
+    assert any(w.startswith("every effect in Z") for w in blind)
+    assert any(w.startswith("a drift in time") for w in blind)
 
 
 def test_compensate_returns_program(machine, monkeypatch):
