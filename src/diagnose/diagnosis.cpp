@@ -4,6 +4,8 @@
 #include <cmath>
 #include <utility>
 
+#include "abbe/io/approach_directions.hpp"
+
 namespace abbe::diagnose {
 
 namespace {
@@ -149,8 +151,15 @@ Diagnosis diagnose_problem(const Problem& full, const DiagnoseOptions& o) {
   return d;
 }
 
-Diagnosis diagnose(const machine::Machine& machine, const io::MeasuredData& data,
+Diagnosis diagnose(const machine::Machine& machine, const io::MeasuredData& given,
                    const DiagnoseOptions& o) {
+  io::MeasuredData inferred;
+  std::vector<int> axes;
+  if (o.infer_directions) {
+    inferred = given;
+    axes = io::infer_approach_directions(inferred);
+  }
+  const io::MeasuredData& data = o.infer_directions ? inferred : given;
   const Problem pb = build_problem(machine, data, o.model, o.extend);
   Diagnosis d = diagnose_problem(pb, o);
   if (o.extend) {
@@ -166,6 +175,7 @@ Diagnosis diagnose(const machine::Machine& machine, const io::MeasuredData& data
   }
   d.machine = machine.name();
   d.measured_file = data.file;
+  d.directions_inferred = axes;
   return d;
 }
 

@@ -206,6 +206,9 @@ std::string report_json(const Diagnosis& d) {
                          {"points", d.extend_check.points},
                          {"outside_domain", d.extend_check.outside},
                          {"warnings", d.extend_check.warnings}};
+  j["directions_inferred"] = json::array();
+  for (int a : d.directions_inferred)
+    j["directions_inferred"].push_back(std::string(1, axis_name(a)));
   j["blind_spots"] = nlohmann::json::array();
   for (const BlindSpot& b : d.blind_spots)
     j["blind_spots"].push_back({{"what", b.what}, {"reason", b.reason}, {"measure", b.measure}});
@@ -216,6 +219,15 @@ std::string report_json(const Diagnosis& d) {
 std::string report_text(const Diagnosis& d) {
   std::string s = fmt::format("{}: {} points ({} observations), machine \"{}\", model {}\n",
                               d.measured_file, d.n_points, d.n_observations, d.machine, d.model);
+  if (!d.directions_inferred.empty()) {
+    std::string axes;
+    for (int a : d.directions_inferred)
+      axes += (axes.empty() ? "" : " ") + std::string(1, axis_name(a));
+    s += fmt::format(
+        "approach directions of {} inferred from the order of the points (the data have none; "
+        "--infer-directions)\n",
+        axes);
+  }
   s += fmt::format("  {:<8} {:>10} {:>10}\n", "model", "rms µm", "max µm");
   for (const ResidualStats& m : d.models)
     s += fmt::format("  {:<8} {:>10.3f} {:>10.3f}\n", m.model, m.rms_um, m.max_um);

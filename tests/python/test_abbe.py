@@ -162,6 +162,34 @@ def test_diagnose_with_an_earlier_overlay(tmp_path):
     assert any(w.startswith("a drift in time") for w in blind)
 
 
+def test_diagnose_infers_approach_directions(machine, tmp_path):
+    # A reversal of Y hidden in a grid; the file without vx vy vz: the
+    # reversal cannot be tested (a blind spot) unless the directions are
+    # taken from the order of the points, and then it is named.
+    measured = tmp_path / "rev.csv"
+    cli_text("simulate", "measure", "--truth", ROOT / "machines/sample/truth.yaml", "--grid",
+             "100", "--inject", "reversal:Y:8um", "--seed", "3", "-o", measured)
+    rows = list(csv.DictReader(measured.open()))
+    fields = [f for f in rows[0] if f not in ("vx", "vy", "vz")]
+    stripped = tmp_path / "rev-no-v.csv"
+    with stripped.open("w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=fields, extrasaction="ignore")
+        w.writeheader()
+        w.writerows(rows)
+    plain = abbe.diagnose(machine, stripped, folds=3)
+    assert plain["directions_inferred"] == []
+    assert any(b["what"].startswith("a reversal of Y") for b in plain["blind_spots"])
+    assert not any(e["kind"] == "reversal" for e in plain["effects"])
+    inferred = abbe.diagnose(machine, stripped, folds=3, infer_directions=True)
+    assert inferred["directions_inferred"] == ["X", "Y", "Z"]
+    blind = [b["what"] for b in inferred["blind_spots"]]
+    assert not any(w.startswith(("a reversal of X", "a reversal of Y")) for w in blind)
+    # The grid walks its Z levels down only: Z is approached from one side.
+    assert any(w.startswith("a reversal of Z") for w in blind)
+    named = [e for e in inferred["effects"] if e["kind"] == "reversal" and e["axis"] == "Y"]
+    assert named and named[0].get("status", "named") == "named"
+
+
 def test_compensate_returns_program(machine, monkeypatch):
     # One date for the provenance block of both runs.
     monkeypatch.setenv("SOURCE_DATE_EPOCH", "0")

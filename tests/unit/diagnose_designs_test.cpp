@@ -35,6 +35,7 @@
 #include <stdexcept>
 
 #include "abbe/diagnose/diagnosis.hpp"
+#include "abbe/io/approach_directions.hpp"
 #include "abbe/io/ballbar.hpp"
 #include "abbe/io/measured_data.hpp"
 #include "abbe/io/units.hpp"
@@ -661,14 +662,19 @@ std::set<std::size_t> add_outliers(io::MeasuredData& data, std::uint64_t seed, d
   return lines;
 }
 
+// `no_directions`: the measured file without vx vy vz, diagnosed with the
+// approach directions inferred from the order of the points.
 Case run_case(Design design, const Hidden& h, std::uint64_t seed, double outliers = 0.0,
-              const SelectionOptions* selection = nullptr) {
+              const SelectionOptions* selection = nullptr, bool no_directions = false) {
   const auto& vm = noisy_vm();
   const auto samples = make_design(design);
   const bool plane = design == Design::plane;
   io::MeasuredData data = measure(samples, h, seed, plane);
+  if (no_directions)
+    for (io::MeasuredRow& r : data.rows) r.v = {0, 0, 0};
   std::set<std::size_t> bad;
   if (outliers > 0.0) bad = add_outliers(data, seed, outliers);
+  if (no_directions) io::infer_approach_directions(data);
   const Problem pb = build_problem(vm.machine, data, model::ModelKind::ae_arm, nullptr);
   DiagnoseOptions opt;
   if (selection) opt.selection = *selection;
@@ -800,7 +806,9 @@ struct Rates {
   }
 };
 
-Rates sweep(Design design) {
+Rates sweep(Design design, bool no_directions = false) {
+  const std::string label =
+      std::string(design_name(design)) + (no_directions ? ", no vx vy vz (inferred)" : "");
   const int n = seeds();
   Rates r;
   const Box b = box();
@@ -812,7 +820,7 @@ Rates sweep(Design design) {
     // Every fourth case is null data.
     Hidden h;
     if (i % 4 != 3) h = draw(rng, b, L);
-    const Case c = run_case(design, h, seed);
+    const Case c = run_case(design, h, seed, 0.0, nullptr, no_directions);
     if (only >= 0)
       for (const std::string& line : c.log) std::cerr << "  log: " << line << "\n";
     std::string tag;
@@ -833,8 +841,8 @@ Rates sweep(Design design) {
       if (c.verdict == Verdict::right) tag = "unidentifiable, named (lucky)";
     }
     std::cerr << fmt::format(
-        "{} | seed {:3d} | {:<55} | {:<28} | gain {:5.2f} oracle {:5.2f} |{}\n",
-        design_name(design), i, h.text, tag, c.gain, c.oracle, c.found);
+        "{} | seed {:3d} | {:<55} | {:<28} | gain {:5.2f} oracle {:5.2f} |{}\n", label, i, h.text,
+        tag, c.gain, c.oracle, c.found);
   }
   auto pct = [](int a, int b) { return b ? 100.0 * a / b : 0.0; };
   std::cerr << fmt::format(
@@ -842,9 +850,9 @@ Rates sweep(Design design) {
       "ambiguous or silent {}/{} ({:.0f} %), wrong {} ({:.0f} %) | null clean {}/{} | gain >= 0.7 "
       "oracle "
       "{}/{} ({:.0f} %)\n",
-      design_name(design), r.id_right, r.n_id, pct(r.id_right, r.n_id), r.id_wrong, r.un_ambiguous,
-      r.n_un, pct(r.un_ambiguous, r.n_un), r.un_wrong, pct(r.un_wrong, r.n_un), r.null_clean,
-      r.n_null, r.gain_ok, r.n_gain, pct(r.gain_ok, r.n_gain));
+      label, r.id_right, r.n_id, pct(r.id_right, r.n_id), r.id_wrong, r.un_ambiguous, r.n_un,
+      pct(r.un_ambiguous, r.n_un), r.un_wrong, pct(r.un_wrong, r.n_un), r.null_clean, r.n_null,
+      r.gain_ok, r.n_gain, pct(r.gain_ok, r.n_gain));
   return r;
 }
 
@@ -904,6 +912,16 @@ TEST(DiagnoseDesigns, Diagonals) { check(sweep(Design::diagonals), {0.0, 0.02, 0
 // drifts of Y that one circle pair cannot tell from a drift ∝ x).
 TEST(DiagnoseDesigns, GridOnePass) {
   check(sweep(Design::grid_one_pass), {0.85, 0.02, 0.02, 0.95, 0.85});
+}
+// The grid's file without vx vy vz, the approach directions inferred from
+// the order of the points (diagnose --infer-directions): 129/130 named right,
+// 1/20 wrong where not identifiable, as with the file's own directions (200
+// seeds). Without them the model takes the mean of its up and down tables,
+// the machine's own reversal of Z is left as `unexplained` dZ(z, t) of about
+// 4 µm rms in every case, and the oracle of most hidden shapes falls below
+// what the design resolves.
+TEST(DiagnoseDesigns, GridWithoutDirectionsInferred) {
+  check(sweep(Design::grid, true), {0.94, 0.02, 0.06, 0.95, 0.95});
 }
 TEST(DiagnoseDesigns, BallbarXY) { check(sweep(Design::ballbar_xy), {0.0, 0.02, 0.02, 0.95, 0.0}); }
 TEST(DiagnoseDesigns, AxisLines) {

@@ -31,6 +31,7 @@ struct DiagnoseCliOptions {
   int folds = 5;
   std::uint64_t seed = 1;
   double max_period = 100.0;
+  bool infer_directions = false;
 };
 
 int run_diagnose(const DiagnoseCliOptions& o, const GlobalOptions& g) {
@@ -52,6 +53,7 @@ int run_diagnose(const DiagnoseCliOptions& o, const GlobalOptions& g) {
   opt.selection.folds = o.folds;
   opt.selection.seed = o.seed;
   opt.candidates.max_period_mm = o.max_period;
+  opt.infer_directions = o.infer_directions;
   std::optional<diagnose::Overlay> extend;
   if (!o.extend.empty()) {
     extend = diagnose::Overlay::load(o.extend);
@@ -106,6 +108,11 @@ const CommandRegistrar registrar(
       sub.add_option("--max-period", o->max_period, "Longest cyclic period searched, mm")
           ->check(CLI::Range(8.0, 10000.0))
           ->capture_default_str();
+      sub.add_flag("--infer-directions", o->infer_directions,
+                   "Where the data have no vx/vy/vz for an axis, take its approach direction from "
+                   "the order of the points (per set, by time): the sign of its last move "
+                   "between consecutive points. Only for points reached one from the other (a "
+                   "grid or a line walked point to point), not for probing cycles");
       const GlobalOptions* gp = &g;
       return [o, gp] { return run_diagnose(*o, *gp); };
     });

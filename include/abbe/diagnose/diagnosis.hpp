@@ -32,6 +32,9 @@ struct DiagnoseOptions {
   DesignAmbiguityOptions design;    // what the design cannot tell apart (design_ambiguity.hpp)
   RivalOptions rivals;              // rivals the data cannot reject (rival_check.hpp)
   const Overlay* extend = nullptr;  // an earlier overlay added to the model's prediction
+  // Axes without approach directions in the data get them from the order
+  // of the points (io/approach_directions.hpp); off by default.
+  bool infer_directions = false;
 };
 
 struct Diagnosis {
@@ -70,6 +73,8 @@ struct Diagnosis {
   // With `extend`: what the earlier overlay does on these data (transfer.hpp),
   // on the points left after the outliers.
   TransferCheck extend_check;
+  // The axes whose approach directions were inferred (infer_directions).
+  std::vector<int> directions_inferred;
   // What the design cannot test at all (blind_spots.hpp).
   std::vector<BlindSpot> blind_spots;
   std::vector<std::string> log;
