@@ -82,22 +82,7 @@ TEST(DiagnoseBlindSpots, APlateHasNoZNoTimeAndNoReversal) {
 
 TEST(DiagnoseBlindSpots, ALineSeesItsDirectionAlongItsAxisOnly) {
   // d_x along X at y = 100, d_y along Y at x = 200, there and back, z = 0.
-  Problem pb;
-  std::vector<double> y;
-  double t = 0.0;
-  for (int a = 0; a < 2; ++a)
-    for (int way : {1, -1})
-      for (int k = 0; k <= 10; ++k) {
-        const double s = 40.0 * (way > 0 ? k : 10 - k);
-        PointContext pc;
-        pc.p = a == 0 ? Eigen::Vector3d(s, 100.0, 0.0) : Eigen::Vector3d(200.0, s, 0.0);
-        pc.s = pc.p;
-        pc.dir = {a == 0 ? way : 1, a == 1 ? way : 1, 0};
-        pc.t = t += 5.0;
-        pc.set = "a";
-        test::add_reading(pb, y, pc, Eigen::Vector3d::Unit(a), 0.0);
-      }
-  test::finish_problem(pb, y, "a", {true, true, false}, {0.0, 0.0, 0.0}, {400.0, 400.0, 0.0});
+  const Problem pb = test::two_laser_lines(true);
   const auto w = whats(pb);
   EXPECT_TRUE(has(w, "dx as a function of y"));
   EXPECT_TRUE(has(w, "dy as a function of x"));

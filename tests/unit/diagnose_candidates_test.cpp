@@ -14,33 +14,6 @@
 namespace abbe::diagnose {
 namespace {
 
-// Two lines, there and back: along X at y = 100 and along Y at x = 200, z = 0.
-// `line_only`: each point measured along its line; else in X and Y both.
-Problem two_lines(bool line_only) {
-  Problem pb;
-  std::vector<double> y;
-  double t = 0.0;
-  for (int a = 0; a < 2; ++a)
-    for (int way : {1, -1})
-      for (int k = 0; k <= 10; ++k) {
-        const double s = 40.0 * (way > 0 ? k : 10 - k);
-        PointContext pc;
-        pc.p = a == 0 ? Eigen::Vector3d(s, 100.0, 0.0) : Eigen::Vector3d(200.0, s, 0.0);
-        pc.s = pc.p;
-        pc.dir = {a == 0 ? way : 1, a == 1 ? way : 1, 0};
-        pc.t = t;
-        t += 5.0;
-        pc.set = "a";
-        for (int i = 0; i < 2; ++i)
-          if (!line_only || i == a) test::add_reading(pb, y, pc, Eigen::Vector3d::Unit(i), 0.0);
-      }
-  test::finish_problem(pb, y, "a", {true, true, false}, Eigen::Vector3d(0.0, 0.0, 0.0),
-                       Eigen::Vector3d(400.0, 400.0, 0.0));
-  pb.var_lo[3] = 0.0;
-  pb.var_hi[3] = t;
-  return pb;
-}
-
 bool has_fixed(const CandidateSet& cs, TermKind kind, int axis, int direction) {
   return std::any_of(cs.fixed.begin(), cs.fixed.end(), [&](const Term& t) {
     return t.kind == kind && t.axis == axis && t.direction == direction;
@@ -55,7 +28,7 @@ bool has_scanned(const CandidateSet& cs, TermKind kind, int axis, int direction,
 }
 
 TEST(DiagnoseCandidates, ALineSeesOnlyWhatVariesAlongIt) {
-  const CandidateSet cs = build_candidates(two_lines(true), CandidateOptions{});
+  const CandidateSet cs = build_candidates(test::two_laser_lines(true), CandidateOptions{});
   // Along X: d_x ∝ x, its reversal, its cycles, a drift and one ∝ x.
   EXPECT_TRUE(has_fixed(cs, TermKind::scale, 0, 0));
   EXPECT_TRUE(has_fixed(cs, TermKind::reversal, 0, 0));
@@ -76,14 +49,15 @@ TEST(DiagnoseCandidates, ALineSeesOnlyWhatVariesAlongIt) {
 }
 
 TEST(DiagnoseCandidates, PointsMeasuredInEveryDirectionKeepTheCrossTerms) {
-  const CandidateSet cs = build_candidates(two_lines(false), CandidateOptions{});
+  const CandidateSet cs = build_candidates(test::two_laser_lines(false), CandidateOptions{});
   EXPECT_TRUE(has_fixed(cs, TermKind::squareness, 1, 0));
   EXPECT_TRUE(has_fixed(cs, TermKind::squareness, 0, 1));
   EXPECT_TRUE(has_fixed(cs, TermKind::reversal, 1, 0));
   EXPECT_TRUE(has_fixed(cs, TermKind::coupling, 0, 0));
   EXPECT_TRUE(has_scanned(cs, TermKind::cyclic, 1, 0));
   EXPECT_TRUE(has_scanned(cs, TermKind::thermal_drift, 1, 0, 1));
-  EXPECT_GT(cs.named_tests, build_candidates(two_lines(true), CandidateOptions{}).named_tests);
+  EXPECT_GT(cs.named_tests,
+            build_candidates(test::two_laser_lines(true), CandidateOptions{}).named_tests);
 }
 
 }  // namespace

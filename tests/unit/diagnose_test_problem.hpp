@@ -38,6 +38,35 @@ inline void add_reading(Problem& pb, std::vector<double>& y, const PointContext&
   pb.lines.push_back(pb.points.size() + 1);
 }
 
+// Two laser lines, there and back, 11 targets 40 mm apart, 5 s apart: along
+// X at y = 100 and along Y at x = 200, z = 0, one set. `line_only`: each
+// point measured along its line (d_x on the X line, d_y on the Y line); else
+// in X and Y both. Observed values 0.
+inline Problem two_laser_lines(bool line_only) {
+  Problem pb;
+  std::vector<double> y;
+  double t = 0.0;
+  for (int a = 0; a < 2; ++a)
+    for (int way : {1, -1})
+      for (int k = 0; k <= 10; ++k) {
+        const double s = 40.0 * (way > 0 ? k : 10 - k);
+        PointContext pc;
+        pc.p = a == 0 ? Eigen::Vector3d(s, 100.0, 0.0) : Eigen::Vector3d(200.0, s, 0.0);
+        pc.s = pc.p;
+        pc.dir = {a == 0 ? way : 1, a == 1 ? way : 1, 0};
+        pc.t = t;
+        t += 5.0;
+        pc.set = "a";
+        for (int i = 0; i < 2; ++i)
+          if (!line_only || i == a) add_reading(pb, y, pc, Eigen::Vector3d::Unit(i), 0.0);
+      }
+  finish_problem(pb, y, "a", {true, true, false}, Eigen::Vector3d(0.0, 0.0, 0.0),
+                 Eigen::Vector3d(400.0, 400.0, 0.0));
+  pb.var_lo[3] = 0.0;
+  pb.var_hi[3] = t;
+  return pb;
+}
+
 // A term of `kind` on `axis`, acting in `direction` (-1: none).
 inline Term make_term(TermKind kind, int axis, int direction) {
   Term t;
