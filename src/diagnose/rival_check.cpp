@@ -46,6 +46,42 @@ std::vector<Term> stand_ins(const CandidateSet& cs, const Term& effect) {
   return out;
 }
 
+// The rivals' labels, a drift family (kind, axis, direction, position
+// factor) that stands in at several time constants once: "thermal_drift
+// t→Z (at 11 time constants, 300 s – linear in t)".
+std::vector<std::string> rival_labels(const std::vector<Term>& rivals) {
+  std::vector<std::string> out;
+  std::vector<bool> done(rivals.size(), false);
+  for (std::size_t a = 0; a < rivals.size(); ++a) {
+    if (done[a]) continue;
+    const Term& t = rivals[a];
+    std::vector<double> taus;
+    for (std::size_t b = a; b < rivals.size(); ++b) {
+      const Term& u = rivals[b];
+      if (t.kind != TermKind::thermal_drift || u.kind != t.kind || u.axis != t.axis ||
+          u.direction != t.direction || u.with_axis != t.with_axis)
+        continue;
+      taus.push_back(u.tau_s);
+      done[b] = true;
+    }
+    if (taus.size() <= 1) {
+      out.push_back(t.label());
+      continue;
+    }
+    // τ = 0 stands for linear in t, the longest.
+    auto key = [](double tau) { return tau > 0.0 ? tau : 1e300; };
+    std::sort(taus.begin(), taus.end(), [&](double x, double y) { return key(x) < key(y); });
+    auto text = [](double tau) {
+      return tau > 0.0 ? fmt::format("{:g} s", tau) : std::string("linear in t");
+    };
+    const std::string label = t.label();
+    out.push_back(fmt::format("{} (at {} time constants, {} – {})",
+                              label.substr(0, label.find(" (")), taus.size(), text(taus.front()),
+                              text(taus.back())));
+  }
+  return out;
+}
+
 }  // namespace
 
 std::vector<std::string> mark_unrejected_rivals(const Problem& pb,
@@ -111,12 +147,12 @@ std::vector<std::string> mark_unrejected_rivals(const Problem& pb,
       const double d_c = removes(residual_of(QA, Cc), rA);
       if (d_c < d_e - margin) continue;
       rivals.push_back(cand);
-      se.ambiguous_with.push_back(cand.label());
       log.push_back(fmt::format(
           "data: {} (ΔRSS {:.6g}) is not preferred over {} in its place (ΔRSS {:.6g}, margin "
           "{:.3g})",
           se.term.label(), d_e, cand.label(), d_c, margin));
     }
+    for (const std::string& label : rival_labels(rivals)) se.ambiguous_with.push_back(label);
     if (!rivals.empty() && se.separate_by.empty())
       se.separate_by = separating_measurement(se.term, rivals, {});
   }

@@ -162,10 +162,16 @@ TEST(DiagnoseRivalCheck, CostlierAndSameKindCandidatesAreNoRivals) {
   // With no cost for a searched parameter, the settled drift is a rival.
   std::vector<SelectedTerm> free = fit(pb, cs, test::make_term(TermKind::scale, 0, 0));
   mark_unrejected_rivals(pb, datum_of(cs), free, cs, -1.0, {});
-  bool drift = false;
+  // It stands in at each time constant that has settled: one entry for the
+  // family, with how many and which.
+  int drift = 0;
   for (const std::string& a : free[0].ambiguous_with)
-    drift = drift || a.rfind("thermal_drift x·t→X", 0) == 0;
-  EXPECT_TRUE(drift);
+    if (a.rfind("thermal_drift x·t→X", 0) == 0) {
+      ++drift;
+      EXPECT_EQ(a.rfind("thermal_drift x·t→X (at ", 0), 0u) << a;
+      EXPECT_NE(a.find(" time constants, 300 s – "), std::string::npos) << a;
+    }
+  EXPECT_EQ(drift, 1);
   // A drift named: its own kind at other time constants is not listed.
   Term d = test::make_term(TermKind::thermal_drift, 0, 0);
   d.with_axis = 0;
