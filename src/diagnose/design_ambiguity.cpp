@@ -46,6 +46,36 @@ bool depends_on_time(const Term& t) {
          std::find(t.vars.begin(), t.vars.end(), 3) != t.vars.end();
 }
 
+// The level of position s among the levels lv (sorted).
+std::size_t level_index(const std::vector<double>& lv, double s) {
+  const auto l =
+      static_cast<std::size_t>(std::lower_bound(lv.begin(), lv.end(), s - 1e-3) - lv.begin());
+  return std::min(l, lv.size() - 1);
+}
+
+// The share of the time's variance left within the levels of s_j (1 where
+// time does not vary): small where the design walks the levels in order.
+double time_within_levels(const Problem& pb, int j, const std::vector<double>& lv) {
+  std::vector<double> t_sum(lv.size(), 0.0), t_n(lv.size(), 0.0);
+  std::vector<std::size_t> level_of(pb.points.size());
+  double t_all = 0.0;
+  for (std::size_t p = 0; p < pb.points.size(); ++p) {
+    level_of[p] = level_index(lv, pb.points[p].s[j]);
+    t_sum[level_of[p]] += pb.points[p].t;
+    t_n[level_of[p]] += 1.0;
+    t_all += pb.points[p].t;
+  }
+  t_all /= static_cast<double>(pb.points.size());
+  double t_total = 0.0, t_within = 0.0;
+  for (std::size_t p = 0; p < pb.points.size(); ++p) {
+    const double t = pb.points[p].t;
+    t_total += (t - t_all) * (t - t_all);
+    const double mean = t_sum[level_of[p]] / t_n[level_of[p]];
+    t_within += (t - mean) * (t - mean);
+  }
+  return t_total > 0.0 ? t_within / t_total : 1.0;
+}
+
 // The functions of the levels of s_j, per direction: the columns
 // u_i·[level = l], without forming them (n × 3·levels). Each observation
 // lies in one level, so the span is a sum of one 3-column block per level,
@@ -55,10 +85,7 @@ class LevelSpan {
   LevelSpan(const Problem& pb, int j, const std::vector<double>& lv)
       : pb_(pb), level_(pb.obs.size()), gram_(lv.size(), Eigen::Matrix3d::Zero()) {
     for (std::size_t ob = 0; ob < pb.obs.size(); ++ob) {
-      const double s = pb.points[pb.obs[ob].point].s[j];
-      const auto l =
-          static_cast<std::size_t>(std::lower_bound(lv.begin(), lv.end(), s - 1e-3) - lv.begin());
-      level_[ob] = std::min(l, lv.size() - 1);
+      level_[ob] = level_index(lv, pb.points[pb.obs[ob].point].s[j]);
       gram_[level_[ob]] += pb.obs[ob].u * pb.obs[ob].u.transpose();
     }
     for (Eigen::Matrix3d& g : gram_)
@@ -110,6 +137,44 @@ Term position_term(int a, int i) {
   t.axis = a;
   t.direction = i;
   return t;
+}
+
+// The static terms a drift of direction i becomes where t follows s_j, one
+// or two together: a scale or squareness of j; for a drift ∝ s_w·t also of
+// w, and the coupling w·j.
+std::vector<std::vector<Term>> static_stand_ins(const Problem& pb, const Term& drift, int j) {
+  std::vector<Term> parts{position_term(j, drift.direction)};
+  if (drift.with_axis >= 0 && drift.with_axis != j) {
+    parts.push_back(position_term(drift.with_axis, drift.direction));
+    Term c;
+    c.kind = TermKind::coupling;
+    c.axis = std::min(j, drift.with_axis);
+    c.with_axis = std::max(j, drift.with_axis);
+    c.direction = drift.direction;
+    c.centre = pb.travel_mid;
+    c.half = pb.travel_half;
+    parts.push_back(c);
+  }
+  std::vector<std::vector<Term>> out;
+  for (std::size_t a = 0; a < parts.size(); ++a) {
+    out.push_back({parts[a]});
+    for (std::size_t b = a + 1; b < parts.size(); ++b) out.push_back({parts[a], parts[b]});
+  }
+  return out;
+}
+
+// A drift in the static effect's direction at each time constant.
+std::vector<std::vector<Term>> drift_stand_ins(const Term& effect,
+                                               const std::vector<double>& taus) {
+  std::vector<std::vector<Term>> out;
+  for (double tau : taus) {
+    Term drift;
+    drift.kind = TermKind::thermal_drift;
+    drift.axis = drift.direction = effect.direction;
+    drift.tau_s = tau;
+    out.push_back({drift});
+  }
+  return out;
 }
 
 // A swap test of effect e: what it removes given everything else of the fit
@@ -215,27 +280,7 @@ std::vector<std::string> mark_design_ambiguities(const Problem& pb,
       // Time itself (mostly) a function of these levels: the design walks
       // the levels in order, time and s_j go together, and a drift in time
       // is a function of s_j as much.
-      std::vector<double> t_sum(lv.size(), 0.0), t_n(lv.size(), 0.0);
-      double t_all = 0.0;
-      std::vector<std::size_t> level_of(pb.points.size());
-      for (std::size_t p = 0; p < pb.points.size(); ++p) {
-        const double s = pb.points[p].s[j];
-        level_of[p] = std::min(
-            static_cast<std::size_t>(std::lower_bound(lv.begin(), lv.end(), s - 1e-3) - lv.begin()),
-            lv.size() - 1);
-        t_sum[level_of[p]] += pb.points[p].t;
-        t_n[level_of[p]] += 1.0;
-        t_all += pb.points[p].t;
-      }
-      t_all /= static_cast<double>(pb.points.size());
-      double t_total = 0.0, t_within = 0.0;
-      for (std::size_t p = 0; p < pb.points.size(); ++p) {
-        const double t = pb.points[p].t;
-        t_total += (t - t_all) * (t - t_all);
-        const double mean = t_sum[level_of[p]] / t_n[level_of[p]];
-        t_within += (t - mean) * (t - mean);
-      }
-      const bool time_mostly_follows = t_total > 0.0 && t_within <= o.time_share_left * t_total;
+      const bool time_mostly_follows = time_within_levels(pb, j, lv) <= o.time_share_left;
       const std::string order_text = fmt::format(
           "measure the points again in another order or after a pause (in this design time and "
           "{} vary together: {} walks its {} levels in order)",
@@ -253,40 +298,9 @@ std::vector<std::string> mark_design_ambiguities(const Problem& pb,
           continue;
         const bool timed = depends_on_time(et);
         if (!timed && !in_span[e]) continue;
-        // Each stand-in: any function of the levels in the effect's direction
-        // (what a drift is on a design whose time is a function of s_j), or
-        // one or two static terms together (a drift ∝ s_w·t with t following
-        // s_j is a coupling w·j and parts linear in s_w and s_j), or, for a
-        // static effect, a drift at one time constant.
-        std::vector<std::vector<Term>> stand_ins;
-        if (timed) {
-          std::vector<Term> parts{position_term(j, et.direction)};
-          if (et.with_axis >= 0 && et.with_axis != j) {
-            parts.push_back(position_term(et.with_axis, et.direction));
-            Term c;
-            c.kind = TermKind::coupling;
-            c.axis = std::min(j, et.with_axis);
-            c.with_axis = std::max(j, et.with_axis);
-            c.direction = et.direction;
-            c.centre = pb.travel_mid;
-            c.half = pb.travel_half;
-            parts.push_back(c);
-          }
-          for (std::size_t a = 0; a < parts.size(); ++a) {
-            stand_ins.push_back({parts[a]});
-            for (std::size_t b = a + 1; b < parts.size(); ++b)
-              stand_ins.push_back({parts[a], parts[b]});
-          }
-        } else {
-          for (double tau : taus) {
-            Term drift;
-            drift.kind = TermKind::thermal_drift;
-            drift.axis = drift.direction = et.direction;
-            drift.tau_s = tau;
-            stand_ins.push_back({drift});
-          }
-        }
-        const SwapTest sw = swap_test(pb, D, cols, e, o.growth_alpha);
+        const std::vector<std::vector<Term>> stand_ins =
+            timed ? static_stand_ins(pb, et, j) : drift_stand_ins(et, taus);
+        const SwapTest sw = swap_test(pb, D, cols, e, o.swap_alpha);
         if (!sw.valid) continue;
         double d_best = 0.0;
         std::string best;
@@ -386,8 +400,8 @@ std::vector<std::string> mark_design_ambiguities(const Problem& pb,
         if ((mask[e] & mask[rv]) == 0) continue;
         // What the effect and the growth each add to everything else of the
         // fit; not shown to be more than the growth: the data do not prefer
-        // it significantly (at `growth_alpha`, one column's χ²).
-        const SwapTest sw = swap_test(pb, D, cols, e, o.growth_alpha);
+        // it significantly (at `swap_alpha`, one column's χ²).
+        const SwapTest sw = swap_test(pb, D, cols, e, o.swap_alpha);
         if (!sw.valid) continue;
         const double d_e = sw.d_e, d_g = sw.removes(growth);
         if (!(d_g > 0.0) || !(d_e - d_g < sw.margin)) continue;

@@ -17,7 +17,7 @@
 //    levels in order, e.g. a grid measured in one pass — the data decide by
 //    a swap test (the effect and a stand-in each added to everything else
 //    of the fit; the stand-in wins when it removes as much, or less by no
-//    more than a one-column χ² at `growth_alpha`): a drift in time is
+//    more than a one-column χ² at `swap_alpha`): a drift in time is
 //    ambiguous with any function of the levels in its direction or with the
 //    static terms it becomes when t follows s_j, and a static effect of the
 //    levels with a drift in its direction ("measure again in another order
@@ -29,7 +29,7 @@
 //    effect linear in s_j beside a reversal of that axis (a scale, a drift
 //    ∝ s_j·t, ...) may be the reversal's growth: when, given everything
 //    else, the growth column sign(v_j)·(s_j − mid) removes as much as the
-//    effect, or less by no more than a one-column χ² at `growth_alpha`
+//    effect, or less by no more than a one-column χ² at `swap_alpha`
 //    (the data do not prefer the effect), the effect is ambiguous ("drive
 //    the axis both ways over its whole travel").
 #include <array>
@@ -62,7 +62,9 @@ struct DesignAmbiguityOptions {
   // diagnose_problem gives its own candidates' grid).
   std::vector<double> tau_s;
   bool growing_reversal = true;
-  double growth_alpha = 0.01;
+  // The swap tests' level: one column's χ² at this α (the growth of a
+  // reversal, a drift against the static terms, and back).
+  double swap_alpha = 0.01;
 };
 
 // The levels of each axis when the design samples it at few levels spaced
