@@ -7,48 +7,15 @@
 #include <cmath>
 
 #include "abbe/diagnose/term.hpp"
+#include "coverage.hpp"
 
 namespace abbe::diagnose {
-namespace {
-
-constexpr double kTiny = 1e-9;
-
-struct Range {
-  double lo = 1e300, hi = -1e300;
-  void add(double x) {
-    lo = std::min(lo, x);
-    hi = std::max(hi, x);
-  }
-  bool varies() const { return hi - lo > kTiny; }
-};
-
-}  // namespace
 
 std::vector<BlindSpot> blind_spots(const Problem& pb, const DesignAmbiguityOptions& design,
                                    double min_period_mm, double max_period_mm) {
   std::vector<BlindSpot> out;
   if (pb.obs.empty()) return out;
-  // Over all points, and over the observations of each direction.
-  std::array<Range, 4> all;
-  std::array<Range, 3> tip;  // the tool tip's coordinates, for the text
-  std::array<std::array<Range, 4>, 3> in;
-  std::array<unsigned, 3> signs{0, 0, 0};  // bit 0: v_j < 0 seen, bit 1: v_j > 0
-  for (const PointContext& pc : pb.points) {
-    for (std::size_t v = 0; v < 3; ++v) {
-      all[v].add(pc.s[static_cast<Eigen::Index>(v)]);
-      tip[v].add(pc.p[static_cast<Eigen::Index>(v)]);
-    }
-    all[3].add(pc.t);
-    for (std::size_t j = 0; j < 3; ++j)
-      if (pc.dir[j] != 0) signs[j] |= pc.dir[j] < 0 ? 1u : 2u;
-  }
-  for (const Observation& ob : pb.obs) {
-    const PointContext& pc = pb.points[ob.point];
-    for (std::size_t i = 0; i < 3; ++i) {
-      if (std::abs(ob.u[static_cast<Eigen::Index>(i)]) <= kTiny) continue;
-      for (std::size_t v = 0; v < 3; ++v) in[i][v].add(pc.s[static_cast<Eigen::Index>(v)]);
-    }
-  }
+  const Coverage seen(pb);
   auto present = [&](std::size_t i) { return pb.direction_present[i]; };
 
   for (std::size_t i = 0; i < 3; ++i)
@@ -57,23 +24,23 @@ std::vector<BlindSpot> blind_spots(const Problem& pb, const DesignAmbiguityOptio
                                  variable_name(static_cast<int>(i))),
                      fmt::format("d{} is not measured", variable_name(static_cast<int>(i))),
                      fmt::format("measure d{} as well", variable_name(static_cast<int>(i)))});
-  if (!all[3].varies())
+  if (!seen.varies(3))
     out.push_back({"a drift in time (thermal_drift)",
                    "the data have no time (t is the same for every point)",
                    "record the time of each point (t, s since the start)"});
   for (std::size_t j = 0; j < 3; ++j) {
     const int a = static_cast<int>(j);
-    if (!all[j].varies()) {
+    if (!seen.varies(a)) {
       out.push_back(
           {fmt::format("every effect that varies with {} (scale, squareness, cycles, couplings "
                        "with {})",
                        variable_name(a), variable_name(a)),
            fmt::format("{} stands at one position ({} = {:.6g} mm)", axis_name(a), variable_name(a),
-                       tip[j].lo),
+                       seen.tip_lo(a)),
            fmt::format("measure at a second {} position (another plane)", axis_name(a))});
     } else {
       for (std::size_t i = 0; i < 3; ++i)
-        if (present(i) && !in[i][j].varies())
+        if (present(i) && !seen.varies_in(a, static_cast<int>(i)))
           out.push_back(
               {fmt::format("d{} as a function of {} (squareness or scale {}→{}, its cycles, "
                            "couplings with {})",
@@ -86,14 +53,14 @@ std::vector<BlindSpot> blind_spots(const Problem& pb, const DesignAmbiguityOptio
     }
     // (An axis at one position, approached one way, makes a reversal of it
     // a constant: the datum's, said above.)
-    if (signs[j] != 3u && all[j].varies())
+    if (!seen.reverses(a) && seen.varies(a))
       out.push_back(
           {fmt::format("a reversal of {} (backlash)", axis_name(a)),
-           signs[j] == 0u
+           !seen.has_direction(a)
                ? fmt::format("the data carry no approach direction of {} (v{} is 0 or missing)",
                              axis_name(a), variable_name(a))
                : fmt::format("{} approaches every point from one side", axis_name(a)),
-           signs[j] == 0u
+           !seen.has_direction(a)
                ? fmt::format("record v{}, the sign of {}'s last motion at each point",
                              variable_name(a), axis_name(a))
                : fmt::format("approach the points from both sides in {}", axis_name(a))});

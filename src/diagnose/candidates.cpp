@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "coverage.hpp"
+
 namespace abbe::diagnose {
 
 CandidateSet build_candidates(const Problem& pb, const CandidateOptions& o) {
@@ -13,32 +15,11 @@ CandidateSet build_candidates(const Problem& pb, const CandidateOptions& o) {
   };
   // What a term of direction i can be seen by: the variables' range and the
   // direction signs over the observations that measure direction i (a laser
-  // line along X measures d_x at one y and z only: a d_x ∝ y is its datum).
-  std::array<std::array<double, 4>, 3> lo_in{}, hi_in{};
-  std::array<std::array<unsigned, 3>, 3> signs_in{};  // bit 0: v_j < 0 seen, bit 1: v_j > 0
-  for (auto& row : lo_in) row.fill(1e300);
-  for (auto& row : hi_in) row.fill(-1e300);
-  for (const Observation& ob : pb.obs) {
-    const PointContext& pc = pb.points[ob.point];
-    for (std::size_t i = 0; i < 3; ++i) {
-      if (std::abs(ob.u[static_cast<Eigen::Index>(i)]) <= 1e-9) continue;
-      for (std::size_t v = 0; v < 4; ++v) {
-        const double x = v < 3 ? pc.s[static_cast<Eigen::Index>(v)] : pc.t;
-        lo_in[i][v] = std::min(lo_in[i][v], x);
-        hi_in[i][v] = std::max(hi_in[i][v], x);
-      }
-      for (std::size_t j = 0; j < 3; ++j)
-        if (pc.dir[j] != 0) signs_in[i][j] |= pc.dir[j] < 0 ? 1u : 2u;
-    }
-  }
-  auto varies_in = [&](int v, int i) {
-    const auto a = static_cast<std::size_t>(i), b = static_cast<std::size_t>(v);
-    return hi_in[a][b] - lo_in[a][b] > 1e-9;
-  };
-  // Both signs of v_j among them: else a reversal is a constant (datum).
-  auto reverses_in = [&](int j, int i) {
-    return signs_in[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] == 3u;
-  };
+  // line along X measures d_x at one y and z only: a d_x ∝ y is its datum);
+  // a reversal of j needs both signs of v_j there (else it is a constant).
+  const Coverage seen(pb);
+  auto varies_in = [&](int v, int i) { return seen.varies_in(v, i); };
+  auto reverses_in = [&](int j, int i) { return seen.reverses_in(j, i); };
   bool model_delta = false;
   std::array<bool, 3> eps{false, false, false};
   for (const PointContext& pc : pb.points) {
