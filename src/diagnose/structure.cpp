@@ -122,9 +122,13 @@ Combo grow(const Step& st, const Score* lead, const std::vector<const Score*>& p
       const Eigen::Index kj = k_combo + s.c->C.cols();
       const double s2j =
           std::max(st.rr - dj, 1e-300) / std::max(st.dof_base - static_cast<double>(kj), 1.0);
+      const double floor_share =
+          s.c->term.kind == TermKind::cyclic && st.o.cyclic_partner_full_floor
+              ? 1.0
+              : st.o.partner_floor_share;
       const double thr_added =
           s2j * std::max(chi2_upper_quantile(s.c->term.columns(), st.o.alpha / st.tests_named),
-                         st.o.partner_floor_share * st.lambda);
+                         floor_share * st.lambda);
       // The partner that adds most on the criterion (a searched cycle that
       // fits a line as well as a one-column squareness costs more).
       const double ic = st.ic_gain(dj - cb.d, st.cost(s.c->term));

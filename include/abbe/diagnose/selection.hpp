@@ -85,6 +85,9 @@ struct SelectionOptions {
   // of its own, but not so small that the model's own table error (a few
   // tenths of a µm, present in every data set) fills the place.
   double partner_floor_share = 0.5;
+  // A cyclic partner (its period searched) must pass the whole practical
+  // floor in what it adds, not `partner_floor_share` of it.
+  bool cyclic_partner_full_floor = true;
   // A cyclic partner of a combination must also be significant in what it
   // adds beside the smooth function it competes with (with the others): a
   // cycle is a function the smooth family does not resolve, so a real one
