@@ -211,8 +211,15 @@ std::vector<std::vector<Term>> partner_rivals(const Step& st, const Combo& combo
 void explain_structure(const Step& st, const Score* best_named, int step, StructureChoice& out,
                        std::vector<std::string>& log) {
   if (st.have_generic && (!best_named || best_named->d < st.o.name_ratio * st.g_best_d)) {
+    // A cycle leads only where it adds beside the smooth function, as a
+    // cyclic partner (cyclic_partner_beyond_smooth): else it is a piece of
+    // the smooth structure its searched period happened to fit.
+    SmoothSpan smooth(st);
     for (const Score& sc : st.scores)
       if (sc.d > sc.thr && st.in_structure(sc)) {
+        if (sc.c->term.kind == TermKind::cyclic && st.o.cyclic_partner_beyond_smooth &&
+            st.o.cyclic_lead_beyond_smooth && !smooth.adds({}, sc))
+          continue;
         out.lead = &sc;
         break;
       }

@@ -1083,6 +1083,30 @@ TEST(DiagnoseDesigns, ACyclicPartnerPassesTheWholeFloor) {
   EXPECT_EQ(run_case(Design::grid_irregular, h, seed, 0.0, &half).verdict, Verdict::wrong);
 }
 
+// A cycle leads a structure's combination only where it is significant
+// beside the smooth function (SelectionOptions::cyclic_lead_beyond_smooth):
+// case 108 of the grid, an off-centre coupling y·z→Y, is named as the
+// coupling with its linear parts (scale Y, squareness dY ∝ z); when any
+// significant cycle could lead, a cycle of Y (4.2 mm, `ambiguous` with its
+// aliases) took the place of the scale.
+TEST(DiagnoseDesigns, ACycleLeadsOnlyBesideTheSmoothFunction) {
+  const auto [h, seed] = sweep_case(Design::grid, 108);
+  ASSERT_EQ(h.shape, Shape::coupling);
+  auto kinds = [](const Case& c) {
+    std::set<TermKind> k;
+    for (const SelectedTerm& st : c.effects) k.insert(st.term.kind);
+    return k;
+  };
+  const Case with = run_case(Design::grid, h, seed);
+  EXPECT_EQ(with.verdict, Verdict::right) << with.found;
+  EXPECT_EQ(kinds(with).count(TermKind::cyclic), 0u) << with.found;
+  EXPECT_EQ(kinds(with).count(TermKind::scale), 1u) << with.found;
+  SelectionOptions any_lead;
+  any_lead.cyclic_lead_beyond_smooth = false;
+  const Case without = run_case(Design::grid, h, seed, 0.0, &any_lead);
+  EXPECT_EQ(kinds(without).count(TermKind::cyclic), 1u) << without.found;
+}
+
 // Gross outliers (issue 16): 2 % of the grid's points 20–50 µm off in one
 // component, on top of a hidden effect of 1–2 µm (2–4× the noise) or of
 // null data. The outliers are flagged and left out: the effect is still

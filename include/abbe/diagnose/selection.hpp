@@ -88,6 +88,9 @@ struct SelectionOptions {
   // A cyclic partner (its period searched) must pass the whole practical
   // floor in what it adds, not `partner_floor_share` of it.
   bool cyclic_partner_full_floor = true;
+  // And a cyclic lead of a structure must be significant beside its smooth
+  // function too.
+  bool cyclic_lead_beyond_smooth = true;
   // A cyclic partner of a combination must also be significant in what it
   // adds beside the smooth function it competes with (with the others): a
   // cycle is a function the smooth family does not resolve, so a real one
