@@ -18,8 +18,6 @@ CandidateSet build_candidates(const Problem& pb, const CandidateOptions& o) {
   // line along X measures d_x at one y and z only: a d_x ∝ y is its datum);
   // a reversal of j needs both signs of v_j there (else it is a constant).
   const Coverage seen(pb);
-  auto varies_in = [&](int v, int i) { return seen.varies_in(v, i); };
-  auto reverses_in = [&](int j, int i) { return seen.reverses_in(j, i); };
   bool model_delta = false;
   std::array<bool, 3> eps{false, false, false};
   for (const PointContext& pc : pb.points) {
@@ -42,14 +40,14 @@ CandidateSet build_candidates(const Problem& pb, const CandidateOptions& o) {
   for (int j = 0; j < 3; ++j) {
     for (int i = 0; i < 3; ++i) {
       if (!present(i)) continue;
-      if (varies_in(j, i)) {
+      if (seen.varies_in(j, i)) {
         Term t;
         t.kind = i == j ? TermKind::scale : TermKind::squareness;
         t.axis = j;
         t.direction = i;
         add(t);
       }
-      if (reverses_in(j, i)) {
+      if (seen.reverses_in(j, i)) {
         Term t;
         t.kind = TermKind::reversal;
         t.axis = j;
@@ -57,7 +55,7 @@ CandidateSet build_candidates(const Problem& pb, const CandidateOptions& o) {
         add(t);
       }
       for (int k = j + 1; k < 3; ++k)
-        if (varies_in(j, i) && varies_in(k, i)) {
+        if (seen.varies_in(j, i) && seen.varies_in(k, i)) {
           Term t;
           t.kind = TermKind::coupling;
           t.axis = j;
@@ -67,7 +65,7 @@ CandidateSet build_candidates(const Problem& pb, const CandidateOptions& o) {
           t.half = pb.travel_half;
           add(t);
         }
-      if (varies_in(j, i)) {
+      if (seen.varies_in(j, i)) {
         ScanFamily f;
         f.base.kind = TermKind::cyclic;
         f.base.axis = j;
@@ -92,9 +90,9 @@ CandidateSet build_candidates(const Problem& pb, const CandidateOptions& o) {
       }
   }
   for (int i = 0; i < 3; ++i) {
-    if (!present(i) || !varies_in(3, i)) continue;
+    if (!present(i) || !seen.varies_in(3, i)) continue;
     for (int w = -1; w < 3; ++w) {
-      if (w >= 0 && !varies_in(w, i)) continue;
+      if (w >= 0 && !seen.varies_in(w, i)) continue;
       ScanFamily f;
       f.base.kind = TermKind::thermal_drift;
       f.base.axis = w >= 0 ? w : i;

@@ -208,6 +208,32 @@ SwapTest swap_test(const Problem& pb, const Mat& D, const std::vector<Mat>& cols
   return sw;
 }
 
+// The stand-in (its terms not already in the fit) that removes most in the
+// effect's place, if it removes more than `d_best`: updates `d_best` and
+// `best` (its label, the terms joined by " + ").
+void best_stand_in(const Problem& pb, const SwapTest& sw,
+                   const std::vector<std::vector<Term>>& stand_ins,
+                   const std::vector<SelectedTerm>& effects, double& d_best, std::string& best) {
+  for (const std::vector<Term>& group : stand_ins) {
+    std::vector<Term> fresh;
+    std::string label;
+    for (const Term& c : group) {
+      const bool selected =
+          std::any_of(effects.begin(), effects.end(),
+                      [&](const SelectedTerm& other) { return other.term.label() == c.label(); });
+      if (selected) continue;  // already in the fit
+      fresh.push_back(c);
+      label += (label.empty() ? "" : " + ") + c.label();
+    }
+    if (fresh.empty()) continue;
+    const double d_c = sw.removes(span::columns_of(pb, fresh));
+    if (d_c > d_best) {
+      d_best = d_c;
+      best = label;
+    }
+  }
+}
+
 void add_alternative(SelectedTerm& st, const std::string& alt) {
   if (std::find(st.ambiguous_with.begin(), st.ambiguous_with.end(), alt) == st.ambiguous_with.end())
     st.ambiguous_with.push_back(alt);
@@ -308,29 +334,7 @@ std::vector<std::string> mark_design_ambiguities(const Problem& pb,
           d_best = levels.removes_in_place(sw.QA, sw.rA, et.direction);
           best = levels_text;
         }
-        for (const std::vector<Term>& group : stand_ins) {
-          std::vector<Mat> gc;
-          std::string label;
-          for (const Term& c : group) {
-            bool selected = false;
-            for (const SelectedTerm& other : effects)
-              selected = selected || other.term.label() == c.label();
-            if (selected) continue;  // already in the fit
-            gc.push_back(term_columns(pb, c));
-            label += (label.empty() ? "" : " + ") + c.label();
-          }
-          if (gc.empty()) continue;
-          Mat C(pb.y.size(), 0);
-          for (const Mat& mc : gc) {
-            C.conservativeResize(Eigen::NoChange, C.cols() + mc.cols());
-            C.rightCols(mc.cols()) = mc;
-          }
-          const double d_c = sw.removes(C);
-          if (d_c > d_best) {
-            d_best = d_c;
-            best = label;
-          }
-        }
+        best_stand_in(pb, sw, stand_ins, effects, d_best, best);
         if (best.empty() || !(sw.d_e - d_best < sw.margin)) continue;
         const std::string alt =
             timed ? best : fmt::format("thermal_drift t→{}", axis_name(et.direction));
