@@ -12,6 +12,7 @@
 
 #include "abbe/diagnose/separation.hpp"
 #include "abbe/diagnose/statistics.hpp"
+#include "backward_check.hpp"
 #include "candidate_fit.hpp"
 #include "final_fit.hpp"
 #include "parameter_scan.hpp"
@@ -144,6 +145,7 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
   std::vector<Term> chosen;
   std::vector<std::vector<std::string>> ambiguous;
   std::vector<std::string> separations;  // per chosen term: what would tell it from its rivals
+  std::vector<int> step_of;              // per chosen term: its step (−1: the datum)
   for (const Term& t : cs.datum) {
     const Mat C = term_columns(pb, t);
     // Invisible in these data: the measured directions see (almost) none of
@@ -159,6 +161,7 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     chosen.push_back(t);
     ambiguous.emplace_back();
     separations.emplace_back();
+    step_of.push_back(-1);
   }
   const std::size_t n_datum = chosen.size();
   const Mat Qd = Q;  // the datum's span
@@ -412,10 +415,12 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     chosen.push_back(pick);
     ambiguous.push_back(amb);
     separations.push_back(separation);
+    step_of.push_back(step);
     for (std::size_t i = 0; i < with_pick.size(); ++i) {
       chosen.push_back(with_pick[i]);
       ambiguous.push_back(with_amb[i]);
       separations.push_back(with_separation[i]);
+      step_of.push_back(step);
     }
     // A chosen fixed candidate cannot be chosen again.
     named.erase(std::remove_if(named.begin(), named.end(),
@@ -426,6 +431,40 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
                                  return false;
                                }),
                 named.end());
+  }
+
+  // The backward check (backward_check.hpp): a named effect that the ones
+  // chosen after it made redundant leaves the fit, the weakest first.
+  while (o.backward_check && chosen.size() > n_datum) {
+    const double dof = static_cast<double>(n - Q.cols());
+    if (dof < 1.0) break;
+    const auto weak = selection::least_needed_named(X, Qd, y, chosen, n_datum,
+                                                    r.squaredNorm() / dof, o.alpha / tests_named);
+    if (!weak) break;
+    res.log.push_back(fmt::format(
+        "backward check: {} dropped: ΔRSS {:.6g} beside the other effects, below {:.6g}",
+        chosen[weak->index].label(), weak->delta_rss, weak->threshold));
+    Eigen::Index first = 0;
+    for (std::size_t i = 0; i < weak->index; ++i) first += chosen[i].columns();
+    const Eigen::Index k = chosen[weak->index].columns();
+    Mat Xn(n, X.cols() - k);
+    Xn << X.leftCols(first), X.rightCols(X.cols() - first - k);
+    X = std::move(Xn);
+    const auto at = static_cast<std::ptrdiff_t>(weak->index);
+    // The rivals found for its partners in the same step were rivals beside
+    // it: the final rival check (rival_check.hpp) judges them anew.
+    for (std::size_t i = 0; i < chosen.size(); ++i)
+      if (step_of[i] == step_of[weak->index]) {
+        ambiguous[i].clear();
+        separations[i].clear();
+      }
+    chosen.erase(chosen.begin() + at);
+    ambiguous.erase(ambiguous.begin() + at);
+    separations.erase(separations.begin() + at);
+    step_of.erase(step_of.begin() + at);
+    Q = span::orthonormal(X);
+    r = y - Q * (Q.transpose() * y);
+    cv_prev = cross_validated_sse(pb, X, y, folds, o.folds);
   }
 
   // Final joint fit of every chosen term.

@@ -243,7 +243,14 @@ void explain_structure(const Step& st, const Score* best_named, int step, Struct
   const std::size_t shortlist = std::min(st.scores.size(), kShortlist);
   const std::vector<const Score*> pool = partner_pool(st, shortlist, out);
   const Combo best = best_combination(st, out.lead, shortlist, pool);
-  if (!explains(st, best)) return;
+  if (!explains(st, best)) {
+    std::string names;
+    for (const Score* c : best.members) names += (names.empty() ? "" : " + ") + c->c->term.label();
+    log.push_back(
+        fmt::format("step {}: {} (ΔRSS {:.6g}) do not explain what {} explains (ΔRSS {:.6g})",
+                    step + 1, names, best.d, st.g_best.label(), st.g_best_d));
+    return;
+  }
   out.lead = best.members.front();
   out.combination_wins = true;
   out.partners.assign(best.members.begin() + 1, best.members.end());

@@ -1034,8 +1034,11 @@ TEST(DiagnoseDesigns, GridTwoEffects) {
         : r.named[0] || r.named[1] ? "one"
                                    : "none",
         r.bad ? ", WRONG" : "", r.c.gain, r.c.oracle, r.c.part_oracle.at(0), r.c.part_oracle.at(1));
-    for (const SelectedTerm& st : r.c.effects)
-      std::cerr << fmt::format(" [{}{}]", st.term.label(), st.ambiguous_with.empty() ? "" : " ~");
+    for (const SelectedTerm& st : r.c.effects) {
+      std::string alt;
+      for (const auto& a : st.ambiguous_with) alt += (alt.empty() ? " ~ " : " | ") + a;
+      std::cerr << fmt::format(" [{}{}]", st.term.label(), alt);
+    }
     std::cerr << "\n";
   }
   std::cerr << fmt::format(
@@ -1065,6 +1068,26 @@ TEST(DiagnoseDesigns, AnotherLeadCombinesADriftThatGrowsWithPosition) {
     EXPECT_TRUE(with.named[0] && with.named[1]) << "case " << i << ": " << with.c.found;
     EXPECT_FALSE(with.bad) << "case " << i;
     const TwoEffects without = two_effects_case(i, &from_the_lead);
+    EXPECT_FALSE(without.named[0] && without.named[1]) << "case " << i << ": " << without.c.found;
+  }
+}
+
+// The backward check (SelectionOptions::backward_check): an effect chosen
+// early that later effects made redundant leaves the fit. Case 75 of the
+// two-effect sweep (a reversal of Y and a scale Y): a 4.2 mm cycle of Y,
+// aliased on the 8 levels, took the scale's line before the reversal was
+// in, and the scale came in third; without the check both stood,
+// `ambiguous` with each other. Case 96 (a reversal of Y and a squareness
+// dY ∝ z): a drift z·t→Y led their combination and added nothing beside
+// them; without the check the squareness stayed `ambiguous` beside it.
+TEST(DiagnoseDesigns, TheBackwardCheckDropsWhatLaterEffectsMadeRedundant) {
+  SelectionOptions forward_only;
+  forward_only.backward_check = false;
+  for (int i : {75, 96}) {
+    const TwoEffects with = two_effects_case(i);
+    EXPECT_TRUE(with.named[0] && with.named[1]) << "case " << i << ": " << with.c.found;
+    EXPECT_FALSE(with.bad) << "case " << i;
+    const TwoEffects without = two_effects_case(i, &forward_only);
     EXPECT_FALSE(without.named[0] && without.named[1]) << "case " << i << ": " << without.c.found;
   }
 }

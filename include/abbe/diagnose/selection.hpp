@@ -10,7 +10,9 @@
 // `unexplained` function explains; otherwise the smooth function is taken
 // and reported as unexplained structure. Candidates whose fitted
 // contributions are nearly identical to the winner's are reported with it
-// as ambiguous.
+// as ambiguous. After the forward steps, each named effect is tested again
+// beside the others (backward_check.hpp) and one that later steps made
+// redundant is dropped.
 #include <Eigen/Core>
 #include <cstdint>
 #include <functional>
@@ -107,6 +109,10 @@ struct SelectionOptions {
   // per variable of a pair); empty: the candidates' fixed degree.
   std::vector<int> single_degrees{2, 3, 4, 6, 8, 10, 12};
   std::vector<int> pair_degrees{2, 3, 4, 5, 6};
+  // After the forward steps, each named effect is tested again beside the
+  // other named effects (backward_check.hpp); one the later steps made
+  // redundant is dropped (false: every effect chosen stays).
+  bool backward_check = true;
   // Optional: called at the start of each selection step (0-based), e.g. for
   // a progress bar.
   std::function<void(int step)> on_step;
