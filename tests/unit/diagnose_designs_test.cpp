@@ -863,8 +863,9 @@ Rates sweep(Design design, bool no_directions = false) {
       if (c.verdict == Verdict::right) tag = "unidentifiable, named (lucky)";
     }
     std::cerr << fmt::format(
-        "{} | seed {:3d} | {:<55} | {:<28} | gain {:5.2f} oracle {:5.2f} |{}\n", label, i, h.text,
-        tag, c.gain, c.oracle, c.found);
+        "{} | seed {:3d} | {:<55} | {:<28} | gain {:5.2f} oracle {:5.2f} | noise {:.2f} ({:.2f}) "
+        "|{}\n",
+        label, i, h.text, tag, c.gain, c.oracle, c.noise_um, c.noise_independent_um, c.found);
   }
   auto pct = [](int a, int b) { return b ? 100.0 * a / b : 0.0; };
   std::cerr << fmt::format(
