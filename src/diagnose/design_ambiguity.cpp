@@ -5,9 +5,12 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "abbe/diagnose/candidates.hpp"
 #include "abbe/diagnose/statistics.hpp"
+#include "abbe/io/units.hpp"
 #include "span.hpp"
 
 namespace abbe::diagnose {
@@ -122,6 +125,36 @@ class LevelSpan {
     }
     const Mat M = Mat(diag.asDiagonal()) - P.transpose() * P;
     return b.dot(M.completeOrthogonalDecomposition().solve(b));
+  }
+
+  // The same sums for functions of the levels given by their values V
+  // (levels × k): what they remove in place, (Vᵀb)ᵀ(VᵀMV)⁺(Vᵀb), for many V
+  // at the cost of one pass over the observations.
+  struct InPlace {
+    Vec b;
+    Mat M;
+    double removes(const Mat& V) const {
+      const Vec bv = V.transpose() * b;
+      const Mat Mv = V.transpose() * M * V;
+      return bv.dot(Mv.completeOrthogonalDecomposition().solve(bv));
+    }
+  };
+  InPlace in_place(const Mat& QA, const Vec& rA, int i) const {
+    const auto m = static_cast<Eigen::Index>(gram_.size());
+    InPlace ip{Vec::Zero(m), Mat()};
+    Vec diag = Vec::Zero(m);
+    Mat P = Mat::Zero(QA.cols(), m);
+    for (std::size_t ob = 0; ob < level_.size(); ++ob) {
+      const double c = pb_.obs[ob].u[i];
+      if (c == 0.0) continue;
+      const auto l = static_cast<Eigen::Index>(level_[ob]);
+      const auto row = static_cast<Eigen::Index>(ob);
+      ip.b[l] += c * rA[row];
+      diag[l] += c * c;
+      if (QA.cols() > 0) P.col(l) += c * QA.row(row).transpose();
+    }
+    ip.M = Mat(diag.asDiagonal()) - P.transpose() * P;
+    return ip;
   }
 
  private:
@@ -367,6 +400,67 @@ std::vector<std::string> mark_design_ambiguities(const Problem& pb,
         log.push_back(
             fmt::format("design: {} is a function of the {} levels of {}: a cycle fits it",
                         et.label(), lv.size(), variable_name(j)));
+      }
+      // A cycle of j is known by its samples at the levels only: its period
+      // is the data's where no other period of the catalogue's range (away
+      // from its own main lobe, 1/span in frequency) removes as much in its
+      // place beside everything else of the fit (one column's χ² at
+      // `swap_alpha`); else a cycle at that other period is as good.
+      for (std::size_t e = 0; o.cycle_period_test && e < effects.size(); ++e) {
+        const Term& et = effects[e].term;
+        if (et.kind != TermKind::cyclic || et.axis != j || et.direction < 0 ||
+            !(et.period_mm > 0.0) || lv.size() <= o.few_levels)
+          continue;
+        const SwapTest sw = swap_test(pb, D, cols, e, o.swap_alpha);
+        if (!sw.valid) continue;
+        const LevelSpan::InPlace ip = levels.in_place(sw.QA, sw.rA, et.direction);
+        const double span_j = lv.back() - lv.front();
+        const double f_e = 1.0 / et.period_mm, df = 1.0 / (8.0 * span_j);
+        const double max_period = o.max_period_mm > 0.0 ? o.max_period_mm : 100.0;
+        Mat V(static_cast<Eigen::Index>(lv.size()), 2);
+        auto removes_at = [&](double f) {
+          for (std::size_t l = 0; l < lv.size(); ++l) {
+            const double w = units::kTwoPi * f * lv[l];
+            V(static_cast<Eigen::Index>(l), 0) = std::sin(w);
+            V(static_cast<Eigen::Index>(l), 1) = std::cos(w);
+          }
+          return ip.removes(V);
+        };
+        // A scan at 1/8 of the main lobe, then each local peak refined on a
+        // grid 20 times finer (an alias fits exactly only at its frequency).
+        std::vector<std::pair<double, double>> scan;  // (f, removed)
+        for (double f = 1.0 / max_period; f <= 1.0 / min_period_mm; f += df)
+          if (std::abs(f - f_e) >= 1.0 / span_j) scan.emplace_back(f, removes_at(f));
+        double d_other = 0.0, p_other = 0.0;
+        for (std::size_t k = 0; k < scan.size(); ++k) {
+          const bool peak = (k == 0 || scan[k].second >= scan[k - 1].second) &&
+                            (k + 1 == scan.size() || scan[k].second >= scan[k + 1].second);
+          if (!peak) continue;
+          for (int q = -20; q <= 20; ++q) {
+            const double f = scan[k].first + q * df / 20.0;
+            if (std::abs(f - f_e) < 1.0 / span_j || f < 1.0 / max_period || f > 1.0 / min_period_mm)
+              continue;
+            const double d = removes_at(f);
+            if (d > d_other) {
+              d_other = d;
+              p_other = 1.0 / f;
+            }
+          }
+        }
+        if (!(d_other > 0.0) || !(sw.d_e - d_other < sw.margin)) continue;
+        Term other = et;
+        other.period_mm = p_other;
+        add_alternative(effects[e], other.label());
+        add_alternative(effects[e], levels_text);
+        if (effects[e].separate_by.empty())
+          effects[e].separate_by = fmt::format(
+              "measure {} at more levels, at irregular spacing (on its {} levels a cycle of {} "
+              "at {:.4g} mm fits as well)",
+              axis_name(j), lv.size(), axis_name(j), p_other);
+        log.push_back(fmt::format(
+            "design: {} (ΔRSS {:.6g}) is not told from a cycle at {:.4g} mm on the {} levels of {} "
+            "(ΔRSS {:.6g})",
+            et.label(), sw.d_e, p_other, lv.size(), variable_name(j), d_other));
       }
       for (std::size_t g = 0; g < effects.size(); ++g) {
         if (!in_span[g] || !generic_of(effects[g].term, j)) continue;

@@ -119,6 +119,7 @@ Diagnosis diagnose_problem(const Problem& full, const DiagnoseOptions& o) {
   d.log = sel.log;
   DesignAmbiguityOptions design = o.design;
   if (design.tau_s.empty()) design.tau_s = o.candidates.tau_s;
+  if (!(design.max_period_mm > 0.0)) design.max_period_mm = o.candidates.max_period_mm;
   for (std::string& line :
        mark_design_ambiguities(pb, d.datum, d.effects, design, o.candidates.min_period_mm))
     d.log.push_back(std::move(line));

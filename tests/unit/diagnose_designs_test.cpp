@@ -952,7 +952,7 @@ TEST(DiagnoseDesigns, GridWithoutDirectionsInferred) {
 // place of a drift ∝ y·t, on 8 irregular levels of Y — and 0/25 where not
 // identifiable (200 seeds; 40 seeds: 25/25, 0, 0/5).
 TEST(DiagnoseDesigns, GridIrregular) {
-  check(sweep(Design::grid_irregular), {0.9, 0.04, 0.02, 0.95, 0.95});
+  check(sweep(Design::grid_irregular), {0.9, 0.02, 0.02, 0.95, 0.95});
 }
 TEST(DiagnoseDesigns, BallbarXY) { check(sweep(Design::ballbar_xy), {0.0, 0.02, 0.02, 0.95, 0.0}); }
 TEST(DiagnoseDesigns, AxisLines) {
@@ -1097,14 +1097,24 @@ TEST(DiagnoseDesigns, TheBackwardCheckDropsWhatLaterEffectsMadeRedundant) {
 // practical floor in what it adds (SelectionOptions::cyclic_partner_full_floor):
 // case 109 of the irregular grid, an off-centre coupling x·y→Z, is named
 // as the coupling and its squareness part; with half the floor a cycle of
-// X in Z (10.6 mm, 0.17 µm rms) joined them, a wrong name.
+// X in Z (10.6 mm, 0.17 µm rms) joined them.
 TEST(DiagnoseDesigns, ACyclicPartnerPassesTheWholeFloor) {
   const auto [h, seed] = sweep_case(Design::grid_irregular, 109);
   ASSERT_EQ(h.shape, Shape::coupling);
   SelectionOptions half;
   half.cyclic_partner_full_floor = false;
-  EXPECT_EQ(run_case(Design::grid_irregular, h, seed).verdict, Verdict::right);
-  EXPECT_EQ(run_case(Design::grid_irregular, h, seed, 0.0, &half).verdict, Verdict::wrong);
+  auto cycles = [](const Case& c) {
+    return std::count_if(c.effects.begin(), c.effects.end(),
+                         [](const SelectedTerm& st) { return st.term.kind == TermKind::cyclic; });
+  };
+  const Case with = run_case(Design::grid_irregular, h, seed);
+  EXPECT_EQ(with.verdict, Verdict::right) << with.found;
+  EXPECT_EQ(cycles(with), 0) << with.found;
+  // With half the floor the cycle joins (now reported `ambiguous` with a
+  // cycle at another period by the cycle period test, design_ambiguity.hpp;
+  // before that test, a wrong name).
+  const Case without = run_case(Design::grid_irregular, h, seed, 0.0, &half);
+  EXPECT_EQ(cycles(without), 1) << without.found;
 }
 
 // A cycle leads a structure's combination only where it is significant

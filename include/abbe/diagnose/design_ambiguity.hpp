@@ -62,6 +62,11 @@ struct DesignAmbiguityOptions {
   // diagnose_problem gives its own candidates' grid).
   std::vector<double> tau_s;
   bool growing_reversal = true;
+  // A cycle of a levelled axis is tested against a cycle at every other
+  // period of the catalogue's range (up to max_period_mm; 0: 100 mm) in its
+  // place: its period is the data's only where none removes as much.
+  bool cycle_period_test = true;
+  double max_period_mm = 0.0;
   // The swap tests' level: one column's χ² at this α (the growth of a
   // reversal, a drift against the static terms, and back).
   double swap_alpha = 0.01;
