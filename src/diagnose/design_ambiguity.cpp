@@ -274,6 +274,118 @@ void add_alternative(SelectedTerm& st, const std::string& alt) {
 
 }  // namespace
 
+namespace {
+
+// The distinct positions among `v` when they are few (3 to max_levels) and
+// at least twice the catalogue's shortest period apart; else empty.
+std::vector<double> levels_of(std::vector<double> v, const DesignAmbiguityOptions& o,
+                              double min_period_mm) {
+  std::sort(v.begin(), v.end());
+  std::vector<double> levels;
+  for (double x : v) {
+    if (levels.empty() || x - levels.back() > 1e-3) levels.push_back(x);
+    if (levels.size() > o.max_levels) break;
+  }
+  if (levels.size() < 3 || levels.size() > o.max_levels) return {};
+  double gap = 1e300;
+  for (std::size_t l = 1; l < levels.size(); ++l) gap = std::min(gap, levels[l] - levels[l - 1]);
+  return gap >= 2.0 * min_period_mm ? levels : std::vector<double>{};
+}
+
+// The cycle period test of effect e (a cycle of axis j in direction i): the
+// positions of s_j where direction i is measured, when they are levels (a
+// laser line's targets, a grid's levels). A cycle there is known by its
+// samples at the levels only: its period is the data's where no other period
+// of the catalogue's range (away from its own main lobe, 1/span in
+// frequency) removes as much in its place beside everything else of the fit
+// (one column's χ² at `swap_alpha`); and it must remove most of what any
+// function of the levels removes in its place (`cycle_share_of_levels`),
+// else it is a piece of a structure that is not a cycle (e.g. the model's
+// own table error at the levels), its period the one of many that fit best.
+void test_cycle_period(const Problem& pb, const Mat& D, const std::vector<Mat>& cols, std::size_t e,
+                       std::vector<SelectedTerm>& effects, const DesignAmbiguityOptions& o,
+                       double min_period_mm, std::vector<std::string>& log) {
+  const Term& et = effects[e].term;
+  const int j = et.axis, i = et.direction;
+  std::vector<double> v;
+  std::vector<bool> seen(pb.points.size(), false);
+  for (const Observation& ob : pb.obs)
+    if (std::abs(ob.u[i]) > 1e-9 && !seen[ob.point]) {
+      seen[ob.point] = true;
+      v.push_back(pb.points[ob.point].s[j]);
+    }
+  const std::vector<double> lv = levels_of(std::move(v), o, min_period_mm);
+  if (lv.size() <= o.few_levels) return;  // none, or the few-levels rule's
+  const SwapTest sw = swap_test(pb, D, cols, e, o.swap_alpha);
+  if (!sw.valid) return;
+  const LevelSpan levels(pb, j, lv);
+  const std::string levels_text =
+      fmt::format("any function of {} on its {} levels", variable_name(j), lv.size());
+  const double d_levels = levels.removes_in_place(sw.QA, sw.rA, i);
+  if (sw.d_e < o.cycle_share_of_levels * d_levels) {
+    add_alternative(effects[e], levels_text);
+    if (effects[e].separate_by.empty())
+      effects[e].separate_by = fmt::format(
+          "measure {} at more positions, at irregular spacing (on its {} levels the cycle is "
+          "{:.0f} % of what a function of the levels explains there)",
+          axis_name(j), lv.size(), 100.0 * sw.d_e / d_levels);
+    log.push_back(fmt::format(
+        "design: {} (ΔRSS {:.6g}) is {:.0f} % of what any function of the {} levels of {} "
+        "removes in its place (ΔRSS {:.6g})",
+        et.label(), sw.d_e, 100.0 * sw.d_e / d_levels, lv.size(), variable_name(j), d_levels));
+    return;
+  }
+  const LevelSpan::InPlace ip = levels.in_place(sw.QA, sw.rA, i);
+  const double span_j = lv.back() - lv.front();
+  const double f_e = 1.0 / et.period_mm, df = 1.0 / (8.0 * span_j);
+  const double max_period = o.max_period_mm > 0.0 ? o.max_period_mm : 100.0;
+  Mat V(static_cast<Eigen::Index>(lv.size()), 2);
+  auto removes_at = [&](double f) {
+    for (std::size_t l = 0; l < lv.size(); ++l) {
+      const double w = units::kTwoPi * f * lv[l];
+      V(static_cast<Eigen::Index>(l), 0) = std::sin(w);
+      V(static_cast<Eigen::Index>(l), 1) = std::cos(w);
+    }
+    return ip.removes(V);
+  };
+  // A scan at 1/8 of the main lobe, then each local peak refined on a grid
+  // 20 times finer (an alias fits exactly only at its frequency).
+  std::vector<std::pair<double, double>> scan;  // (f, removed)
+  for (double f = 1.0 / max_period; f <= 1.0 / min_period_mm; f += df)
+    if (std::abs(f - f_e) >= 1.0 / span_j) scan.emplace_back(f, removes_at(f));
+  double d_other = 0.0, p_other = 0.0;
+  for (std::size_t k = 0; k < scan.size(); ++k) {
+    const bool peak = (k == 0 || scan[k].second >= scan[k - 1].second) &&
+                      (k + 1 == scan.size() || scan[k].second >= scan[k + 1].second);
+    if (!peak) continue;
+    for (int q = -20; q <= 20; ++q) {
+      const double f = scan[k].first + q * df / 20.0;
+      if (std::abs(f - f_e) < 1.0 / span_j || f < 1.0 / max_period || f > 1.0 / min_period_mm)
+        continue;
+      const double d = removes_at(f);
+      if (d > d_other) {
+        d_other = d;
+        p_other = 1.0 / f;
+      }
+    }
+  }
+  if (!(d_other > 0.0) || !(sw.d_e - d_other < sw.margin)) return;
+  Term other = et;
+  other.period_mm = p_other;
+  add_alternative(effects[e], other.label());
+  add_alternative(effects[e], levels_text);
+  if (effects[e].separate_by.empty())
+    effects[e].separate_by = fmt::format(
+        "measure {} at more positions, at irregular spacing (on its {} levels a cycle of {} at "
+        "{:.4g} mm fits as well)",
+        axis_name(j), lv.size(), axis_name(j), p_other);
+  log.push_back(fmt::format(
+      "design: {} (ΔRSS {:.6g}) is not told from a cycle at {:.4g} mm on the {} levels of {} "
+      "(ΔRSS {:.6g})",
+      et.label(), sw.d_e, p_other, lv.size(), variable_name(j), d_other));
+}
+}  // namespace
+
 std::array<std::vector<double>, 3> levelled_axes(const Problem& pb, const DesignAmbiguityOptions& o,
                                                  double min_period_mm) {
   std::array<std::vector<double>, 3> out;
@@ -281,16 +393,7 @@ std::array<std::vector<double>, 3> levelled_axes(const Problem& pb, const Design
     std::vector<double> v;
     v.reserve(pb.points.size());
     for (const PointContext& pc : pb.points) v.push_back(pc.s[j]);
-    std::sort(v.begin(), v.end());
-    std::vector<double> levels;
-    for (double x : v) {
-      if (levels.empty() || x - levels.back() > 1e-3) levels.push_back(x);
-      if (levels.size() > o.max_levels) break;
-    }
-    if (levels.size() < 3 || levels.size() > o.max_levels) continue;
-    double gap = 1e300;
-    for (std::size_t l = 1; l < levels.size(); ++l) gap = std::min(gap, levels[l] - levels[l - 1]);
-    if (gap >= 2.0 * min_period_mm) out[static_cast<std::size_t>(j)] = std::move(levels);
+    out[static_cast<std::size_t>(j)] = levels_of(std::move(v), o, min_period_mm);
   }
   return out;
 }
@@ -401,67 +504,6 @@ std::vector<std::string> mark_design_ambiguities(const Problem& pb,
             fmt::format("design: {} is a function of the {} levels of {}: a cycle fits it",
                         et.label(), lv.size(), variable_name(j)));
       }
-      // A cycle of j is known by its samples at the levels only: its period
-      // is the data's where no other period of the catalogue's range (away
-      // from its own main lobe, 1/span in frequency) removes as much in its
-      // place beside everything else of the fit (one column's χ² at
-      // `swap_alpha`); else a cycle at that other period is as good.
-      for (std::size_t e = 0; o.cycle_period_test && e < effects.size(); ++e) {
-        const Term& et = effects[e].term;
-        if (et.kind != TermKind::cyclic || et.axis != j || et.direction < 0 ||
-            !(et.period_mm > 0.0) || lv.size() <= o.few_levels)
-          continue;
-        const SwapTest sw = swap_test(pb, D, cols, e, o.swap_alpha);
-        if (!sw.valid) continue;
-        const LevelSpan::InPlace ip = levels.in_place(sw.QA, sw.rA, et.direction);
-        const double span_j = lv.back() - lv.front();
-        const double f_e = 1.0 / et.period_mm, df = 1.0 / (8.0 * span_j);
-        const double max_period = o.max_period_mm > 0.0 ? o.max_period_mm : 100.0;
-        Mat V(static_cast<Eigen::Index>(lv.size()), 2);
-        auto removes_at = [&](double f) {
-          for (std::size_t l = 0; l < lv.size(); ++l) {
-            const double w = units::kTwoPi * f * lv[l];
-            V(static_cast<Eigen::Index>(l), 0) = std::sin(w);
-            V(static_cast<Eigen::Index>(l), 1) = std::cos(w);
-          }
-          return ip.removes(V);
-        };
-        // A scan at 1/8 of the main lobe, then each local peak refined on a
-        // grid 20 times finer (an alias fits exactly only at its frequency).
-        std::vector<std::pair<double, double>> scan;  // (f, removed)
-        for (double f = 1.0 / max_period; f <= 1.0 / min_period_mm; f += df)
-          if (std::abs(f - f_e) >= 1.0 / span_j) scan.emplace_back(f, removes_at(f));
-        double d_other = 0.0, p_other = 0.0;
-        for (std::size_t k = 0; k < scan.size(); ++k) {
-          const bool peak = (k == 0 || scan[k].second >= scan[k - 1].second) &&
-                            (k + 1 == scan.size() || scan[k].second >= scan[k + 1].second);
-          if (!peak) continue;
-          for (int q = -20; q <= 20; ++q) {
-            const double f = scan[k].first + q * df / 20.0;
-            if (std::abs(f - f_e) < 1.0 / span_j || f < 1.0 / max_period || f > 1.0 / min_period_mm)
-              continue;
-            const double d = removes_at(f);
-            if (d > d_other) {
-              d_other = d;
-              p_other = 1.0 / f;
-            }
-          }
-        }
-        if (!(d_other > 0.0) || !(sw.d_e - d_other < sw.margin)) continue;
-        Term other = et;
-        other.period_mm = p_other;
-        add_alternative(effects[e], other.label());
-        add_alternative(effects[e], levels_text);
-        if (effects[e].separate_by.empty())
-          effects[e].separate_by = fmt::format(
-              "measure {} at more levels, at irregular spacing (on its {} levels a cycle of {} "
-              "at {:.4g} mm fits as well)",
-              axis_name(j), lv.size(), axis_name(j), p_other);
-        log.push_back(fmt::format(
-            "design: {} (ΔRSS {:.6g}) is not told from a cycle at {:.4g} mm on the {} levels of {} "
-            "(ΔRSS {:.6g})",
-            et.label(), sw.d_e, p_other, lv.size(), variable_name(j), d_other));
-      }
       for (std::size_t g = 0; g < effects.size(); ++g) {
         if (!in_span[g] || !generic_of(effects[g].term, j)) continue;
         for (std::size_t e = 0; e < effects.size(); ++e) {
@@ -478,6 +520,12 @@ std::vector<std::string> mark_design_ambiguities(const Problem& pb,
         }
       }
     }
+  }
+
+  for (std::size_t e = 0; o.cycle_period_test && e < effects.size(); ++e) {
+    const Term& et = effects[e].term;
+    if (et.kind == TermKind::cyclic && et.axis >= 0 && et.direction >= 0 && et.period_mm > 0.0)
+      test_cycle_period(pb, D, cols, e, effects, o, min_period_mm, log);
   }
 
   if (o.growing_reversal) {

@@ -178,7 +178,7 @@ TEST(DiagnoseDesignAmbiguity, ACycleIsNamedOnlyWhereTheLevelsFixItsPeriod) {
     if (d.ambiguous) {
       ASSERT_FALSE(log.empty());
       EXPECT_NE(log[0].find("is not told from a cycle at"), std::string::npos) << log[0];
-      EXPECT_NE(eff[0].separate_by.find("measure X at more levels"), std::string::npos);
+      EXPECT_NE(eff[0].separate_by.find("measure X at more positions"), std::string::npos);
     }
   }
 }

@@ -66,6 +66,10 @@ struct DesignAmbiguityOptions {
   // period of the catalogue's range (up to max_period_mm; 0: 100 mm) in its
   // place: its period is the data's only where none removes as much.
   bool cycle_period_test = true;
+  // …and it must remove at least this share of what any function of the
+  // levels removes in its place (as a named kind of the smooth function's,
+  // SelectionOptions::name_ratio).
+  double cycle_share_of_levels = 0.7;
   double max_period_mm = 0.0;
   // The swap tests' level: one column's χ² at this α (the growth of a
   // reversal, a drift against the static terms, and back).
