@@ -111,20 +111,8 @@ class LevelSpan {
   // of r_A when added to the orthonormal span QA (r_A ⟂ QA): bᵀ M⁺ b with
   // b = Cᵀ r_A and M = CᵀC − (QAᵀC)ᵀ(QAᵀC), each a sum over observations.
   double removes_in_place(const Mat& QA, const Vec& rA, int i) const {
-    const auto m = static_cast<Eigen::Index>(gram_.size());
-    Vec b = Vec::Zero(m), diag = Vec::Zero(m);
-    Mat P = Mat::Zero(QA.cols(), m);
-    for (std::size_t ob = 0; ob < level_.size(); ++ob) {
-      const double c = pb_.obs[ob].u[i];
-      if (c == 0.0) continue;
-      const auto l = static_cast<Eigen::Index>(level_[ob]);
-      const auto row = static_cast<Eigen::Index>(ob);
-      b[l] += c * rA[row];
-      diag[l] += c * c;
-      if (QA.cols() > 0) P.col(l) += c * QA.row(row).transpose();
-    }
-    const Mat M = Mat(diag.asDiagonal()) - P.transpose() * P;
-    return b.dot(M.completeOrthogonalDecomposition().solve(b));
+    const InPlace ip = in_place(QA, rA, i);
+    return ip.b.dot(ip.M.completeOrthogonalDecomposition().solve(ip.b));
   }
 
   // The same sums for functions of the levels given by their values V

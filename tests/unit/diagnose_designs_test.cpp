@@ -1068,16 +1068,23 @@ TEST(DiagnoseDesigns, GridTwoEffects) {
 // a scale) leads no combination that explains it, but the drift ∝ s with a
 // drift of its own time constant does (SelectionOptions::combination_leads;
 // cases 36 and 90 of the two-effect sweep, both named only with it).
-TEST(DiagnoseDesigns, AnotherLeadCombinesADriftThatGrowsWithPosition) {
-  SelectionOptions from_the_lead;
-  from_the_lead.combination_leads = 1;
-  for (int i : {36, 90}) {
+// Two-effect cases that name both effects with the default rules and not
+// with `without` (a rule switched off): the rule is what names them.
+void expect_both_named_only_with_the_rule(const std::vector<int>& cases,
+                                          const SelectionOptions& without) {
+  for (int i : cases) {
     const TwoEffects with = two_effects_case(i);
     EXPECT_TRUE(with.named[0] && with.named[1]) << "case " << i << ": " << with.c.found;
     EXPECT_FALSE(with.bad) << "case " << i;
-    const TwoEffects without = two_effects_case(i, &from_the_lead);
-    EXPECT_FALSE(without.named[0] && without.named[1]) << "case " << i << ": " << without.c.found;
+    const TwoEffects off = two_effects_case(i, &without);
+    EXPECT_FALSE(off.named[0] && off.named[1]) << "case " << i << ": " << off.c.found;
   }
+}
+
+TEST(DiagnoseDesigns, AnotherLeadCombinesADriftThatGrowsWithPosition) {
+  SelectionOptions from_the_lead;
+  from_the_lead.combination_leads = 1;
+  expect_both_named_only_with_the_rule({36, 90}, from_the_lead);
 }
 
 // The backward check (SelectionOptions::backward_check): an effect chosen
@@ -1091,13 +1098,7 @@ TEST(DiagnoseDesigns, AnotherLeadCombinesADriftThatGrowsWithPosition) {
 TEST(DiagnoseDesigns, TheBackwardCheckDropsWhatLaterEffectsMadeRedundant) {
   SelectionOptions forward_only;
   forward_only.backward_check = false;
-  for (int i : {75, 96}) {
-    const TwoEffects with = two_effects_case(i);
-    EXPECT_TRUE(with.named[0] && with.named[1]) << "case " << i << ": " << with.c.found;
-    EXPECT_FALSE(with.bad) << "case " << i;
-    const TwoEffects without = two_effects_case(i, &forward_only);
-    EXPECT_FALSE(without.named[0] && without.named[1]) << "case " << i << ": " << without.c.found;
-  }
+  expect_both_named_only_with_the_rule({75, 96}, forward_only);
 }
 
 // A cycle as the third member of a combination must pass the whole
