@@ -65,7 +65,7 @@ std::optional<Redundant> least_needed_named(const Mat& X, const Mat& Qd, const V
     const double thr = s2 * chi2_upper_quantile(static_cast<int>(blk.count), alpha);
     if (d / thr < weakest_ratio) {
       weakest_ratio = d / thr;
-      weakest = Redundant{blk.index, d, thr};
+      weakest = Redundant{blk.index, blk.first, d, thr};
     }
   }
   return weakest;

@@ -1,5 +1,5 @@
 #pragma once
-// The backward check of the forward selection (docs/diagnosis.md, step 5):
+// The backward check of the forward selection (docs/diagnosis.md, step 3):
 // a named effect chosen early may be made redundant by named effects chosen
 // after it — e.g. a cycle whose aliased wave, on the regular levels of a
 // grid, took a scale's line and part of a reversal before the reversal was
@@ -19,9 +19,10 @@
 namespace abbe::diagnose::selection {
 
 struct Redundant {
-  std::size_t index = 0;   // in `chosen`
-  double delta_rss = 0.0;  // what it removes given the others, µm²
-  double threshold = 0.0;  // σ̂²·χ²_k(α), µm²
+  std::size_t index = 0;          // in `chosen`
+  Eigen::Index first_column = 0;  // its first column in X
+  double delta_rss = 0.0;         // what it removes given the others, µm²
+  double threshold = 0.0;         // σ̂²·χ²_k(α), µm²
 };
 
 // X: the chosen terms' columns side by side, in the order of `chosen` (its

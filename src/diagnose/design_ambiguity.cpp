@@ -260,10 +260,6 @@ void add_alternative(SelectedTerm& st, const std::string& alt) {
     st.ambiguous_with.push_back(alt);
 }
 
-}  // namespace
-
-namespace {
-
 // The distinct positions among `v` when they are few (3 to max_levels) and
 // at least twice the catalogue's shortest period apart; else empty.
 std::vector<double> levels_of(std::vector<double> v, const DesignAmbiguityOptions& o,
@@ -278,6 +274,48 @@ std::vector<double> levels_of(std::vector<double> v, const DesignAmbiguityOption
   double gap = 1e300;
   for (std::size_t l = 1; l < levels.size(); ++l) gap = std::min(gap, levels[l] - levels[l - 1]);
   return gap >= 2.0 * min_period_mm ? levels : std::vector<double>{};
+}
+
+// The period of the catalogue's range, away from `period_mm`'s main lobe
+// (1/span in frequency), whose cycle removes most in place (ip), and what it
+// removes: a scan at 1/8 of the main lobe, then each local peak refined on a
+// grid 20 times finer (an alias fits exactly only at its frequency).
+std::pair<double, double> best_other_period(const LevelSpan::InPlace& ip,
+                                            const std::vector<double>& lv, double period_mm,
+                                            const DesignAmbiguityOptions& o, double min_period_mm) {
+  const double span = lv.back() - lv.front();
+  const double f_e = 1.0 / period_mm, df = 1.0 / (8.0 * span);
+  const double f_lo =
+      1.0 / (o.max_period_mm > 0.0 ? o.max_period_mm : CandidateOptions{}.max_period_mm);
+  const double f_hi = 1.0 / min_period_mm;
+  Mat V(static_cast<Eigen::Index>(lv.size()), 2);
+  auto removes_at = [&](double f) {
+    for (std::size_t l = 0; l < lv.size(); ++l) {
+      const double w = units::kTwoPi * f * lv[l];
+      V(static_cast<Eigen::Index>(l), 0) = std::sin(w);
+      V(static_cast<Eigen::Index>(l), 1) = std::cos(w);
+    }
+    return ip.removes(V);
+  };
+  std::vector<std::pair<double, double>> scan;  // (f, removed)
+  for (double f = f_lo; f <= f_hi; f += df)
+    if (std::abs(f - f_e) >= 1.0 / span) scan.emplace_back(f, removes_at(f));
+  double d_best = 0.0, p_best = 0.0;
+  for (std::size_t k = 0; k < scan.size(); ++k) {
+    const bool peak = (k == 0 || scan[k].second >= scan[k - 1].second) &&
+                      (k + 1 == scan.size() || scan[k].second >= scan[k + 1].second);
+    if (!peak) continue;
+    for (int q = -20; q <= 20; ++q) {
+      const double f = scan[k].first + q * df / 20.0;
+      if (std::abs(f - f_e) < 1.0 / span || f < f_lo || f > f_hi) continue;
+      const double d = removes_at(f);
+      if (d > d_best) {
+        d_best = d;
+        p_best = 1.0 / f;
+      }
+    }
+  }
+  return {d_best, p_best};
 }
 
 // The cycle period test of effect e (a cycle of axis j in direction i): the
@@ -323,40 +361,8 @@ void test_cycle_period(const Problem& pb, const Mat& D, const std::vector<Mat>& 
         et.label(), sw.d_e, 100.0 * sw.d_e / d_levels, lv.size(), variable_name(j), d_levels));
     return;
   }
-  const LevelSpan::InPlace ip = levels.in_place(sw.QA, sw.rA, i);
-  const double span_j = lv.back() - lv.front();
-  const double f_e = 1.0 / et.period_mm, df = 1.0 / (8.0 * span_j);
-  const double max_period = o.max_period_mm > 0.0 ? o.max_period_mm : 100.0;
-  Mat V(static_cast<Eigen::Index>(lv.size()), 2);
-  auto removes_at = [&](double f) {
-    for (std::size_t l = 0; l < lv.size(); ++l) {
-      const double w = units::kTwoPi * f * lv[l];
-      V(static_cast<Eigen::Index>(l), 0) = std::sin(w);
-      V(static_cast<Eigen::Index>(l), 1) = std::cos(w);
-    }
-    return ip.removes(V);
-  };
-  // A scan at 1/8 of the main lobe, then each local peak refined on a grid
-  // 20 times finer (an alias fits exactly only at its frequency).
-  std::vector<std::pair<double, double>> scan;  // (f, removed)
-  for (double f = 1.0 / max_period; f <= 1.0 / min_period_mm; f += df)
-    if (std::abs(f - f_e) >= 1.0 / span_j) scan.emplace_back(f, removes_at(f));
-  double d_other = 0.0, p_other = 0.0;
-  for (std::size_t k = 0; k < scan.size(); ++k) {
-    const bool peak = (k == 0 || scan[k].second >= scan[k - 1].second) &&
-                      (k + 1 == scan.size() || scan[k].second >= scan[k + 1].second);
-    if (!peak) continue;
-    for (int q = -20; q <= 20; ++q) {
-      const double f = scan[k].first + q * df / 20.0;
-      if (std::abs(f - f_e) < 1.0 / span_j || f < 1.0 / max_period || f > 1.0 / min_period_mm)
-        continue;
-      const double d = removes_at(f);
-      if (d > d_other) {
-        d_other = d;
-        p_other = 1.0 / f;
-      }
-    }
-  }
+  const auto [d_other, p_other] =
+      best_other_period(levels.in_place(sw.QA, sw.rA, i), lv, et.period_mm, o, min_period_mm);
   if (!(d_other > 0.0) || !(sw.d_e - d_other < sw.margin)) return;
   Term other = et;
   other.period_mm = p_other;

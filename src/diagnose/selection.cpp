@@ -444,8 +444,7 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     res.log.push_back(fmt::format(
         "backward check: {} dropped: ΔRSS {:.6g} beside the other effects, below {:.6g}",
         chosen[weak->index].label(), weak->delta_rss, weak->threshold));
-    Eigen::Index first = 0;
-    for (std::size_t i = 0; i < weak->index; ++i) first += chosen[i].columns();
+    const Eigen::Index first = weak->first_column;
     const Eigen::Index k = chosen[weak->index].columns();
     Mat Xn(n, X.cols() - k);
     Xn << X.leftCols(first), X.rightCols(X.cols() - first - k);

@@ -63,13 +63,15 @@ struct DesignAmbiguityOptions {
   std::vector<double> tau_s;
   bool growing_reversal = true;
   // A cycle of a levelled axis is tested against a cycle at every other
-  // period of the catalogue's range (up to max_period_mm; 0: 100 mm) in its
-  // place: its period is the data's only where none removes as much.
+  // period of the catalogue's range in its place: its period is the data's
+  // only where none removes as much.
   bool cycle_period_test = true;
   // …and it must remove at least this share of what any function of the
   // levels removes in its place (as a named kind of the smooth function's,
   // SelectionOptions::name_ratio).
   double cycle_share_of_levels = 0.7;
+  // The longest period the test tries (0: the candidates' default;
+  // diagnose_problem gives its own candidates' max_period_mm).
   double max_period_mm = 0.0;
   // The swap tests' level: one column's χ² at this α (the growth of a
   // reversal, a drift against the static terms, and back).
