@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "abbe/diagnose/selection.hpp"
 #include "abbe/io/units.hpp"
 
 namespace abbe::diagnose::selection {
@@ -116,6 +117,47 @@ Term scan_parameter(const ScanFamily& f, const ScanInput& in, PowerCache& power_
     }
   }
   return t;
+}
+
+void refine_period_exactly(const Problem& pb, const Mat& Q, const Vec& r, double half_step,
+                           Cached& c) {
+  if (c.term.kind != TermKind::cyclic || !(c.term.period_mm > 0.0) || !(half_step > 0.0)) return;
+  const double f_scan = 1.0 / c.term.period_mm;
+  auto removes = [&](double f) {
+    Term t = c.term;
+    t.period_mm = 1.0 / f;
+    const Mat C = term_columns(pb, t);
+    const Mat CtC = C.transpose() * C;
+    const Mat QtC = Q.transpose() * C;
+    return delta_rss(C, CtC, QtC, r);
+  };
+  // Golden section on [f − h, f + h] (the frequency stays positive).
+  constexpr double kInvPhi = 0.6180339887498949;
+  double a = std::max(f_scan - half_step, 0.5 * f_scan), b = f_scan + half_step;
+  double x1 = b - kInvPhi * (b - a), x2 = a + kInvPhi * (b - a);
+  double g1 = removes(x1), g2 = removes(x2);
+  for (int it = 0; it < 24; ++it) {
+    if (g1 >= g2) {
+      b = x2;
+      x2 = x1;
+      g2 = g1;
+      x1 = b - kInvPhi * (b - a);
+      g1 = removes(x1);
+    } else {
+      a = x1;
+      x1 = x2;
+      g1 = g2;
+      x2 = a + kInvPhi * (b - a);
+      g2 = removes(x2);
+    }
+  }
+  const double f_best = g1 >= g2 ? x1 : x2;
+  const double g_best = std::max(g1, g2);
+  if (!(g_best > removes(f_scan))) return;
+  c.term.period_mm = 1.0 / f_best;
+  c.C = term_columns(pb, c.term);
+  c.CtC = c.C.transpose() * c.C;
+  c.QtC = Q.transpose() * c.C;
 }
 
 }  // namespace abbe::diagnose::selection

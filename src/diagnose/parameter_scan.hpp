@@ -33,4 +33,17 @@ using PowerCache = std::array<std::vector<double>, 3>;
 Term scan_parameter(const ScanFamily& f, const ScanInput& in, PowerCache& power_cache,
                     std::vector<double>& aliases);
 
+// A cycle's period refined on the exact ΔRSS beside span(Q) (r ⟂ Q): a
+// golden-section search in frequency within ±half_step of the scan's
+// estimate. The periodogram's peak is that of the raw projection on the
+// (subsampled) residual; where sine and cosine are not orthogonal on the
+// points (few or irregular levels) or the datum's columns take a part of
+// the cycle, it lies a fraction of a lobe off the least-squares period, and
+// over a long travel that fraction beats against the data: a second cycle
+// at a neighbouring period is then needed for what the first left. c's
+// term, columns and products are replaced when the refined period removes
+// more.
+void refine_period_exactly(const Problem& pb, const Mat& Q, const Vec& r, double half_step,
+                           Cached& c);
+
 }  // namespace abbe::diagnose::selection

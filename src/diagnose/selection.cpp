@@ -320,6 +320,25 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     StructureChoice structure;
     explain_structure(step_view, best_named, step, structure, res.log);
     if (structure.lead_explains || structure.combination_wins) best_named = structure.lead;
+    // The chosen cycles' periods on the exact ΔRSS (after the choice, so
+    // that the finer period does not give a cycle an edge over the fixed
+    // candidates it competed with: on a few regular levels every period is
+    // an alias, and a freer one fits the noise).
+    if (o.exact_period && best_named) {
+      auto refine = [&](const Score* s) {
+        for (std::size_t i = 0; i < scanned.size(); ++i)
+          if (&scanned[i] == s->c && s->c->term.kind == TermKind::cyclic) {
+            const std::vector<double>& grid = cs.scanned[i].grid;
+            if (grid.size() < 2) return;
+            selection::refine_period_exactly(pb, Q, r, std::abs(1.0 / grid[1] - 1.0 / grid[0]),
+                                             scanned[i]);
+            scores[static_cast<std::size_t>(s - scores.data())].d =
+                delta_rss(s->c->C, s->c->CtC, s->c->QtC, r);
+          }
+      };
+      refine(best_named);
+      for (const Score* s : structure.partners) refine(s);
+    }
 
     Term pick;
     Mat C;

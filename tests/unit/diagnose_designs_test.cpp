@@ -54,27 +54,8 @@ constexpr double kNoise = 0.5;  // µm, per measured component
 // shorter than two table intervals removed (else every data set holds the
 // generator's 10 mm screw cycle, itself a hidden effect).
 const testing::VirtualMachine& noisy_vm() {
-  static const testing::VirtualMachine vm = [] {
-    sim::GeneratorOptions go;
-    go.seed = 7;
-    go.profile = "mazak";
-    sim::GeneratedMachine g = sim::generate_machine(go);
-    for (auto& axis : g.truth.axes)
-      for (auto& c : axis.components) {
-        std::vector<sim::Wave> keep;
-        for (const auto& w : c.waves)
-          if (w.wavelength >= 2.0 * go.spacing_mm) keep.push_back(w);
-        c.waves = keep;
-      }
-    const sim::CampaignResult r = sim::run_campaign(g);
-    const auto dir = std::filesystem::path(::testing::TempDir()) /
-                     ("abbe_designs_vm_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir);
-    { std::ofstream(dir / "errors.csv") << sim::table_to_csv(r); }
-    machine::Machine m =
-        machine::Machine::parse(sim::machine_to_yaml(g, r, "errors.csv"), "<vm>", dir.string());
-    return testing::VirtualMachine{std::move(g), std::move(m)};
-  }();
+  static const testing::VirtualMachine vm =
+      testing::build_virtual_machine(true, "abbe_designs_vm", sim::GeneratorOptions{}.noise_scale);
   return vm;
 }
 
@@ -934,9 +915,12 @@ TEST(DiagnoseDesigns, Ballbar) { check(sweep(Design::ballbar), {0.9, 0.02, 0.02,
 TEST(DiagnoseDesigns, Diagonals) { check(sweep(Design::diagonals), {0.0, 0.02, 0.04, 0.95, 0.0}); }
 // A grid walked once (9 × 7 × 3): 82/88 named right, 0 wrong, 0/62 wrong
 // where not identifiable (200 seeds; 40 seeds: 16/18, 0, 0/12). ISO 230-2
-// laser lines along the three axes: 92/96, 3 wrong (a cycle at a period
-// that is not the pitch error's, beside its right cycle; an arm offset
-// beside a pitch error's cycles), 0/54 (40 seeds: 15/15, 0, 0/15). A ballbar in XY
+// laser lines along the three axes: 93/96, 2 wrong (a cycle at a period
+// that is not the pitch error's, beside its right cycle), 0/54 (40 seeds:
+// 14/15, 1, 0/15). Before the chosen cycles' periods were refined on the
+// fit (exact_period): 92/96, 3 wrong, and 15/15, 0 at 40 seeds — case 4, a
+// cycle at 11.34 mm beside a pitch error of 18.7 mm, was `ambiguous` with
+// a cycle at 9.34 mm (the harmonic) before and is named alone now. A ballbar in XY
 // only: 64/69, 0 wrong, 0/81 (40 seeds: 12/14, 0, 0/16; the misses are
 // drifts of Y that one circle pair cannot tell from a drift ∝ x).
 TEST(DiagnoseDesigns, GridOnePass) {
@@ -963,7 +947,7 @@ TEST(DiagnoseDesigns, GridIrregular) {
 }
 TEST(DiagnoseDesigns, BallbarXY) { check(sweep(Design::ballbar_xy), {0.0, 0.02, 0.02, 0.95, 0.0}); }
 TEST(DiagnoseDesigns, AxisLines) {
-  check(sweep(Design::axis_lines), {0.93, 0.04, 0.02, 0.95, 0.95});
+  check(sweep(Design::axis_lines), {0.93, 0.07, 0.02, 0.95, 0.95});
 }
 
 // Two effects together on the grid (issue 16: "both named"): two
@@ -1123,6 +1107,32 @@ TEST(DiagnoseDesigns, ACyclicPartnerPassesTheWholeFloor) {
   // before that test, a wrong name).
   const Case without = run_case(Design::grid_irregular, h, seed, 0.0, &half);
   EXPECT_EQ(cycles(without), 1) << without.found;
+}
+
+// A chosen cycle's period is refined on the exact ΔRSS
+// (SelectionOptions::exact_period): on the laser lines, cases 69 (pitch
+// error of X, 8.9 mm) and 142 (37.1 mm) are named as the pitch error and
+// its harmonic, two cycles. With the periodogram's period alone, the
+// fundamental a fraction of a lobe off beat against the data over the
+// travel: a third cycle at a neighbouring period (69: 8.85 mm beside
+// 8.92 mm, and an arm offset) or at an alias of the harmonic (142) came in,
+// a wrong name.
+TEST(DiagnoseDesigns, AChosenCyclesPeriodIsRefinedOnTheFit) {
+  auto cycles = [](const Case& c) {
+    return std::count_if(c.effects.begin(), c.effects.end(),
+                         [](const SelectedTerm& st) { return st.term.kind == TermKind::cyclic; });
+  };
+  SelectionOptions periodogram_only;
+  periodogram_only.exact_period = false;
+  for (int i : {69, 142}) {
+    const auto [h, seed] = sweep_case(Design::axis_lines, i);
+    ASSERT_EQ(h.shape, Shape::pitch);
+    const Case with = run_case(Design::axis_lines, h, seed);
+    EXPECT_EQ(with.verdict, Verdict::right) << i << with.found;
+    EXPECT_EQ(cycles(with), 2) << i << with.found;
+    const Case without = run_case(Design::axis_lines, h, seed, 0.0, &periodogram_only);
+    EXPECT_EQ(without.verdict, Verdict::wrong) << i << without.found;
+  }
 }
 
 // A cycle leads a structure's combination only where it is significant

@@ -1,8 +1,9 @@
 // The searched parameters of the selection's scan (parameter_scan.cpp).
 // The period of a cycle: the periodogram's grid steps a quarter of
 // 1/travel, and the peak between two grid frequencies is refined by a
-// parabola (SelectionOptions::refine_period; that case is also run without
-// the refinement, to show the test could fail without it). The time
+// parabola (SelectionOptions::refine_period), then the chosen cycle's on
+// the exact ΔRSS (exact_period); that case is also run with each alone and
+// with neither, to show the test could fail without them. The time
 // constant of a drift: the largest projection of the residual on the
 // drift's column without its mean per set (each set's offset is datum).
 #include <gtest/gtest.h>
@@ -65,9 +66,14 @@ TEST(DiagnosePeriodScan, APeriodBetweenTheGridsFrequenciesIsRefined) {
       ++close;
     else
       ADD_FAILURE() << "seed " << seed << ": period off by " << 100.0 * e << " %";
+    // The chosen cycle's refinement on the exact ΔRSS (exact_period) alone
+    // gets there too from the grid's frequency.
     o.refine_period = false;
+    const double e_exact = cycle_error(select_effects(pb, cs, o));
+    EXPECT_LT(e_exact, 1e-3) << "seed " << seed << ": the exact refinement alone";
+    o.exact_period = false;
     const double e0 = cycle_error(select_effects(pb, cs, o));
-    std::cout << "; without the refinement " << 100.0 * e0 << " %\n";
+    std::cout << "; without either refinement " << 100.0 * e0 << " %\n";
     if (e0 > 2e-3) ++off_without;
   }
   EXPECT_EQ(close, seeds);

@@ -117,12 +117,15 @@ BENCHMARK(BM_DiagnoseGrid)
 // range(0): points; range(1): 1 with the swap test after the fit
 // (rival_check.hpp), 0 without — its cost as a ratio in the same run;
 // range(2): the hidden effects (make_setup); range(3): 1 with the backward
-// check after the forward selection (backward_check.hpp), 0 without.
+// check after the forward selection (backward_check.hpp), 0 without;
+// range(4): 1 with a chosen cycle's period refined on the exact ΔRSS
+// (SelectionOptions::exact_period), 0 with the periodogram's.
 void BM_Diagnose(benchmark::State& state) {
   const Setup s = make_setup(static_cast<int>(state.range(0)), static_cast<int>(state.range(2)));
   abbe::diagnose::DiagnoseOptions o;
   o.rivals.enabled = state.range(1) != 0;
   o.selection.backward_check = state.range(3) != 0;
+  o.selection.exact_period = state.range(4) != 0;
   std::size_t effects = 0;
   for (auto _ : state) {
     const abbe::diagnose::Diagnosis d = abbe::diagnose::diagnose(s.machine, s.data, o);
@@ -133,12 +136,14 @@ void BM_Diagnose(benchmark::State& state) {
   state.counters["effects"] = static_cast<double>(effects);
 }
 BENCHMARK(BM_Diagnose)
-    ->Args({10000, 1, 0, 1})
-    ->Args({100000, 1, 0, 1})
-    ->Args({100000, 1, 0, 0})
-    ->Args({100000, 0, 0, 1})
-    ->Args({100000, 1, 1, 1})
-    ->Args({100000, 1, 1, 0})
+    ->Args({10000, 1, 0, 1, 1})
+    ->Args({100000, 1, 0, 1, 1})
+    ->Args({100000, 1, 0, 0, 1})
+    ->Args({100000, 1, 0, 1, 0})
+    ->Args({100000, 0, 0, 1, 1})
+    ->Args({100000, 1, 1, 1, 1})
+    ->Args({100000, 1, 1, 0, 1})
+    ->Args({100000, 1, 1, 1, 0})
     ->Unit(benchmark::kSecond)
     ->Iterations(1);
 
