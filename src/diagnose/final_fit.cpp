@@ -4,9 +4,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "searched_uncertainty.hpp"
+
 namespace abbe::diagnose::selection {
 
-void fit_chosen(const Mat& X, const Vec& y, const Mat& Qd, const Chosen& ch, SelectionResult& res) {
+void fit_chosen(const Problem& pb, const Mat& X, const Vec& y, const Mat& Qd, const Chosen& ch,
+                SelectionResult& res) {
   const Eigen::Index n = y.size();
   const std::vector<Term>& chosen = ch.terms;
   const std::vector<std::vector<std::string>>& ambiguous = ch.ambiguous;
@@ -25,6 +28,7 @@ void fit_chosen(const Mat& X, const Vec& y, const Mat& Qd, const Chosen& ch, Sel
   }
   struct StageFit {
     std::vector<std::size_t> terms;
+    Mat Xs;  // the stage's columns
     Vec beta;
     Mat inv;  // (XᵀX)⁻¹
   };
@@ -38,7 +42,8 @@ void fit_chosen(const Mat& X, const Vec& y, const Mat& Qd, const Chosen& ch, Sel
       }
     residual = target;
     if (P == 0) return f;
-    Mat Xs(n, P);
+    Mat& Xs = f.Xs;
+    Xs.resize(n, P);
     Eigen::Index c = 0;
     for (std::size_t i : f.terms) {
       Xs.middleCols(c, chosen[i].columns()) = X.middleCols(start[i], chosen[i].columns());
@@ -80,6 +85,8 @@ void fit_chosen(const Mat& X, const Vec& y, const Mat& Qd, const Chosen& ch, Sel
         st.term.coef.push_back(bt[c]);
         st.term.stderr_.push_back(std::sqrt(std::max(s2 * Vt(c, c), 0.0)));
       }
+      if (!smooth && i >= n_datum)
+        st.term.searched_stderr = searched_parameter_stderr(pb, st.term, f->Xs, f->inv, s2);
       // SS this term alone removes given the others of its stage: βᵀ V⁻¹ β.
       const double drop = bt.dot(Vt.ldlt().solve(bt));
       const double of = i < n_datum ? res.baseline_sse : res.datum_sse;

@@ -493,7 +493,7 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
         std::sqrt(r.squaredNorm() / std::max<double>(static_cast<double>(n - X.cols()), 1.0));
     if (chosen.empty()) return res;
   }
-  fit_chosen(X, y, Qd, {chosen, ambiguous, separations, n_datum}, res);
+  fit_chosen(pb, X, y, Qd, {chosen, ambiguous, separations, n_datum}, res);
   return res;
 }
 

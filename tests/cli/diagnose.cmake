@@ -11,12 +11,25 @@ if(NOT CMAKE_SCRIPT_MODE_FILE)
   add_test(NAME diagnose_hidden_effect_sweep
            COMMAND $<TARGET_FILE:abbe_tests> --gtest_filter=DiagnoseHiddenEffect.*)
   set_tests_properties(diagnose_hidden_effect_sweep PROPERTIES LABELS slow TIMEOUT 1800
-                       ENVIRONMENT ABBE_DIAGNOSE_SEEDS=200)
-  # The honest harness on real measurement designs, 200 seeds per design.
-  add_test(NAME diagnose_designs_sweep
-           COMMAND $<TARGET_FILE:abbe_tests> --gtest_filter=DiagnoseDesigns.*)
-  set_tests_properties(diagnose_designs_sweep PROPERTIES LABELS slow TIMEOUT 3600
-                       ENVIRONMENT ABBE_DIAGNOSE_SEEDS=200)
+                       COST 500 ENVIRONMENT ABBE_DIAGNOSE_SEEDS=200)
+  # The honest harness on real measurement designs, 200 seeds per design,
+  # in three parts of about equal time (the toolpath alone is a third) so
+  # that `ctest --parallel` spreads them over the cores; COST makes ctest
+  # start them first on a fresh build, where it has no timings yet.
+  set(grids "DiagnoseDesigns.Grid:DiagnoseDesigns.GridIrregular:DiagnoseDesigns.GridWithoutDirectionsInferred")
+  foreach(part toolpath grids others)
+    if(part STREQUAL "toolpath")
+      set(filter DiagnoseDesigns.Toolpath)
+    elseif(part STREQUAL "grids")
+      set(filter ${grids})
+    else()
+      set(filter "DiagnoseDesigns.*-DiagnoseDesigns.Toolpath:${grids}")
+    endif()
+    add_test(NAME diagnose_designs_sweep_${part}
+             COMMAND $<TARGET_FILE:abbe_tests> --gtest_filter=${filter})
+    set_tests_properties(diagnose_designs_sweep_${part} PROPERTIES LABELS slow TIMEOUT 3600
+                         COST 1000 ENVIRONMENT ABBE_DIAGNOSE_SEEDS=200)
+  endforeach()
   return()
 endif()
 

@@ -11,6 +11,7 @@ if(ABBE_FUZZ_CLANGXX)
   set_tests_properties(fuzz_program PROPERTIES
     LABELS fuzz
     TIMEOUT 1800
+    COST 800
     SKIP_RETURN_CODE 77
     ENVIRONMENT "ABBE_FUZZ_CXX=${ABBE_FUZZ_CLANGXX}")
 else()

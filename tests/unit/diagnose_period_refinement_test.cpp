@@ -15,7 +15,6 @@
 namespace abbe::diagnose::selection {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kSpan = 800.0;             // mm of travel along X
 constexpr double kGridStep = 0.25 / kSpan;  // the scan's frequency step (candidates.cpp)
 constexpr double kTruePeriod = 13.37;       // mm
@@ -23,26 +22,7 @@ constexpr double kTruePeriod = 13.37;       // mm
 // One laser line along X: 400 targets at irregular positions in
 // [zero, zero + 800], read along X; dx = amplitude·sin(2πx/P + 0.4) + noise.
 Problem line(double zero, double amplitude, double noise_um) {
-  Problem pb;
-  std::vector<double> y;
-  std::mt19937_64 rng(11);
-  std::uniform_real_distribution<double> u(0.0, kSpan);
-  std::normal_distribution<double> n(0.0, 1.0);
-  for (int k = 0; k < 400; ++k) {
-    const double x = u(rng);
-    PointContext pc;
-    pc.p = {zero + x, 0.0, 0.0};
-    pc.s = pc.p;
-    pc.dir = {1, 1, 1};
-    pc.set = "a";
-    // The signal is a function of x, not of the zero: shifting the zero
-    // shifts only the phase the fit finds.
-    test::add_reading(pb, y, pc, Eigen::Vector3d::UnitX(),
-                      amplitude * std::sin(2.0 * kPi * x / kTruePeriod + 0.4) + noise_um * n(rng));
-  }
-  test::finish_problem(pb, y, "a", {true, false, false}, Eigen::Vector3d(zero, 0.0, 0.0),
-                       Eigen::Vector3d(zero + kSpan, 0.0, 0.0));
-  return pb;
+  return test::sine_line(zero, kSpan, 400, kTruePeriod, amplitude, 0.4, noise_um, 11, 12);
 }
 
 struct Fit {

@@ -4,8 +4,10 @@
 // measured directions and the travel box the candidates are normalised to.
 #include <Eigen/Core>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -36,6 +38,33 @@ inline void add_reading(Problem& pb, std::vector<double>& y, const PointContext&
   y.push_back(value);
   pb.points.push_back(pc);
   pb.lines.push_back(pb.points.size() + 1);
+}
+
+// A laser line along X: n readings at irregular positions x in [0, span]
+// (drawn with position_seed), at machine position zero + x, read along X:
+// dx = amplitude·sin(2πx/period + phase) + N(0, σ²) (noise_seed). The
+// signal is a function of x, so another zero shifts only the phase a fit
+// finds. One set "a".
+inline Problem sine_line(double zero, double span, int n, double period, double amplitude,
+                         double phase, double sigma, std::uint64_t position_seed,
+                         std::uint64_t noise_seed) {
+  Problem pb;
+  std::vector<double> y;
+  std::mt19937_64 at(position_seed), rng(noise_seed);
+  std::uniform_real_distribution<double> u(0.0, span);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  for (int k = 0; k < n; ++k) {
+    const double x = u(at);
+    PointContext pc;
+    pc.p = pc.s = Eigen::Vector3d(zero + x, 0.0, 0.0);
+    pc.dir = {1, 1, 1};
+    pc.set = "a";
+    add_reading(pb, y, pc, Eigen::Vector3d::UnitX(),
+                amplitude * std::sin(6.283185307179586 * x / period + phase) + sigma * noise(rng));
+  }
+  finish_problem(pb, y, "a", {true, false, false}, Eigen::Vector3d(zero, 0.0, 0.0),
+                 Eigen::Vector3d(zero + span, 0.0, 0.0));
+  return pb;
 }
 
 // Two laser lines, there and back, 11 targets 40 mm apart, 5 s apart: along

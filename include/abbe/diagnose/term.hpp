@@ -64,6 +64,10 @@ struct Term {
 
   std::vector<double> coef;     // fitted coefficients (one per column)
   std::vector<double> stderr_;  // their standard errors
+  // The standard uncertainty of the searched parameter (cyclic: period_mm;
+  // thermal_drift with τ > 0: tau_s) from the final fit's curvature beside
+  // the other named effects (final_fit.hpp); 0: not computed.
+  double searched_stderr = 0.0;
 
   int columns() const;
   // g_c(point) for every column c, into out (3 × columns()).

@@ -24,9 +24,10 @@ EffectDescriptor cyclic() {
   };
   d.description = [](const Term& t) {
     return fmt::format(
-        "{} oscillates with {} (period {:.2f} mm, {:.2f} µm): ballscrew pitch "
+        "{} oscillates with {} (period {:.2f}{} mm, {:.2f} µm): ballscrew pitch "
         "error between table points",
         axis_name(t.direction), axis_name(t.axis), t.period_mm,
+        t.searched_stderr > 0.0 ? fmt::format(" ± {:.2g}", t.searched_stderr) : std::string(),
         std::hypot(coef_or_zero(t, 0), coef_or_zero(t, 1)));
   };
   d.params = [](const Term& t) -> NamedValues {
@@ -40,7 +41,9 @@ EffectDescriptor cyclic() {
     // Amplitude error ≈ the coefficient errors (sin/cos columns are nearly orthogonal).
     const double amp_se = std::hypot(se(0), se(1)) / std::sqrt(2.0);
     const double amp = std::hypot(coef_or_zero(t, 0), coef_or_zero(t, 1));
-    return {{"amplitude_um", amp_se}, {"phase_rad", amp > 0.0 ? amp_se / amp : 0.0}};
+    return {{"amplitude_um", amp_se},
+            {"phase_rad", amp > 0.0 ? amp_se / amp : 0.0},
+            {"period_mm", t.searched_stderr}};
   };
   d.read_fields = [](Term& t, const OverlayFields& in) {
     t.period_mm = in.number("period_mm");

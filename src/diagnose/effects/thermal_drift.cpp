@@ -15,6 +15,11 @@ namespace {
 std::string time_law(const Term& t) {
   return t.tau_s > 0.0 ? fmt::format("τ {:.0f} s", t.tau_s) : std::string("linear in t");
 }
+// The same with τ's standard uncertainty where the fit gave one.
+std::string time_law_with_u(const Term& t) {
+  if (!(t.tau_s > 0.0) || !(t.searched_stderr > 0.0)) return time_law(t);
+  return fmt::format("τ {:.0f} ± {:.2g} s", t.tau_s, t.searched_stderr);
+}
 }  // namespace
 
 EffectDescriptor thermal_drift() {
@@ -38,13 +43,19 @@ EffectDescriptor thermal_drift() {
           "{} grows with time ∝ {} ({:+.2f} ppm{}, {}): thermal expansion during "
           "warm-up",
           dir, variable_name(t.with_axis), coef_or_zero(t, 0), t.tau_s > 0.0 ? "" : " per hour",
-          time_law(t));
+          time_law_with_u(t));
     return fmt::format("{} drifts with time ({:+.2f} µm{}, {}): warm-up, spindle growth", dir,
-                       coef_or_zero(t, 0), t.tau_s > 0.0 ? "" : " per hour", time_law(t));
+                       coef_or_zero(t, 0), t.tau_s > 0.0 ? "" : " per hour", time_law_with_u(t));
   };
   d.params = [](const Term& t) -> NamedValues {
     return {{t.with_axis >= 0 ? "ppm" : (t.tau_s > 0.0 ? "um" : "um_per_h"), coef_or_zero(t, 0)},
             {"tau_s", t.tau_s}};
+  };
+  d.param_stderr = [](const Term& t) -> NamedValues {
+    NamedValues out{{t.with_axis >= 0 ? "ppm" : (t.tau_s > 0.0 ? "um" : "um_per_h"),
+                     t.stderr_.empty() ? 0.0 : t.stderr_[0]}};
+    if (t.tau_s > 0.0) out.emplace_back("tau_s", t.searched_stderr);
+    return out;
   };
   d.read_fields = [](Term& t, const OverlayFields& in) {
     t.tau_s = in.number("tau_s");
