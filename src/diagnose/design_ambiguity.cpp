@@ -363,7 +363,21 @@ void test_cycle_period(const Problem& pb, const Mat& D, const std::vector<Mat>& 
   }
   const auto [d_other, p_other] =
       best_other_period(levels.in_place(sw.QA, sw.rA, i), lv, et.period_mm, o, min_period_mm);
-  if (!(d_other > 0.0) || !(sw.d_e - d_other < sw.margin)) return;
+  double margin = sw.margin;
+  if (o.level_noise_margin) {
+    // What a function of the levels removes beside the whole fit, per degree
+    // of freedom (levels − 3: the datum's offset and the cycle's two columns
+    // are functions of the levels already), against σ̂².
+    std::vector<bool> all(cols.size(), true);
+    const Mat Q_all = span::basis_of(D, cols, all);
+    const Vec r_all = residual_of(Q_all, pb.y);
+    const double k = std::max(static_cast<double>(lv.size()) - 3.0, 1.0);
+    const double dof = static_cast<double>(pb.y.size() - Q_all.cols()) - k;
+    const double d_rest = levels.removes_in_place(Q_all, r_all, i);
+    const double s2 = std::max(r_all.squaredNorm() - d_rest, 0.0) / std::max(dof, 1.0);
+    if (s2 > 0.0) margin *= std::max(1.0, d_rest / k / s2);
+  }
+  if (!(d_other > 0.0) || !(sw.d_e - d_other < margin)) return;
   Term other = et;
   other.period_mm = p_other;
   add_alternative(effects[e], other.label());

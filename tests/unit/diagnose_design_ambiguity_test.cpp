@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <random>
 
 #include "abbe/diagnose/design_ambiguity.hpp"
@@ -179,6 +180,65 @@ TEST(DiagnoseDesignAmbiguity, ACycleIsNamedOnlyWhereTheLevelsFixItsPeriod) {
       ASSERT_FALSE(log.empty());
       EXPECT_NE(log[0].find("is not told from a cycle at"), std::string::npos) << log[0];
       EXPECT_NE(eff[0].separate_by.find("measure X at more positions"), std::string::npos);
+    }
+  }
+}
+
+// The margin another period must come within is the noise of a function of
+// the levels (DesignAmbiguityOptions::level_noise_margin). A 2 µm pitch
+// error of 13 mm on 12 irregular levels of X, each level read 8 times
+// (noise 0.5 µm), with an error of each level that repeats in all its
+// readings (0.5 µm rms, as the model's own table error at a laser target
+// does): the levels' values scatter more than the readings, and another
+// period fits within that scatter in 7 of 20 draws (2 of 20 with σ̂² alone).
+// The margin is never below σ̂²'s: a cycle ambiguous without it is ambiguous
+// with it. Without the levels' error the decisions are the same.
+TEST(DiagnoseDesignAmbiguity, TheCyclePeriodMarginIsTheNoiseOfTheLevels) {
+  const std::vector<double> xs = [] {
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> shift(-0.3, 0.3);
+    std::vector<double> v;
+    for (int i = 0; i < 12; ++i) v.push_back(50.0 * (i + (i > 0 && i < 11 ? shift(rng) : 0.0)));
+    return v;
+  }();
+  std::vector<PointContext> pts;
+  for (double x : xs)
+    for (int j = 0; j < 8; ++j) pts.push_back(at(x, 50.0 * j));
+  DesignAmbiguityOptions readings_only;
+  readings_only.level_noise_margin = false;
+  const int draws = 20;
+  for (const double level_error : {0.5, 0.0}) {
+    int ambiguous_with = 0, ambiguous_without = 0, same = 0;
+    for (int k = 0; k < draws; ++k) {
+      std::mt19937_64 rng(static_cast<std::uint64_t>(100 + k));
+      std::normal_distribution<double> n(0.0, level_error);
+      std::vector<double> e;
+      for (std::size_t l = 0; l < xs.size(); ++l) e.push_back(n(rng));
+      auto truth = [&](const PointContext& pc) {
+        const auto at_level = std::min_element(xs.begin(), xs.end(), [&](double a, double b) {
+          return std::abs(a - pc.s.x()) < std::abs(b - pc.s.x());
+        });
+        const double level = e[static_cast<std::size_t>(at_level - xs.begin())];
+        return Eigen::Vector3d(2.0 * std::sin(2.0 * kPi * pc.s.x() / 13.0 + 0.4) + level, 0.0, 0.0);
+      };
+      const Problem pb = make_problem(pts, truth, static_cast<std::uint64_t>(7 + k));
+      std::vector<SelectedTerm> with{fitted(cyclic(0, 13.0), {2.0, 0.0})}, without = with;
+      mark_design_ambiguities(pb, {}, with, {}, 4.0);
+      mark_design_ambiguities(pb, {}, without, readings_only, 4.0);
+      const bool a_with = !with[0].ambiguous_with.empty();
+      const bool a_without = !without[0].ambiguous_with.empty();
+      ambiguous_with += a_with ? 1 : 0;
+      ambiguous_without += a_without ? 1 : 0;
+      same += with[0].ambiguous_with == without[0].ambiguous_with ? 1 : 0;
+      EXPECT_TRUE(a_with || !a_without) << "draw " << k << ": the margin fell below σ̂²'s";
+    }
+    std::cout << "level error " << level_error << " µm: ambiguous " << ambiguous_with << "/"
+              << draws << " with the levels' noise, " << ambiguous_without << "/" << draws
+              << " with σ̂² alone\n";
+    if (level_error > 0.0) {
+      EXPECT_GE(ambiguous_with, ambiguous_without + 3);
+    } else {
+      EXPECT_EQ(same, draws);
     }
   }
 }

@@ -70,6 +70,12 @@ struct DesignAmbiguityOptions {
   // levels removes in its place (as a named kind of the smooth function's,
   // SelectionOptions::name_ratio).
   double cycle_share_of_levels = 0.7;
+  // The margin another period must come within is one column's χ² times
+  // the noise of a function of the levels: the larger of σ̂² and what the
+  // levels hold beyond the whole fit per degree of freedom (the model's own
+  // error at each target repeats in every run, so the levels' values scatter
+  // more than single readings; false: σ̂² alone).
+  bool level_noise_margin = true;
   // The longest period the test tries (0: the candidates' default;
   // diagnose_problem gives its own candidates' max_period_mm).
   double max_period_mm = 0.0;
