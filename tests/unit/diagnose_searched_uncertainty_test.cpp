@@ -7,6 +7,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <functional>
 #include <iostream>
 #include <random>
 
@@ -48,14 +49,17 @@ Fitted fit(const Problem& pb, Term t) {
   return f;
 }
 
-Term cycle(double period) {
+// A cycle or a drift of `axis` in its own direction, its searched
+// parameter (period_mm, tau_s) set to `value`.
+Term searched_term(TermKind kind, int axis, double value) {
   Term t;
-  t.kind = TermKind::cyclic;
-  t.axis = 0;
-  t.direction = 0;
-  t.period_mm = period;
+  t.kind = kind;
+  t.axis = axis;
+  t.direction = axis;
+  (kind == TermKind::cyclic ? t.period_mm : t.tau_s) = value;
   return t;
 }
+Term cycle(double period) { return searched_term(TermKind::cyclic, 0, period); }
 
 // The least-squares period of one noise draw: the true one refined on the
 // exact ΔRSS beside the datum.
@@ -68,6 +72,31 @@ double ls_period(const Problem& pb) {
   c.QtC = Q.transpose() * c.C;
   refine_period_exactly(pb, Q, r, 0.25 / kSpan, c);
   return c.term.period_mm;
+}
+
+// Over `draws` noise draws: the least-squares estimate θ̂ of each draw
+// (`estimate`), its mean and scatter, and the mean of the uncertainty
+// reported at θ̂ (the fitted term `at(θ̂)`).
+struct Scatter {
+  double mean = 0.0, sd = 0.0, reported = 0.0;
+};
+Scatter scatter_and_reported(int draws, const std::function<Problem(int)>& draw,
+                             const std::function<double(const Problem&)>& estimate,
+                             const std::function<Term(double)>& at) {
+  double sum = 0.0, sum2 = 0.0, u_sum = 0.0;
+  for (int k = 0; k < draws; ++k) {
+    const Problem pb = draw(k);
+    const double theta = estimate(pb);
+    sum += theta;
+    sum2 += theta * theta;
+    const Fitted f = fit(pb, at(theta));
+    u_sum += searched_parameter_stderr(pb, f.term, f.X, f.inv, f.s2);
+  }
+  Scatter sc;
+  sc.mean = sum / draws;
+  sc.sd = std::sqrt((sum2 - sum * sum / draws) / (draws - 1));
+  sc.reported = u_sum / draws;
+  return sc;
 }
 
 // Hand-computed: the derivative of Â·sin(2πs/P + φ̂) in P is
@@ -95,20 +124,13 @@ TEST(DiagnoseSearchedUncertainty, APeriodAgainstTheHandComputedValue) {
 // the reported uncertainty (±15 %: the scatter's own relative error is
 // 1/√(2·200) = 5 %).
 TEST(DiagnoseSearchedUncertainty, APeriodsUncertaintyIsItsScatter) {
-  double sum = 0.0, sum2 = 0.0, u_mean = 0.0;
   const int draws = 200;
-  for (int k = 0; k < draws; ++k) {
-    const Problem pb = line(0.0, 2.0, 0.5, 100 + static_cast<std::uint64_t>(k));
-    const double p = ls_period(pb);
-    sum += p;
-    sum2 += p * p;
-    const Fitted f = fit(pb, cycle(p));
-    u_mean += searched_parameter_stderr(pb, f.term, f.X, f.inv, f.s2) / draws;
-  }
-  const double sd = std::sqrt((sum2 - sum * sum / draws) / (draws - 1));
-  std::cout << "period: scatter " << sd << " mm, reported " << u_mean << " mm\n";
-  EXPECT_NEAR(sd / u_mean, 1.0, 0.15) << "scatter " << sd << ", reported " << u_mean;
-  EXPECT_NEAR(sum / draws, kPeriod, 3.0 * sd / std::sqrt(draws));
+  const Scatter sc = scatter_and_reported(
+      draws, [](int k) { return line(0.0, 2.0, 0.5, 100 + static_cast<std::uint64_t>(k)); },
+      ls_period, cycle);
+  std::cout << "period: scatter " << sc.sd << " mm, reported " << sc.reported << " mm\n";
+  EXPECT_NEAR(sc.sd / sc.reported, 1.0, 0.15);
+  EXPECT_NEAR(sc.mean, kPeriod, 3.0 * sc.sd / std::sqrt(draws));
 }
 
 // Zero in: no cycle, nothing fixes its period.
@@ -153,18 +175,8 @@ TEST(DiagnoseSearchedUncertainty, ADriftsTimeConstantIsItsScatter) {
                          Eigen::Vector3d::Zero());
     return pb;
   };
-  auto drift = [](double t) {
-    Term d;
-    d.kind = TermKind::thermal_drift;
-    d.axis = 2;
-    d.direction = 2;
-    d.tau_s = t;
-    return d;
-  };
-  double sum = 0.0, sum2 = 0.0, u_mean = 0.0;
-  const int draws = 100;
-  for (int k = 0; k < draws; ++k) {
-    const Problem pb = drift_line(500 + static_cast<std::uint64_t>(k));
+  auto drift = [](double t) { return searched_term(TermKind::thermal_drift, 2, t); };
+  auto least_squares_tau = [&](const Problem& pb) {
     double best = tau, best_s2 = 1e300;
     for (double t = 900.0; t <= 2400.0; t += 2.0) {
       const double s2 = fit(pb, drift(t)).s2;
@@ -173,14 +185,13 @@ TEST(DiagnoseSearchedUncertainty, ADriftsTimeConstantIsItsScatter) {
         best = t;
       }
     }
-    sum += best;
-    sum2 += best * best;
-    const Fitted f = fit(pb, drift(best));
-    u_mean += searched_parameter_stderr(pb, f.term, f.X, f.inv, f.s2) / draws;
-  }
-  const double sd = std::sqrt((sum2 - sum * sum / draws) / (draws - 1));
-  std::cout << "tau: scatter " << sd << " s, reported " << u_mean << " s\n";
-  EXPECT_NEAR(sd / u_mean, 1.0, 0.25) << "scatter " << sd << " s, reported " << u_mean << " s";
+    return best;
+  };
+  const Scatter sc = scatter_and_reported(
+      100, [&](int k) { return drift_line(500 + static_cast<std::uint64_t>(k)); },
+      least_squares_tau, drift);
+  std::cout << "tau: scatter " << sc.sd << " s, reported " << sc.reported << " s\n";
+  EXPECT_NEAR(sc.sd / sc.reported, 1.0, 0.25);
 }
 
 // A drift linear in time and a scale have no searched parameter.
