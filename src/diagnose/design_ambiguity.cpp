@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -328,9 +329,15 @@ std::pair<double, double> best_other_period(const LevelSpan::InPlace& ip,
 // function of the levels removes in its place (`cycle_share_of_levels`),
 // else it is a piece of a structure that is not a cycle (e.g. the model's
 // own table error at the levels), its period the one of many that fit best.
+// The datum and every effect fitted together: its span and residual.
+struct WholeFit {
+  Mat Q;
+  Vec r;
+};
+
 void test_cycle_period(const Problem& pb, const Mat& D, const std::vector<Mat>& cols, std::size_t e,
                        std::vector<SelectedTerm>& effects, const DesignAmbiguityOptions& o,
-                       double min_period_mm, std::vector<std::string>& log) {
+                       double min_period_mm, const WholeFit* whole, std::vector<std::string>& log) {
   const Term& et = effects[e].term;
   const int j = et.axis, i = et.direction;
   std::vector<double> v;
@@ -364,17 +371,14 @@ void test_cycle_period(const Problem& pb, const Mat& D, const std::vector<Mat>& 
   const auto [d_other, p_other] =
       best_other_period(levels.in_place(sw.QA, sw.rA, i), lv, et.period_mm, o, min_period_mm);
   double margin = sw.margin;
-  if (o.level_noise_margin) {
+  if (whole) {  // level_noise_margin
     // What a function of the levels removes beside the whole fit, per degree
     // of freedom (levels − 3: the datum's offset and the cycle's two columns
     // are functions of the levels already), against σ̂².
-    std::vector<bool> all(cols.size(), true);
-    const Mat Q_all = span::basis_of(D, cols, all);
-    const Vec r_all = residual_of(Q_all, pb.y);
     const double k = std::max(static_cast<double>(lv.size()) - 3.0, 1.0);
-    const double dof = static_cast<double>(pb.y.size() - Q_all.cols()) - k;
-    const double d_rest = levels.removes_in_place(Q_all, r_all, i);
-    const double s2 = std::max(r_all.squaredNorm() - d_rest, 0.0) / std::max(dof, 1.0);
+    const double dof = static_cast<double>(pb.y.size() - whole->Q.cols()) - k;
+    const double d_rest = levels.removes_in_place(whole->Q, whole->r, i);
+    const double s2 = std::max(whole->r.squaredNorm() - d_rest, 0.0) / std::max(dof, 1.0);
     if (s2 > 0.0) margin *= std::max(1.0, d_rest / k / s2);
   }
   if (!(d_other > 0.0) || !(sw.d_e - d_other < margin)) return;
@@ -530,10 +534,19 @@ std::vector<std::string> mark_design_ambiguities(const Problem& pb,
     }
   }
 
+  // The whole fit, once for every cycle's margin (the test adds
+  // alternatives only: the terms stay).
+  std::optional<WholeFit> whole;
   for (std::size_t e = 0; o.cycle_period_test && e < effects.size(); ++e) {
     const Term& et = effects[e].term;
-    if (et.kind == TermKind::cyclic && et.axis >= 0 && et.direction >= 0 && et.period_mm > 0.0)
-      test_cycle_period(pb, D, cols, e, effects, o, min_period_mm, log);
+    if (et.kind != TermKind::cyclic || et.axis < 0 || et.direction < 0 || !(et.period_mm > 0.0))
+      continue;
+    if (o.level_noise_margin && !whole) {
+      Mat Q = span::basis_of(D, cols, std::vector<bool>(cols.size(), true));
+      Vec r = residual_of(Q, pb.y);
+      whole = WholeFit{std::move(Q), std::move(r)};
+    }
+    test_cycle_period(pb, D, cols, e, effects, o, min_period_mm, whole ? &*whole : nullptr, log);
   }
 
   if (o.growing_reversal) {

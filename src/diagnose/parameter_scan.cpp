@@ -119,9 +119,11 @@ Term scan_parameter(const ScanFamily& f, const ScanInput& in, PowerCache& power_
   return t;
 }
 
-void refine_period_exactly(const Problem& pb, const Mat& Q, const Vec& r, double half_step,
-                           Cached& c) {
-  if (c.term.kind != TermKind::cyclic || !(c.term.period_mm > 0.0) || !(half_step > 0.0)) return;
+double refine_period_exactly(const Problem& pb, const Mat& Q, const Vec& r, double half_step,
+                             Cached& c) {
+  const double d_scan = delta_rss(c.C, c.CtC, c.QtC, r);
+  if (c.term.kind != TermKind::cyclic || !(c.term.period_mm > 0.0) || !(half_step > 0.0))
+    return d_scan;
   const double f_scan = 1.0 / c.term.period_mm;
   auto removes = [&](double f) {
     Term t = c.term;
@@ -153,11 +155,12 @@ void refine_period_exactly(const Problem& pb, const Mat& Q, const Vec& r, double
   }
   const double f_best = g1 >= g2 ? x1 : x2;
   const double g_best = std::max(g1, g2);
-  if (!(g_best > removes(f_scan))) return;
+  if (!(g_best > d_scan)) return d_scan;
   c.term.period_mm = 1.0 / f_best;
   c.C = term_columns(pb, c.term);
   c.CtC = c.C.transpose() * c.C;
   c.QtC = Q.transpose() * c.C;
+  return g_best;
 }
 
 }  // namespace abbe::diagnose::selection

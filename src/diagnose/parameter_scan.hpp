@@ -42,8 +42,8 @@ Term scan_parameter(const ScanFamily& f, const ScanInput& in, PowerCache& power_
 // over a long travel that fraction beats against the data: a second cycle
 // at a neighbouring period is then needed for what the first left. c's
 // term, columns and products are replaced when the refined period removes
-// more.
-void refine_period_exactly(const Problem& pb, const Mat& Q, const Vec& r, double half_step,
-                           Cached& c);
+// more (c's QtC must be Qᵀ·C). Returns what c removes then.
+double refine_period_exactly(const Problem& pb, const Mat& Q, const Vec& r, double half_step,
+                             Cached& c);
 
 }  // namespace abbe::diagnose::selection

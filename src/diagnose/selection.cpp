@@ -326,15 +326,13 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     // an alias, and a freer one fits the noise).
     if (o.exact_period && best_named) {
       auto refine = [&](const Score* s) {
-        for (std::size_t i = 0; i < scanned.size(); ++i)
-          if (&scanned[i] == s->c && s->c->term.kind == TermKind::cyclic) {
-            const std::vector<double>& grid = cs.scanned[i].grid;
-            if (grid.size() < 2) return;
-            selection::refine_period_exactly(pb, Q, r, std::abs(1.0 / grid[1] - 1.0 / grid[0]),
-                                             scanned[i]);
-            scores[static_cast<std::size_t>(s - scores.data())].d =
-                delta_rss(s->c->C, s->c->CtC, s->c->QtC, r);
-          }
+        if (s->c->term.kind != TermKind::cyclic) return;
+        // A cycle is a scanned candidate: scanned[i] of family cs.scanned[i].
+        const auto i = static_cast<std::size_t>(s->c - scanned.data());
+        const std::vector<double>& grid = cs.scanned[i].grid;
+        if (grid.size() < 2) return;
+        scores[static_cast<std::size_t>(s - scores.data())].d = selection::refine_period_exactly(
+            pb, Q, r, std::abs(1.0 / grid[1] - 1.0 / grid[0]), scanned[i]);
       };
       refine(best_named);
       for (const Score* s : structure.partners) refine(s);

@@ -17,3 +17,15 @@ if(ABBE_FUZZ_CLANGXX)
 else()
   message(STATUS "clang++ not found: the fuzz test (label fuzz) is not registered")
 endif()
+
+# A fuzz build has only the NC side of the library: configuring it with the
+# tests (or Python, benchmarks, generators) in the same build directory is
+# refused by name, before any compiler check.
+add_test(NAME cmake_fuzz_build_alone
+         COMMAND ${CMAKE_COMMAND} -S ${PROJECT_SOURCE_DIR}
+                 -B ${CMAKE_BINARY_DIR}/fuzz_build_alone -G ${CMAKE_GENERATOR}
+                 -DABBE_FUZZ=ON -DABBE_BUILD_TESTS=ON)
+set_tests_properties(cmake_fuzz_build_alone PROPERTIES
+  LABELS cli
+  TIMEOUT 300
+  PASS_REGULAR_EXPRESSION "ABBE_FUZZ builds the fuzz targets alone")

@@ -942,8 +942,8 @@ TEST(DiagnoseDesigns, GridWithoutDirectionsInferred) {
 // pitch error): 119/125 named right with the pitch errors of X, 1 wrong —
 // case 22, a cycle of X at 10.89 mm for a pitch error of 39.9 mm — and 0/25
 // where not identifiable (200 seeds; 40 seeds: 23/25, 1, 0/5). Before the
-// cycle period test's margin was the levels' noise: 118/125, 3 wrong. A pitch error counts as named only at its period
-// or its harmonic's (consistent()).
+// cycle period test's margin was the levels' noise: 118/125, 3 wrong. A pitch error counts as named
+// only at its period or its harmonic's (consistent()).
 TEST(DiagnoseDesigns, GridIrregular) {
   check(sweep(Design::grid_irregular), {0.9, 0.05, 0.02, 0.95, 0.95});
 }
@@ -1158,6 +1158,14 @@ TEST(DiagnoseDesigns, TheCyclePeriodMarginIsTheLevelsNoise) {
     const Case without = run_case(design, h, seed, 0.0, nullptr, false, &readings_only);
     EXPECT_EQ(without.verdict, Verdict::wrong) << i << without.found;
   }
+}
+
+// The virtual machine's tables are read from a temporary directory, which
+// is removed once they are (it used to stay in /tmp after every run).
+TEST(DiagnoseDesigns, TheVirtualMachineLeavesNoFilesBehind) {
+  ASSERT_FALSE(noisy_vm().machine.spec().table_file.empty());
+  EXPECT_FALSE(std::filesystem::exists(std::filesystem::path(::testing::TempDir()) /
+                                       ("abbe_designs_vm_" + std::to_string(::getpid()))));
 }
 
 // A cycle leads a structure's combination only where it is significant

@@ -15,6 +15,10 @@ namespace {
 std::string time_law(const Term& t) {
   return t.tau_s > 0.0 ? fmt::format("τ {:.0f} s", t.tau_s) : std::string("linear in t");
 }
+// The name of the first parameter (the drift's size).
+const char* size_name(const Term& t) {
+  return t.with_axis >= 0 ? "ppm" : (t.tau_s > 0.0 ? "um" : "um_per_h");
+}
 // The same with τ's standard uncertainty where the fit gave one.
 std::string time_law_with_u(const Term& t) {
   if (!(t.tau_s > 0.0) || !(t.searched_stderr > 0.0)) return time_law(t);
@@ -48,12 +52,10 @@ EffectDescriptor thermal_drift() {
                        coef_or_zero(t, 0), t.tau_s > 0.0 ? "" : " per hour", time_law_with_u(t));
   };
   d.params = [](const Term& t) -> NamedValues {
-    return {{t.with_axis >= 0 ? "ppm" : (t.tau_s > 0.0 ? "um" : "um_per_h"), coef_or_zero(t, 0)},
-            {"tau_s", t.tau_s}};
+    return {{size_name(t), coef_or_zero(t, 0)}, {"tau_s", t.tau_s}};
   };
   d.param_stderr = [](const Term& t) -> NamedValues {
-    NamedValues out{{t.with_axis >= 0 ? "ppm" : (t.tau_s > 0.0 ? "um" : "um_per_h"),
-                     t.stderr_.empty() ? 0.0 : t.stderr_[0]}};
+    NamedValues out{{size_name(t), t.stderr_.empty() ? 0.0 : t.stderr_[0]}};
     if (t.tau_s > 0.0) out.emplace_back("tau_s", t.searched_stderr);
     return out;
   };
