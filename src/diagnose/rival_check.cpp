@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "abbe/diagnose/separation.hpp"
 #include "abbe/diagnose/statistics.hpp"
@@ -23,6 +24,40 @@ using span::residual_of;
 double removes(const Mat& C, const Vec& r) {
   const Mat Qc = orthonormal(C);
   return Qc.cols() > 0 ? (Qc.transpose() * r).squaredNorm() : 0.0;
+}
+
+// One swap test of an effect: everything else of the fit (its orthonormal
+// basis QA), the data beside it (rA), what the effect removes there (d_e)
+// and the margin σ̂²·χ²₁(α) by which a stand-in may remove less.
+struct SwapTest {
+  Mat QA;
+  Vec rA;
+  double d_e = 0.0, margin = 0.0;
+  // What candidate columns C remove in the effect's place.
+  double stand_in(const Mat& C) const { return removes(residual_of(QA, C), rA); }
+};
+
+// The swap test beside the datum D and the blocks `use` of `cols`, for the
+// effect's block e; none where the effect removes nothing there, no degree
+// of freedom is left, or the rest leaves the effect less than `keep_share`
+// of its columns' norm² beside the datum alone.
+std::optional<SwapTest> swap_test(const Problem& pb, const Mat& D, const std::vector<Mat>& cols,
+                                  const std::vector<bool>& use, std::size_t e, double alpha,
+                                  double keep_share, Mat* Ce_out = nullptr) {
+  SwapTest t;
+  t.QA = span::basis_of(D, cols, use);
+  const Mat Ce = residual_of(t.QA, cols[e]);
+  if (keep_share > 0.0 &&
+      Ce.squaredNorm() < keep_share * residual_of(orthonormal(D), cols[e]).squaredNorm())
+    return std::nullopt;
+  t.rA = residual_of(t.QA, pb.y);
+  t.d_e = removes(Ce, t.rA);
+  const auto n = static_cast<Eigen::Index>(pb.obs.size());
+  const double dof = static_cast<double>(n - t.QA.cols() - cols[e].cols());
+  if (!(t.d_e > 0.0) || dof < 1.0) return std::nullopt;
+  t.margin = std::max(t.rA.squaredNorm() - t.d_e, 0.0) / dof * chi2_upper_quantile(1, alpha);
+  if (Ce_out) *Ce_out = Ce;
+  return t;
 }
 
 // The candidates that could stand in place of `effect`: the fixed ones, the
@@ -95,7 +130,6 @@ std::vector<std::string> mark_unrejected_rivals(const Problem& pb,
   };
   std::vector<std::string> log;
   if (!o.enabled || effects.empty() || pb.obs.empty()) return log;
-  const auto n = static_cast<Eigen::Index>(pb.obs.size());
   const Mat D = span::datum_columns(pb, datum);
   const Mat Qd = orthonormal(D);
   std::vector<Mat> cols;
@@ -107,17 +141,22 @@ std::vector<std::string> mark_unrejected_rivals(const Problem& pb,
     // Everything else of the named fit: the datum and the other named
     // effects (a smooth `unexplained` function is fitted after them, on what
     // they leave — selection.hpp — and would take the effect's own shape).
-    std::vector<bool> rest(effects.size());
-    for (std::size_t f = 0; f < effects.size(); ++f)
+    std::vector<bool> rest(effects.size()), rest_smooth(effects.size());
+    bool have_smooth = false;
+    for (std::size_t f = 0; f < effects.size(); ++f) {
       rest[f] = f != e && effects[f].term.kind != TermKind::unexplained;
-    const Mat QA = span::basis_of(D, cols, rest);
-    const Vec rA = residual_of(QA, pb.y);
-    const Mat Ce = residual_of(QA, cols[e]);
-    const double d_e = removes(Ce, rA);
-    const double dof = static_cast<double>(n - QA.cols() - cols[e].cols());
-    if (!(d_e > 0.0) || dof < 1.0) continue;
-    const double s2 = std::max(rA.squaredNorm() - d_e, 0.0) / dof;
-    const double margin = s2 * chi2_upper_quantile(1, o.alpha);
+      rest_smooth[f] = f != e;
+      have_smooth = have_smooth || rest_smooth[f] != rest[f];
+    }
+    Mat Ce;
+    const std::optional<SwapTest> named_only = swap_test(pb, D, cols, rest, e, o.alpha, 0.0, &Ce);
+    if (!named_only) continue;
+    // And beside the smooth functions too, where they leave the effect its
+    // shape (RivalOptions::beside_smooth).
+    const std::optional<SwapTest> with_smooth =
+        o.beside_smooth && have_smooth
+            ? swap_test(pb, D, cols, rest_smooth, e, o.alpha, o.smooth_keep_share)
+            : std::nullopt;
     // The effect's fitted contribution after the datum, for the prefilter.
     Vec fe =
         residual_of(Qd, cols[e]) *
@@ -144,13 +183,19 @@ std::vector<std::string> mark_unrejected_rivals(const Problem& pb,
       if (Qc.cols() == 0) continue;
       const double corr = (Qc.transpose() * fe).norm() / fe.norm();
       if (corr < o.prefilter_corr) continue;
-      const double d_c = removes(residual_of(QA, Cc), rA);
-      if (d_c < d_e - margin) continue;
-      rivals.push_back(cand);
-      log.push_back(fmt::format(
-          "data: {} (ΔRSS {:.6g}) is not preferred over {} in its place (ΔRSS {:.6g}, margin "
-          "{:.3g})",
-          se.term.label(), d_e, cand.label(), d_c, margin));
+      for (const std::optional<SwapTest>* test : {&named_only, &with_smooth}) {
+        if (!*test) continue;
+        const SwapTest& t = **test;
+        const double d_c = t.stand_in(Cc);
+        if (d_c < t.d_e - t.margin) continue;
+        rivals.push_back(cand);
+        log.push_back(fmt::format(
+            "data: {} (ΔRSS {:.6g}) is not preferred over {} in its place{} (ΔRSS {:.6g}, "
+            "margin {:.3g})",
+            se.term.label(), t.d_e, cand.label(),
+            test == &with_smooth ? " beside the smooth functions" : "", d_c, t.margin));
+        break;
+      }
     }
     for (const std::string& label : rival_labels(rivals)) se.ambiguous_with.push_back(label);
     if (!rivals.empty() && se.separate_by.empty())

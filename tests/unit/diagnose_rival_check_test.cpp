@@ -182,5 +182,85 @@ TEST(DiagnoseRivalCheck, CostlierAndSameKindCandidatesAreNoRivals) {
     EXPECT_NE(a.rfind("thermal_drift x·t→X", 0), 0u) << a;
 }
 
+// The three lines measured three times, an hour apart: a set per line and
+// pass (the laser is re-aligned each time).
+std::vector<Reading> three_lines_thrice() {
+  std::vector<Reading> v;
+  for (int pass = 0; pass < 3; ++pass)
+    for (Reading r : three_lines(3600.0 * pass)) {
+      r.set += "_" + std::to_string(pass);
+      v.push_back(r);
+    }
+  return v;
+}
+
+// The effects fitted together with the datum (least squares).
+std::vector<SelectedTerm> fit_all(const Problem& pb, const CandidateSet& cs,
+                                  const std::vector<Term>& effects) {
+  std::vector<Term> terms = cs.datum;
+  terms.insert(terms.end(), effects.begin(), effects.end());
+  Eigen::MatrixXd X(static_cast<Eigen::Index>(pb.obs.size()), 0);
+  for (const Term& t : terms) {
+    const Eigen::MatrixXd C = term_columns(pb, t);
+    Eigen::MatrixXd A(X.rows(), X.cols() + C.cols());
+    A << X, C;
+    X = std::move(A);
+  }
+  const Eigen::VectorXd beta = X.colPivHouseholderQr().solve(pb.y);
+  std::vector<SelectedTerm> out;
+  Eigen::Index c = X.cols();
+  for (const Term& t : effects) c -= t.columns();
+  for (const Term& t : effects) {
+    SelectedTerm st;
+    st.term = t;
+    for (int k = 0; k < t.columns(); ++k, ++c) {
+      st.term.coef.push_back(beta[c]);
+      st.term.stderr_.push_back(0.01);
+    }
+    out.push_back(st);
+  }
+  return out;
+}
+
+// RivalOptions::smooth_keep_share. A drift of the scale of X with τ = 300 s
+// on the three lines measured three times: each line's x grows (or falls)
+// with t, so a smooth function of t in the fit, with the datum of each
+// line, takes almost all of the drift's columns (97 %). Beside it any
+// candidate of that shape would stand in for the drift: the test beside
+// the smooth function is not made, and the drift is told from a scale of X
+// beside the named effects, as without the smooth function.
+TEST(DiagnoseRivalCheck, NoTestBesideASmoothFunctionThatTakesTheEffectsShape) {
+  Term drift = test::make_term(TermKind::thermal_drift, 0, 0);
+  drift.with_axis = 0;
+  drift.tau_s = 300.0;
+  const auto truth = [&](const PointContext& pc) {
+    Eigen::Matrix<double, 3, Eigen::Dynamic> g(3, 1);
+    drift.basis(pc, g);
+    return Eigen::Vector3d(20.0 * g.col(0));
+  };
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    const Problem pb = make_problem(three_lines_thrice(), truth, seed, 3 * 3600.0);
+    const CandidateSet cs = build_candidates(pb, CandidateOptions{});
+    Term smooth = test::make_term(TermKind::unexplained, -1, 0);
+    smooth.vars = {3};
+    smooth.degree = 12;
+    smooth.lo = pb.var_lo;
+    smooth.hi = pb.var_hi;
+    std::vector<SelectedTerm> alone = fit_all(pb, cs, {drift});
+    mark_unrejected_rivals(pb, datum_of(cs), alone, cs, 2.0, {});
+    EXPECT_FALSE(has(alone[0].ambiguous_with, "scale X")) << seed;
+    std::vector<SelectedTerm> with = fit_all(pb, cs, {drift, smooth});
+    mark_unrejected_rivals(pb, datum_of(cs), with, cs, 2.0, {});
+    EXPECT_FALSE(has(with[0].ambiguous_with, "scale X")) << seed;
+    EXPECT_TRUE(with[1].ambiguous_with.empty());  // a smooth function has no rivals
+    // The test made beside it whatever it takes: the scale stands in.
+    RivalOptions any_share;
+    any_share.smooth_keep_share = 0.0;
+    std::vector<SelectedTerm> any = fit_all(pb, cs, {drift, smooth});
+    mark_unrejected_rivals(pb, datum_of(cs), any, cs, 2.0, any_share);
+    EXPECT_TRUE(has(any[0].ambiguous_with, "scale X")) << seed;
+  }
+}
+
 }  // namespace
 }  // namespace abbe::diagnose

@@ -31,6 +31,16 @@ struct RivalOptions {
   // Exact test only for candidates whose best fit to the effect's
   // contribution reaches this |correlation| (after the datum).
   double prefilter_corr = 0.5;
+  // The swap test is also made beside the fit's smooth `unexplained`
+  // functions, where they leave the effect at least `smooth_keep_share` of
+  // its columns' norm² beside the datum: a structure the named effects
+  // leave (fitted by the smooth function) can favour one of two near-equal
+  // names — e.g. a drift x·t with τ = 300 s over a scale of X, where part of
+  // an off-centre coupling is left for the smooth function; beside it they
+  // are judged on the effect's own shape. A rival in either test is a
+  // rival (false: beside the datum and the named effects only).
+  bool beside_smooth = true;
+  double smooth_keep_share = 0.5;
 };
 
 // Marks the effects (fitted, with coef) the data do not prefer over another
