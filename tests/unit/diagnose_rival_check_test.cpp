@@ -84,11 +84,13 @@ Eigen::Vector3d scale_x(const PointContext& pc) {
   return Eigen::Vector3d(4.0 * (pc.s.x() - 200.0) / 200.0, 0.0, 0.0);
 }
 
-// The effect fitted with its datum (least squares), as after the selection.
-std::vector<SelectedTerm> fit(const Problem& pb, const CandidateSet& cs, const Term& effect) {
-  Eigen::MatrixXd X(static_cast<Eigen::Index>(pb.obs.size()), 0);
+// The effects fitted together with their datum (least squares), as after
+// the selection.
+std::vector<SelectedTerm> fit_all(const Problem& pb, const CandidateSet& cs,
+                                  const std::vector<Term>& effects) {
   std::vector<Term> terms = cs.datum;
-  terms.push_back(effect);
+  terms.insert(terms.end(), effects.begin(), effects.end());
+  Eigen::MatrixXd X(static_cast<Eigen::Index>(pb.obs.size()), 0);
   for (const Term& t : terms) {
     const Eigen::MatrixXd C = term_columns(pb, t);
     Eigen::MatrixXd A(X.rows(), X.cols() + C.cols());
@@ -96,13 +98,23 @@ std::vector<SelectedTerm> fit(const Problem& pb, const CandidateSet& cs, const T
     X = std::move(A);
   }
   const Eigen::VectorXd beta = X.colPivHouseholderQr().solve(pb.y);
-  SelectedTerm st;
-  st.term = effect;
-  for (Eigen::Index c = X.cols() - effect.columns(); c < X.cols(); ++c) {
-    st.term.coef.push_back(beta[c]);
-    st.term.stderr_.push_back(0.01);
+  std::vector<SelectedTerm> out;
+  Eigen::Index c = X.cols();
+  for (const Term& t : effects) c -= t.columns();
+  for (const Term& t : effects) {
+    SelectedTerm st;
+    st.term = t;
+    for (int k = 0; k < t.columns(); ++k, ++c) {
+      st.term.coef.push_back(beta[c]);
+      st.term.stderr_.push_back(0.01);
+    }
+    out.push_back(st);
   }
-  return {st};
+  return out;
+}
+
+std::vector<SelectedTerm> fit(const Problem& pb, const CandidateSet& cs, const Term& effect) {
+  return fit_all(pb, cs, {effect});
 }
 
 std::vector<SelectedTerm> datum_of(const CandidateSet& cs) {
@@ -192,34 +204,6 @@ std::vector<Reading> three_lines_thrice() {
       v.push_back(r);
     }
   return v;
-}
-
-// The effects fitted together with the datum (least squares).
-std::vector<SelectedTerm> fit_all(const Problem& pb, const CandidateSet& cs,
-                                  const std::vector<Term>& effects) {
-  std::vector<Term> terms = cs.datum;
-  terms.insert(terms.end(), effects.begin(), effects.end());
-  Eigen::MatrixXd X(static_cast<Eigen::Index>(pb.obs.size()), 0);
-  for (const Term& t : terms) {
-    const Eigen::MatrixXd C = term_columns(pb, t);
-    Eigen::MatrixXd A(X.rows(), X.cols() + C.cols());
-    A << X, C;
-    X = std::move(A);
-  }
-  const Eigen::VectorXd beta = X.colPivHouseholderQr().solve(pb.y);
-  std::vector<SelectedTerm> out;
-  Eigen::Index c = X.cols();
-  for (const Term& t : effects) c -= t.columns();
-  for (const Term& t : effects) {
-    SelectedTerm st;
-    st.term = t;
-    for (int k = 0; k < t.columns(); ++k, ++c) {
-      st.term.coef.push_back(beta[c]);
-      st.term.stderr_.push_back(0.01);
-    }
-    out.push_back(st);
-  }
-  return out;
 }
 
 // RivalOptions::smooth_keep_share. A drift of the scale of X with τ = 300 s
