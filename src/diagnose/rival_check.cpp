@@ -27,10 +27,11 @@ double removes(const Mat& C, const Vec& r) {
 }
 
 // One swap test of an effect: everything else of the fit (its orthonormal
-// basis QA), the data beside it (rA), what the effect removes there (d_e)
-// and the margin σ̂²·χ²₁(α) by which a stand-in may remove less.
+// basis QA), the data and the effect's columns beside it (rA, Ce), what the
+// effect removes there (d_e) and the margin σ̂²·χ²₁(α) by which a stand-in
+// may remove less.
 struct SwapTest {
-  Mat QA;
+  Mat QA, Ce;
   Vec rA;
   double d_e = 0.0, margin = 0.0;
   // What candidate columns C remove in the effect's place.
@@ -43,20 +44,19 @@ struct SwapTest {
 // of its columns' norm² beside the datum alone.
 std::optional<SwapTest> swap_test(const Problem& pb, const Mat& D, const std::vector<Mat>& cols,
                                   const std::vector<bool>& use, std::size_t e, double alpha,
-                                  double keep_share, Mat* Ce_out = nullptr) {
+                                  double keep_share) {
   SwapTest t;
   t.QA = span::basis_of(D, cols, use);
-  const Mat Ce = residual_of(t.QA, cols[e]);
+  t.Ce = residual_of(t.QA, cols[e]);
   if (keep_share > 0.0 &&
-      Ce.squaredNorm() < keep_share * residual_of(orthonormal(D), cols[e]).squaredNorm())
+      t.Ce.squaredNorm() < keep_share * residual_of(orthonormal(D), cols[e]).squaredNorm())
     return std::nullopt;
   t.rA = residual_of(t.QA, pb.y);
-  t.d_e = removes(Ce, t.rA);
+  t.d_e = removes(t.Ce, t.rA);
   const auto n = static_cast<Eigen::Index>(pb.obs.size());
   const double dof = static_cast<double>(n - t.QA.cols() - cols[e].cols());
   if (!(t.d_e > 0.0) || dof < 1.0) return std::nullopt;
   t.margin = std::max(t.rA.squaredNorm() - t.d_e, 0.0) / dof * chi2_upper_quantile(1, alpha);
-  if (Ce_out) *Ce_out = Ce;
   return t;
 }
 
@@ -148,8 +148,7 @@ std::vector<std::string> mark_unrejected_rivals(const Problem& pb,
       rest_smooth[f] = f != e;
       have_smooth = have_smooth || rest_smooth[f] != rest[f];
     }
-    Mat Ce;
-    const std::optional<SwapTest> named_only = swap_test(pb, D, cols, rest, e, o.alpha, 0.0, &Ce);
+    const std::optional<SwapTest> named_only = swap_test(pb, D, cols, rest, e, o.alpha, 0.0);
     if (!named_only) continue;
     // And beside the smooth functions too, where they leave the effect its
     // shape (RivalOptions::beside_smooth).
@@ -162,7 +161,7 @@ std::vector<std::string> mark_unrejected_rivals(const Problem& pb,
         residual_of(Qd, cols[e]) *
         Eigen::Map<const Vec>(se.term.coef.data(), static_cast<Eigen::Index>(se.term.coef.size()));
     if (se.term.coef.size() != static_cast<std::size_t>(cols[e].cols()) || !(fe.norm() > 0.0))
-      fe = residual_of(Qd, Ce.col(0));
+      fe = residual_of(Qd, named_only->Ce.col(0));
     std::vector<Term> rivals;
     for (const Term& cand : stand_ins(catalogue, se.term)) {
       // Parsimony: an alternative that costs more (columns, plus a
