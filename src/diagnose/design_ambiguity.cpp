@@ -201,16 +201,10 @@ std::vector<std::vector<Term>> drift_stand_ins(const Term& effect,
 
 // A swap test of effect e: what it removes given everything else of the fit
 // (the datum and the other effects), the one-column χ² margin at `alpha`,
-// and what a stand-in removes in its place.
-struct SwapTest {
+// and what a stand-in removes in its place (span::SwapBasis).
+struct SwapTest : span::SwapBasis {
   bool valid = false;
-  Mat QA;
-  Vec rA;
-  double d_e = 0.0, margin = 0.0;
-  double removes(const Mat& C) const {
-    const Mat Qc = orthonormal(residual_of(QA, C));
-    return Qc.cols() > 0 ? (Qc.transpose() * rA).squaredNorm() : 0.0;
-  }
+  double margin = 0.0;
 };
 
 SwapTest swap_test(const Problem& pb, const Mat& D, const std::vector<Mat>& cols, std::size_t e,
@@ -218,12 +212,9 @@ SwapTest swap_test(const Problem& pb, const Mat& D, const std::vector<Mat>& cols
   SwapTest sw;
   std::vector<bool> others(cols.size(), true);
   others[e] = false;
-  sw.QA = span::basis_of(D, cols, others);
-  sw.rA = residual_of(sw.QA, pb.y);
-  const Mat Qe = orthonormal(residual_of(sw.QA, cols[e]));
-  if (Qe.cols() == 0) return sw;
-  sw.d_e = (Qe.transpose() * sw.rA).squaredNorm();
-  const double dof = static_cast<double>(pb.y.size() - sw.QA.cols() - Qe.cols());
+  static_cast<span::SwapBasis&>(sw) = span::swap_basis(pb, D, cols, others, e);
+  if (sw.rank == 0) return sw;
+  const double dof = static_cast<double>(pb.y.size() - sw.QA.cols() - sw.rank);
   const double s2 = std::max(sw.rA.squaredNorm() - sw.d_e, 0.0) / std::max(dof, 1.0);
   sw.margin = s2 * chi2_upper_quantile(1, alpha);
   sw.valid = true;

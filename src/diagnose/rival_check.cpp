@@ -20,22 +20,10 @@ using Vec = Eigen::VectorXd;
 using span::orthonormal;
 using span::residual_of;
 
-// What the columns C remove of r, both already orthogonal to the rest.
-double removes(const Mat& C, const Vec& r) {
-  const Mat Qc = orthonormal(C);
-  return Qc.cols() > 0 ? (Qc.transpose() * r).squaredNorm() : 0.0;
-}
-
-// One swap test of an effect: everything else of the fit (its orthonormal
-// basis QA), the data and the effect's columns beside it (rA, Ce), what the
-// effect removes there (d_e) and the margin σ̂²·χ²₁(α) by which a stand-in
-// may remove less.
-struct SwapTest {
-  Mat QA, Ce;
-  Vec rA;
-  double d_e = 0.0, margin = 0.0;
-  // What candidate columns C remove in the effect's place.
-  double stand_in(const Mat& C) const { return removes(residual_of(QA, C), rA); }
+// One swap test of an effect (span::SwapBasis) and the margin σ̂²·χ²₁(α)
+// by which a stand-in may remove less.
+struct SwapTest : span::SwapBasis {
+  double margin = 0.0;
 };
 
 // The swap test beside the datum D and the blocks `use` of `cols`, for the
@@ -46,13 +34,10 @@ std::optional<SwapTest> swap_test(const Problem& pb, const Mat& D, const std::ve
                                   const std::vector<bool>& use, std::size_t e, double alpha,
                                   double keep_share) {
   SwapTest t;
-  t.QA = span::basis_of(D, cols, use);
-  t.Ce = residual_of(t.QA, cols[e]);
+  static_cast<span::SwapBasis&>(t) = span::swap_basis(pb, D, cols, use, e);
   if (keep_share > 0.0 &&
       t.Ce.squaredNorm() < keep_share * residual_of(orthonormal(D), cols[e]).squaredNorm())
     return std::nullopt;
-  t.rA = residual_of(t.QA, pb.y);
-  t.d_e = removes(t.Ce, t.rA);
   const auto n = static_cast<Eigen::Index>(pb.obs.size());
   const double dof = static_cast<double>(n - t.QA.cols() - cols[e].cols());
   if (!(t.d_e > 0.0) || dof < 1.0) return std::nullopt;
@@ -185,7 +170,7 @@ std::vector<std::string> mark_unrejected_rivals(const Problem& pb,
       for (const std::optional<SwapTest>* test : {&named_only, &with_smooth}) {
         if (!*test) continue;
         const SwapTest& t = **test;
-        const double d_c = t.stand_in(Cc);
+        const double d_c = t.removes(Cc);
         if (d_c < t.d_e - t.margin) continue;
         rivals.push_back(cand);
         log.push_back(fmt::format(

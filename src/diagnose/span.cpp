@@ -61,4 +61,22 @@ Eigen::MatrixXd basis_of(const Eigen::MatrixXd& D, const std::vector<Eigen::Matr
   return orthonormal(A);
 }
 
+double SwapBasis::removes(const Eigen::MatrixXd& C) const {
+  const Eigen::MatrixXd Qc = orthonormal(residual_of(QA, C));
+  return Qc.cols() > 0 ? (Qc.transpose() * rA).squaredNorm() : 0.0;
+}
+
+SwapBasis swap_basis(const Problem& pb, const Eigen::MatrixXd& D,
+                     const std::vector<Eigen::MatrixXd>& cols, const std::vector<bool>& use,
+                     std::size_t e) {
+  SwapBasis b;
+  b.QA = basis_of(D, cols, use);
+  b.rA = residual_of(b.QA, pb.y);
+  b.Ce = residual_of(b.QA, cols[e]);
+  const Eigen::MatrixXd Qe = orthonormal(b.Ce);
+  b.rank = Qe.cols();
+  b.d_e = b.rank > 0 ? (Qe.transpose() * b.rA).squaredNorm() : 0.0;
+  return b;
+}
+
 }  // namespace abbe::diagnose::span

@@ -32,4 +32,19 @@ Eigen::MatrixXd datum_columns(const Problem& problem, const std::vector<Selected
 Eigen::MatrixXd basis_of(const Eigen::MatrixXd& D, const std::vector<Eigen::MatrixXd>& blocks,
                          const std::vector<bool>& use);
 
+// A swap test's basis for the effect block e of `cols`: everything else of
+// the fit (QA: the datum D and the blocks `use`), the data and the effect's
+// columns beside it (rA, Ce), what the effect removes there (d_e, over its
+// `rank` independent columns), and what other columns remove in its place.
+struct SwapBasis {
+  Eigen::MatrixXd QA, Ce;
+  Eigen::VectorXd rA;
+  double d_e = 0.0;
+  Eigen::Index rank = 0;
+  double removes(const Eigen::MatrixXd& C) const;
+};
+SwapBasis swap_basis(const Problem& problem, const Eigen::MatrixXd& D,
+                     const std::vector<Eigen::MatrixXd>& cols, const std::vector<bool>& use,
+                     std::size_t e);
+
 }  // namespace abbe::diagnose::span
