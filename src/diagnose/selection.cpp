@@ -16,6 +16,8 @@
 #include "candidate_fit.hpp"
 #include "final_fit.hpp"
 #include "parameter_scan.hpp"
+#include "path.hpp"
+#include "revisit.hpp"
 #include "span.hpp"
 #include "structure.hpp"
 
@@ -129,9 +131,12 @@ bool choose_smooth_degree(const Problem& pb, const SelectionOptions& o, const Ma
 
 }  // namespace
 
-SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
-                               const SelectionOptions& o) {
+SelectionResult selection::select_path(const Problem& pb, const CandidateSet& cs,
+                                       const SelectionOptions& o, const Term* forced_first,
+                                       selection::PathSummary& summary) {
   SelectionResult res;
+  summary = {};
+  summary.first.kind = TermKind::unexplained;
   const auto n = static_cast<Eigen::Index>(pb.obs.size());
   const auto np = pb.points.size();
   const Vec& y = pb.y;
@@ -234,110 +239,6 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
       return q;
     };
 
-    // Searched families: pick the parameter by a quick projection, then
-    // evaluate the best of each family exactly.
-    std::vector<Cached> scanned;
-    selection::PowerCache power_cache;
-    const selection::ScanInput scan_in{pb, R, W, set_of, stride, o.alias_power, o.refine_period};
-    for (const ScanFamily& f : cs.scanned) {
-      std::vector<double> aliases;
-      const Term t = scan_parameter(f, scan_in, power_cache, aliases);
-      Cached c{t, term_columns(pb, t), Mat(), Mat(), std::move(aliases)};
-      c.CtC = c.C.transpose() * c.C;
-      c.QtC = Q.transpose() * c.C;
-      scanned.push_back(std::move(c));
-    }
-
-    // Best named candidate.
-    std::vector<Score> scores;
-    auto consider = [&](const Cached& c) {
-      const double d = delta_rss(c.C, c.CtC, c.QtC, r);
-      if (d <= 0.0) return;
-      const int k = c.term.columns();
-      const double s2 = std::max(rr - d, 1e-300) / std::max(dof_base - k, 1.0);
-      const double chi2 = chi2_upper_quantile(k, o.alpha / tests_named);
-      scores.push_back({&c, d, s2 * std::max(chi2, practical(k))});
-    };
-    for (const Cached& c : named) consider(c);
-    for (const Cached& c : scanned) consider(c);
-    std::sort(scores.begin(), scores.end(),
-              [](const Score& a, const Score& b) { return a.d > b.d; });
-    // σ̂² of the information criterion: the least residual variance any
-    // candidate leaves (a structure still in the residual does not inflate it).
-    double s2_ic = rr / dof_base;
-    for (const Score& s : scores)
-      s2_ic = std::min(s2_ic,
-                       std::max(rr - s.d, 1e-300) / std::max(dof_base - s.c->term.columns(), 1.0));
-    // The smooth function's fields are set once it is found (below).
-    Step step_view(pb, o, cs, Q, r, scores, share_cache);
-    step_view.rr = rr;
-    step_view.dof_base = dof_base;
-    step_view.lambda = lambda;
-    step_view.tests_named = tests_named;
-    step_view.s2_ic = s2_ic;
-    const Score* best_named = nullptr;
-    for (const Score& s : scores)
-      if (s.d > s.thr) {
-        best_named = &s;
-        break;
-      }
-    best_named = step_view.parsimonious(best_named);
-
-    // Best smooth function (approximate: not orthogonalised against Q, so it
-    // never overstates what it explains).
-    double g_best_excess = 0.0, g_best_d = 0.0;
-    Term g_best;
-    bool have_generic = false;
-    for (const Generic& g : generic) {
-      const Mat B = generic_basis(pb, g.term);
-      const Mat BtR = B.transpose() * R;
-      for (int i = 0; i < 3; ++i) {
-        if (!pb.direction_present[static_cast<std::size_t>(i)]) continue;
-        const Mat& G = g.G[static_cast<std::size_t>(i)];
-        const Vec b = BtR.col(i);
-        Eigen::LDLT<Mat> ldlt(G);
-        const double d = b.dot(ldlt.solve(b));
-        const int k = g.term.columns();
-        const double s2 = std::max(rr - d, 1e-300) / std::max(dof_base - k, 1.0);
-        const double thr =
-            s2 * std::max(chi2_upper_quantile(k, o.alpha / tests_generic), practical(k));
-        if (d > thr && d - thr > g_best_excess) {
-          g_best_excess = d - thr;
-          g_best_d = d;
-          g_best = g.term;
-          g_best.direction = i;
-          have_generic = true;
-        }
-      }
-    }
-
-    // Before the smooth function is taken: does a named part of its
-    // structure, alone or with up to two partners, explain it as well at a
-    // lower cost (docs/diagnosis.md, step 3)?
-    step_view.have_generic = have_generic;
-    step_view.g_best = g_best;
-    step_view.g_best_d = g_best_d;
-    StructureChoice structure;
-    explain_structure(step_view, best_named, step, structure, res.log);
-    if (structure.lead_explains || structure.combination_wins) best_named = structure.lead;
-    // The chosen cycles' periods on the exact ΔRSS (after the choice, so
-    // that the finer period does not give a cycle an edge over the fixed
-    // candidates it competed with: on a few regular levels every period is
-    // an alias, and a freer one fits the noise).
-    if (o.exact_period && best_named) {
-      auto refine = [&](const Score* s) {
-        if (s->c->term.kind != TermKind::cyclic) return;
-        // A cycle is a scanned candidate: scanned[i] of family cs.scanned[i].
-        const auto i = static_cast<std::size_t>(s->c - scanned.data());
-        const std::vector<double>& grid = cs.scanned[i].grid;
-        if (grid.size() < 2) return;
-        scores[static_cast<std::size_t>(s - scores.data())].d = selection::refine_period_exactly(
-            pb, Q, r, std::abs(1.0 / grid[1] - 1.0 / grid[0]), scanned[i]);
-      };
-      refine(best_named);
-      for (const Score* s : structure.partners) refine(s);
-    }
-
     Term pick;
     Mat C;
     double d_pick = 0.0;
@@ -346,42 +247,156 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     std::vector<Term> with_pick;  // the partners of a winning combination
     std::vector<std::vector<std::string>> with_amb;
     std::vector<std::string> with_separation;
-    if (best_named && (!have_generic || structure.combination_wins || structure.lead_explains ||
-                       best_named->d >= o.name_ratio * g_best_d)) {
-      pick = best_named->c->term;
-      C = best_named->c->C;
-      d_pick = best_named->d;
-      separation = step_view.rivals(*best_named, amb);
-      // A combination that won against a smooth function enters whole: its
-      // members explain the structure together (a partner alone may be
-      // below the practical floor, e.g. the squareness part of an
-      // off-centre coupling), so each is kept with it, with its own rivals.
-      for (std::size_t m = 0; m < structure.partners.size(); ++m) {
-        const Score* s = structure.partners[m];
-        const std::vector<Term>& swapped_in = structure.partner_rivals[m];
-        Mat Cn(n, C.cols() + s->c->C.cols());
-        Cn << C, s->c->C;
-        C = std::move(Cn);
-        with_pick.push_back(s->c->term);
-        with_amb.emplace_back();
-        std::string sep = step_view.rivals(*s, with_amb.back());
-        for (const Term& t : swapped_in)
-          if (std::find(with_amb.back().begin(), with_amb.back().end(), t.label()) ==
-              with_amb.back().end())
-            with_amb.back().push_back(t.label());
-        if (sep.empty() && !swapped_in.empty())
-          sep = separating_measurement(s->c->term, swapped_in, {});
-        with_separation.push_back(sep);
-      }
-      if (!structure.partners.empty()) d_pick = structure.d_partners;
-    } else if (have_generic) {
-      pick = g_best;
+    std::vector<Cached> scanned;
+    std::vector<Score> scores;
+    const Score* best_named = nullptr;
+    if (forced_first && step == 0) {
+      pick = *forced_first;
       C = term_columns(pb, pick);
-      d_pick = g_best_d;
+      d_pick = selection::removed_by(C, Q, r);
     } else {
-      res.log.push_back(
-          fmt::format("step {}: no candidate above the significance floor", step + 1));
-      break;
+      // Searched families: pick the parameter by a quick projection, then
+      // evaluate the best of each family exactly.
+      selection::PowerCache power_cache;
+      const selection::ScanInput scan_in{pb, R, W, set_of, stride, o.alias_power, o.refine_period};
+      for (const ScanFamily& f : cs.scanned) {
+        std::vector<double> aliases;
+        const Term t = scan_parameter(f, scan_in, power_cache, aliases);
+        Cached c{t, term_columns(pb, t), Mat(), Mat(), std::move(aliases)};
+        c.CtC = c.C.transpose() * c.C;
+        c.QtC = Q.transpose() * c.C;
+        scanned.push_back(std::move(c));
+      }
+
+      // Best named candidate.
+      auto consider = [&](const Cached& c) {
+        const double d = delta_rss(c.C, c.CtC, c.QtC, r);
+        if (d <= 0.0) return;
+        const int k = c.term.columns();
+        const double s2 = std::max(rr - d, 1e-300) / std::max(dof_base - k, 1.0);
+        const double chi2 = chi2_upper_quantile(k, o.alpha / tests_named);
+        scores.push_back({&c, d, s2 * std::max(chi2, practical(k))});
+      };
+      for (const Cached& c : named) consider(c);
+      for (const Cached& c : scanned) consider(c);
+      std::sort(scores.begin(), scores.end(),
+                [](const Score& a, const Score& b) { return a.d > b.d; });
+      // σ̂² of the information criterion: the least residual variance any
+      // candidate leaves (a structure still in the residual does not inflate it).
+      double s2_ic = rr / dof_base;
+      for (const Score& s : scores)
+        s2_ic = std::min(
+            s2_ic, std::max(rr - s.d, 1e-300) / std::max(dof_base - s.c->term.columns(), 1.0));
+      // The smooth function's fields are set once it is found (below).
+      Step step_view(pb, o, cs, Q, r, scores, share_cache);
+      step_view.rr = rr;
+      step_view.dof_base = dof_base;
+      step_view.lambda = lambda;
+      step_view.tests_named = tests_named;
+      step_view.s2_ic = s2_ic;
+      for (const Score& s : scores)
+        if (s.d > s.thr) {
+          best_named = &s;
+          break;
+        }
+      best_named = step_view.parsimonious(best_named);
+
+      // Best smooth function (approximate: not orthogonalised against Q, so it
+      // never overstates what it explains).
+      double g_best_excess = 0.0, g_best_d = 0.0;
+      Term g_best;
+      bool have_generic = false;
+      for (const Generic& g : generic) {
+        const Mat B = generic_basis(pb, g.term);
+        const Mat BtR = B.transpose() * R;
+        for (int i = 0; i < 3; ++i) {
+          if (!pb.direction_present[static_cast<std::size_t>(i)]) continue;
+          const Mat& G = g.G[static_cast<std::size_t>(i)];
+          const Vec b = BtR.col(i);
+          Eigen::LDLT<Mat> ldlt(G);
+          const double d = b.dot(ldlt.solve(b));
+          const int k = g.term.columns();
+          const double s2 = std::max(rr - d, 1e-300) / std::max(dof_base - k, 1.0);
+          const double thr =
+              s2 * std::max(chi2_upper_quantile(k, o.alpha / tests_generic), practical(k));
+          if (d > thr && d - thr > g_best_excess) {
+            g_best_excess = d - thr;
+            g_best_d = d;
+            g_best = g.term;
+            g_best.direction = i;
+            have_generic = true;
+          }
+        }
+      }
+
+      // Before the smooth function is taken: does a named part of its
+      // structure, alone or with up to two partners, explain it as well at a
+      // lower cost (docs/diagnosis.md, step 3)?
+      step_view.have_generic = have_generic;
+      step_view.g_best = g_best;
+      step_view.g_best_d = g_best_d;
+      StructureChoice structure;
+      explain_structure(step_view, best_named, step, structure, res.log);
+      if (structure.lead_explains || structure.combination_wins) best_named = structure.lead;
+      // The chosen cycles' periods on the exact ΔRSS (after the choice, so
+      // that the finer period does not give a cycle an edge over the fixed
+      // candidates it competed with: on a few regular levels every period is
+      // an alias, and a freer one fits the noise).
+      if (o.exact_period && best_named) {
+        auto refine = [&](const Score* s) {
+          if (s->c->term.kind != TermKind::cyclic) return;
+          // A cycle is a scanned candidate: scanned[i] of family cs.scanned[i].
+          const auto i = static_cast<std::size_t>(s->c - scanned.data());
+          const std::vector<double>& grid = cs.scanned[i].grid;
+          if (grid.size() < 2) return;
+          scores[static_cast<std::size_t>(s - scores.data())].d = selection::refine_period_exactly(
+              pb, Q, r, std::abs(1.0 / grid[1] - 1.0 / grid[0]), scanned[i]);
+        };
+        refine(best_named);
+        for (const Score* s : structure.partners) refine(s);
+      }
+
+      if (best_named && (!have_generic || structure.combination_wins || structure.lead_explains ||
+                         best_named->d >= o.name_ratio * g_best_d)) {
+        pick = best_named->c->term;
+        C = best_named->c->C;
+        d_pick = best_named->d;
+        separation = step_view.rivals(*best_named, amb);
+        // A combination that won against a smooth function enters whole: its
+        // members explain the structure together (a partner alone may be
+        // below the practical floor, e.g. the squareness part of an
+        // off-centre coupling), so each is kept with it, with its own rivals.
+        for (std::size_t m = 0; m < structure.partners.size(); ++m) {
+          const Score* s = structure.partners[m];
+          const std::vector<Term>& swapped_in = structure.partner_rivals[m];
+          Mat Cn(n, C.cols() + s->c->C.cols());
+          Cn << C, s->c->C;
+          C = std::move(Cn);
+          with_pick.push_back(s->c->term);
+          with_amb.emplace_back();
+          std::string sep = step_view.rivals(*s, with_amb.back());
+          for (const Term& t : swapped_in)
+            if (std::find(with_amb.back().begin(), with_amb.back().end(), t.label()) ==
+                with_amb.back().end())
+              with_amb.back().push_back(t.label());
+          if (sep.empty() && !swapped_in.empty())
+            sep = separating_measurement(s->c->term, swapped_in, {});
+          with_separation.push_back(sep);
+        }
+        if (!structure.partners.empty()) d_pick = structure.d_partners;
+      } else if (have_generic) {
+        pick = g_best;
+        C = term_columns(pb, pick);
+        d_pick = g_best_d;
+      } else {
+        res.log.push_back(
+            fmt::format("step {}: no candidate above the significance floor", step + 1));
+        break;
+      }
+
+      // The first step's near alternatives, for the revisit (revisit.hpp).
+      if (step == 0 && pick.kind != TermKind::unexplained && with_pick.empty())
+        first_step_alternatives(pb, cs, o, Q, r, scores, pick, d_pick, summary.first_alternatives);
     }
 
     // Held-out check. A smooth function that fails it gives way to the best
@@ -433,6 +448,7 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     ambiguous.push_back(amb);
     separations.push_back(separation);
     step_of.push_back(step);
+    if (step == 0 && with_pick.empty() && pick.kind != TermKind::unexplained) summary.first = pick;
     for (std::size_t i = 0; i < with_pick.size(); ++i) {
       chosen.push_back(with_pick[i]);
       ambiguous.push_back(with_amb[i]);
@@ -486,6 +502,13 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
   // Final joint fit of every chosen term.
   res.cv_sse = cv_prev;
   res.residual = r;
+  summary.rss = r.squaredNorm();
+  summary.cv_sse = cv_prev;
+  summary.columns = X.cols();
+  for (std::size_t i = n_datum; i < chosen.size(); ++i) {
+    summary.cost += selection::criterion_cost(chosen[i], o.searched_cost);
+    if (chosen[i].kind == TermKind::unexplained) summary.unexplained = true;
+  }
   if (chosen.size() == n_datum) {
     res.sigma_um =
         std::sqrt(r.squaredNorm() / std::max<double>(static_cast<double>(n - X.cols()), 1.0));

@@ -8,6 +8,7 @@
 
 #include "abbe/diagnose/separation.hpp"
 #include "abbe/diagnose/statistics.hpp"
+#include "path.hpp"
 
 namespace abbe::diagnose::selection {
 
@@ -42,10 +43,12 @@ double share_along(const Problem& pb, const Term& t, int direction) {
   return all > 0.0 ? along / all : 0.0;
 }
 
-double Step::cost(const Term& t) const {
+double criterion_cost(const Term& t, double searched_cost) {
   const bool searched = t.kind == TermKind::cyclic || t.kind == TermKind::thermal_drift;
-  return t.columns() + (searched ? o.searched_cost : 0.0);
+  return t.columns() + (searched ? searched_cost : 0.0);
 }
+
+double Step::cost(const Term& t) const { return criterion_cost(t, o.searched_cost); }
 
 double Step::ic_gain(double d, double c) const {
   return d - s2_ic * std::log(static_cast<double>(r.size())) * c;

@@ -1053,6 +1053,32 @@ TEST(DiagnoseDesigns, GridTwoEffects) {
   EXPECT_LE(static_cast<double>(wrong) / std::max(resolvable, 1), 0.02);
 }
 
+// The revisit of the first step (SelectionOptions::revisit_paths). Case
+// 51 (a drift of X at τ 2 099 s beside an off-centre coupling y·z→X) took
+// the drift at τ 900 s first, which took a part of the coupling, and a
+// smooth dX(z,t) the rest; case 68 (a scale of X beside the same kind of
+// coupling) took a drift x·t→X at τ 300 s first for the scale, `ambiguous`
+// with it. From the first step's near alternatives (the drift at 1 800 s;
+// the scale) the coupling with its squareness parts is named, and those
+// paths are better on the criterion and held out.
+TEST(DiagnoseDesigns, TheFirstStepIsRevisited) {
+  SelectionOptions without;
+  without.revisit_paths = 0;
+  for (const int i : {51, 68}) {
+    const TwoEffects with = two_effects_case(i);
+    EXPECT_TRUE(with.named[0] && with.named[1]) << "case " << i;
+    EXPECT_FALSE(with.bad) << "case " << i;
+    bool taken = false;
+    for (const std::string& line : with.c.log)
+      taken =
+          taken || (line.rfind("revisit:", 0) == 0 && line.find(": taken") != std::string::npos);
+    EXPECT_TRUE(taken) << "case " << i;
+    const TwoEffects off = two_effects_case(i, &without);
+    EXPECT_FALSE(off.named[0] && off.named[1]) << "case " << i;
+    for (const std::string& line : off.c.log) EXPECT_NE(line.rfind("revisit:", 0), 0u) << line;
+  }
+}
+
 // A drift that grows with the position, t/(t+τ)·(s − s0), beside another
 // effect: the first significant part of the structure (an aliased cycle or
 // a scale) leads no combination that explains it, but the drift ∝ s with a
@@ -1085,7 +1111,11 @@ TEST(DiagnoseDesigns, ARivalIsAlsoSoughtBesideTheSmoothFunction) {
       if (st.term.kind == TermKind::thermal_drift) return st;
     return SelectedTerm{};
   };
-  const TwoEffects with = two_effects_case(68);
+  // Without the revisit of the first step, which names the scale there
+  // (TheFirstStepIsRevisited).
+  SelectionOptions first_pick_kept;
+  first_pick_kept.revisit_paths = 0;
+  const TwoEffects with = two_effects_case(68, &first_pick_kept);
   EXPECT_FALSE(with.bad) << with.c.found;
   const SelectedTerm d = drift_named(with);
   ASSERT_EQ(d.term.kind, TermKind::thermal_drift) << with.c.found;
@@ -1094,7 +1124,7 @@ TEST(DiagnoseDesigns, ARivalIsAlsoSoughtBesideTheSmoothFunction) {
       << with.c.found;
   RivalOptions named_only;
   named_only.beside_smooth = false;
-  const TwoEffects off = two_effects_case(68, nullptr, &named_only);
+  const TwoEffects off = two_effects_case(68, &first_pick_kept, &named_only);
   EXPECT_TRUE(off.bad) << off.c.found;
   EXPECT_TRUE(drift_named(off).ambiguous_with.empty()) << off.c.found;
 }

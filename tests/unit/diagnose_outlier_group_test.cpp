@@ -67,6 +67,32 @@ TEST(DiagnoseOutlierGroup, AReversalRunIsStructureNotOutliers) {
   }
 }
 
+TEST(DiagnoseOutlierGroup, WhereTheFitWithEveryPointLeavesNoneItIsTheOnlySelection) {
+  // The run the other way lies beyond the threshold of the datum alone;
+  // the model selected with every point leaves no point beyond its own.
+  // The flagging from the datum alone would end at that selection (the
+  // check keeps the result that leaves out fewer points), so it is the
+  // result at once: one selection with the caller's options (counted by
+  // its first step), and the same effects as without outlier flagging.
+  const Problem pb = one_way_rows(6.0, 2);
+  DiagnoseOptions o;
+  int selections = 0;
+  o.selection.on_step = [&](int step) { selections += step == 0 ? 1 : 0; };
+  const Diagnosis d = diagnose_problem(pb, o);
+  EXPECT_EQ(selections, 1);
+  EXPECT_TRUE(d.outliers.empty());
+  EXPECT_TRUE(names_reversal_x(d, 6.0));
+  DiagnoseOptions plain;
+  plain.outliers.enabled = false;
+  const Diagnosis p = diagnose_problem(pb, plain);
+  ASSERT_EQ(d.effects.size(), p.effects.size());
+  for (std::size_t i = 0; i < d.effects.size(); ++i) {
+    EXPECT_EQ(d.effects[i].term.label(), p.effects[i].term.label());
+    EXPECT_EQ(d.effects[i].term.coef, p.effects[i].term.coef);
+  }
+  EXPECT_GT(d.outlier_threshold_um, 0.0);
+}
+
 TEST(DiagnoseOutlierGroup, ScatteredGrossErrorsAreStillFlagged) {
   // The same rows without a reversal, 2 % of the points 20–50 µm off: the
   // check selects with them, but no catalogue effect explains scattered

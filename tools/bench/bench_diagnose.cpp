@@ -4,6 +4,7 @@
 // checks, final fit (docs/performance.md, "Diagnosis").
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -66,10 +67,16 @@ Setup make_setup(int points, int effects) {
 
 // A regular grid of about `points` points in nx × ny × nz levels (at most
 // 40 per axis: every axis levelled, design_ambiguity.hpp), walked level by
-// level in order (time follows Z), 0.1 s per point, with a drift of Z.
-Setup make_grid_setup(int points) {
+// level in order (time follows Z), 0.1 s per point; effects 0: a drift of
+// Z; 1: a drift of X with a coupling y·z→X (a smooth dX(z,t) wins the
+// first step: within a level y follows t).
+Setup make_grid_setup(int points, int effects) {
   Setup s = make_setup(1, 0);
-  s.generated.truth.effects = {abbe::sim::parse_effect("thermal_drift:Z:4um:tau=1800")};
+  if (effects == 0)
+    s.generated.truth.effects = {abbe::sim::parse_effect("thermal_drift:Z:4um:tau=1800")};
+  else
+    s.generated.truth.effects = {abbe::sim::parse_effect("thermal_drift:X:8um:tau=2100"),
+                                 abbe::sim::parse_effect("coupling:Y:6um:with=Z,dir=X")};
   Eigen::Vector3d lo, hi;
   abbe::sim::default_box(s.generated.truth, s.generated.truth.tool_length, lo, hi);
   const int nz = 35, ny = 38, nx = std::max(2, points / (ny * nz));
@@ -93,12 +100,23 @@ Setup make_grid_setup(int points) {
   return s;
 }
 
+// The paths the revisit of the first step ran (its log lines).
+std::size_t revisits(const abbe::diagnose::Diagnosis& d) {
+  return static_cast<std::size_t>(
+      std::count_if(d.log.begin(), d.log.end(),
+                    [](const std::string& l) { return l.rfind("revisit:", 0) == 0; }));
+}
+
 // range(0): points; range(1): 1 with the checks of what the design cannot
-// tell apart (design_ambiguity.hpp), 0 without — their cost as a ratio.
+// tell apart (design_ambiguity.hpp), 0 without — their cost as a ratio;
+// range(2): the hidden effects (make_grid_setup); range(3): 1 with the
+// outlier flagging (outliers.hpp), 0 without.
 void BM_DiagnoseGrid(benchmark::State& state) {
-  const Setup s = make_grid_setup(static_cast<int>(state.range(0)));
+  const Setup s =
+      make_grid_setup(static_cast<int>(state.range(0)), static_cast<int>(state.range(2)));
   abbe::diagnose::DiagnoseOptions o;
   o.design.levelled_axes = state.range(1) != 0;
+  o.outliers.enabled = state.range(3) != 0;
   std::size_t effects = 0;
   for (auto _ : state) {
     const abbe::diagnose::Diagnosis d = abbe::diagnose::diagnose(s.machine, s.data, o);
@@ -109,8 +127,10 @@ void BM_DiagnoseGrid(benchmark::State& state) {
   state.counters["effects"] = static_cast<double>(effects);
 }
 BENCHMARK(BM_DiagnoseGrid)
-    ->Args({100000, 1})
-    ->Args({100000, 0})
+    ->Args({100000, 1, 0, 1})
+    ->Args({100000, 0, 0, 1})
+    ->Args({100000, 1, 1, 1})
+    ->Args({100000, 1, 1, 0})
     ->Unit(benchmark::kSecond)
     ->Iterations(1);
 
@@ -119,31 +139,38 @@ BENCHMARK(BM_DiagnoseGrid)
 // range(2): the hidden effects (make_setup); range(3): 1 with the backward
 // check after the forward selection (backward_check.hpp), 0 without;
 // range(4): 1 with a chosen cycle's period refined on the exact ΔRSS
-// (SelectionOptions::exact_period), 0 with the periodogram's.
+// (SelectionOptions::exact_period), 0 with the periodogram's; range(5): 1
+// with the revisit of the first step (SelectionOptions::revisit_paths), 0
+// without; the counter `revisited` is the paths it ran.
 void BM_Diagnose(benchmark::State& state) {
   const Setup s = make_setup(static_cast<int>(state.range(0)), static_cast<int>(state.range(2)));
   abbe::diagnose::DiagnoseOptions o;
   o.rivals.enabled = state.range(1) != 0;
   o.selection.backward_check = state.range(3) != 0;
   o.selection.exact_period = state.range(4) != 0;
-  std::size_t effects = 0;
+  if (state.range(5) == 0) o.selection.revisit_paths = 0;
+  std::size_t effects = 0, revisited = 0;
   for (auto _ : state) {
     const abbe::diagnose::Diagnosis d = abbe::diagnose::diagnose(s.machine, s.data, o);
     effects = d.effects.size();
+    revisited = revisits(d);
     benchmark::DoNotOptimize(effects);
   }
   state.counters["points"] = static_cast<double>(state.range(0));
   state.counters["effects"] = static_cast<double>(effects);
+  state.counters["revisited"] = static_cast<double>(revisited);
 }
 BENCHMARK(BM_Diagnose)
-    ->Args({10000, 1, 0, 1, 1})
-    ->Args({100000, 1, 0, 1, 1})
-    ->Args({100000, 1, 0, 0, 1})
-    ->Args({100000, 1, 0, 1, 0})
-    ->Args({100000, 0, 0, 1, 1})
-    ->Args({100000, 1, 1, 1, 1})
-    ->Args({100000, 1, 1, 0, 1})
-    ->Args({100000, 1, 1, 1, 0})
+    ->Args({10000, 1, 0, 1, 1, 1})
+    ->Args({100000, 1, 0, 1, 1, 1})
+    ->Args({100000, 1, 0, 0, 1, 1})
+    ->Args({100000, 1, 0, 1, 0, 1})
+    ->Args({100000, 0, 0, 1, 1, 1})
+    ->Args({100000, 1, 1, 1, 1, 1})
+    ->Args({100000, 1, 1, 0, 1, 1})
+    ->Args({100000, 1, 1, 1, 0, 1})
+    ->Args({100000, 1, 0, 1, 1, 0})
+    ->Args({100000, 1, 1, 1, 1, 0})
     ->Unit(benchmark::kSecond)
     ->Iterations(1);
 

@@ -117,6 +117,16 @@ struct SelectionOptions {
   // other named effects (backward_check.hpp); one the later steps made
   // redundant is dropped (false: every effect chosen stays).
   bool backward_check = true;
+  // The revisit of the first step (docs/diagnosis.md, step 3): where the
+  // forward path ends with a smooth `unexplained` function, the first
+  // step's pick was a guess among near-equal ones (a drift's time constant
+  // chosen while a second effect was still in the residual, a drift beside
+  // a scale); up to `revisit_paths` paths are run again from each named
+  // candidate of that step that removed at least `revisit_share` of what
+  // the pick removed, and a path wins that is better on the criterion and
+  // not worse held out (0: no revisit).
+  int revisit_paths = 3;
+  double revisit_share = 0.9;
   // Optional: called at the start of each selection step (0-based), e.g. for
   // a progress bar.
   std::function<void(int step)> on_step;

@@ -1,0 +1,39 @@
+#pragma once
+// One forward path of the selection (docs/diagnosis.md, step 3): the steps,
+// the backward check and the final fit, from the datum on — optionally with
+// its first step's pick given (the revisit of the first step, revisit.hpp).
+#include <Eigen/Core>
+#include <vector>
+
+#include "abbe/diagnose/candidates.hpp"
+#include "abbe/diagnose/selection.hpp"
+
+namespace abbe::diagnose::selection {
+
+// What the revisit needs to weigh a path against another.
+struct PathSummary {
+  double rss = 0.0;          // the joint fit's residual SS (before the final fit's stages)
+  double cv_sse = 0.0;       // its held-out SSE
+  double cost = 0.0;         // the chosen effects' cost on the criterion (criterion_cost)
+  Eigen::Index columns = 0;  // every chosen column, the datum's included
+  bool unexplained = false;  // a smooth `unexplained` function is among the chosen
+  // The first step's pick: a single named effect (kind unexplained when the
+  // first step chose a smooth function, a combination or nothing).
+  Term first;
+  // Not forced: the first step's other named candidates that remove at least
+  // SelectionOptions::revisit_share of what the pick removes (significant
+  // alone), and the pick's own family at its other time constants, largest
+  // first.
+  std::vector<Term> first_alternatives;
+};
+
+// forced_first: the first step takes this term (no alternatives are sought).
+SelectionResult select_path(const Problem& problem, const CandidateSet& candidates,
+                            const SelectionOptions& options, const Term* forced_first,
+                            PathSummary& summary);
+
+// A term's cost on the information criterion: its columns, plus
+// `searched_cost` for a parameter found by search (a period, a time constant).
+double criterion_cost(const Term& t, double searched_cost);
+
+}  // namespace abbe::diagnose::selection

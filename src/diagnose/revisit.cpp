@@ -1,0 +1,94 @@
+#include "revisit.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "path.hpp"
+
+namespace abbe::diagnose {
+namespace selection {
+
+void first_step_alternatives(const Problem& pb, const CandidateSet& cs, const SelectionOptions& o,
+                             const Mat& Q, const Vec& r, const std::vector<Score>& scores,
+                             const Term& pick, double d_pick, std::vector<Term>& out) {
+  out.clear();
+  if (o.revisit_paths <= 0) return;
+  std::vector<std::pair<double, Term>> near;
+  const std::string pick_label = pick.label();
+  auto add = [&](const Term& t, double d) {
+    if (!(d >= o.revisit_share * d_pick)) return;
+    const std::string label = t.label();
+    if (label == pick_label) return;
+    for (const auto& a : near)
+      if (a.second.label() == label) return;
+    near.emplace_back(d, t);
+  };
+  for (const Score& s : scores)
+    if (s.d > s.thr) add(s.c->term, s.d);
+  // A drift's own family at its other time constants (a cycle's other
+  // periods are its aliases, which the cycle's own tests judge).
+  if (pick.kind == TermKind::thermal_drift)
+    for (const ScanFamily& f : cs.scanned) {
+      const Term& b = f.base;
+      if (b.kind != pick.kind || b.axis != pick.axis || b.direction != pick.direction ||
+          b.with_axis != pick.with_axis)
+        continue;
+      for (const double tau : f.grid) {
+        if (tau == pick.tau_s) continue;
+        Term t = pick;
+        t.tau_s = tau;
+        add(t, removed_by(term_columns(pb, t), Q, r));
+      }
+    }
+  std::stable_sort(near.begin(), near.end(),
+                   [](const auto& a, const auto& b) { return a.first > b.first; });
+  for (const auto& a : near) {
+    if (static_cast<int>(out.size()) >= o.revisit_paths) break;
+    out.push_back(a.second);
+  }
+}
+
+}  // namespace selection
+
+SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
+                               const SelectionOptions& o) {
+  selection::PathSummary kept;
+  SelectionResult best = selection::select_path(pb, cs, o, nullptr, kept);
+  if (!kept.unexplained || kept.first_alternatives.empty()) return best;
+  const std::vector<Term> alternatives = kept.first_alternatives;
+  SelectionOptions again = o;
+  again.on_step = nullptr;  // the progress of the path that counts has been shown
+  const auto n = static_cast<double>(pb.obs.size());
+  auto variance = [&](const selection::PathSummary& p) {
+    return p.rss / std::max(n - static_cast<double>(p.columns), 1.0);
+  };
+  std::vector<std::string> notes;
+  for (const Term& alt : alternatives) {
+    selection::PathSummary path;
+    SelectionResult res = selection::select_path(pb, cs, again, &alt, path);
+    const double s2 = std::min(variance(kept), variance(path));
+    const double ic_kept = kept.rss + s2 * std::log(n) * kept.cost;
+    const double ic_path = path.rss + s2 * std::log(n) * path.cost;
+    // Better by more than the rounding of two fits of the same model (a
+    // path whose first pick the backward check dropped may end where the
+    // kept one did).
+    const bool wins = ic_path < ic_kept - 1e-6 * std::abs(ic_kept) && path.cv_sse <= kept.cv_sse;
+    notes.push_back(fmt::format(
+        "revisit: first step {} in place of {}: criterion {:.6g} against {:.6g}, held-out SSE "
+        "{:.6g} against {:.6g}{}",
+        alt.label(), kept.first.label(), ic_path, ic_kept, path.cv_sse, kept.cv_sse,
+        wins ? ": taken" : ""));
+    if (wins) {
+      best = std::move(res);
+      kept = path;
+    }
+  }
+  best.log.insert(best.log.end(), notes.begin(), notes.end());
+  return best;
+}
+
+}  // namespace abbe::diagnose

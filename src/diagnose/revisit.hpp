@@ -1,0 +1,31 @@
+#pragma once
+// The revisit of the first step (docs/diagnosis.md, step 3). The forward
+// selection takes, at each step, what removes most; its first pick is made
+// while every other effect is still in the residual. Where two named
+// candidates remove nearly as much (a drift at τ 900 s or at 1 800 s, a
+// drift that grows with x or a scale of X), the one that wins may be the one
+// that takes part of the second effect's structure, which a smooth
+// function then fits at a later step. Where a path ends with a smooth
+// `unexplained` function, the paths from the first step's near
+// alternatives are run too; one that is better on the information
+// criterion (RSS + σ̂²·ln(n)·cost, σ̂² the smaller residual variance of the
+// two) and not worse held out replaces it.
+#include <vector>
+
+#include "abbe/diagnose/candidates.hpp"
+#include "abbe/diagnose/selection.hpp"
+#include "candidate_fit.hpp"
+#include "step.hpp"
+
+namespace abbe::diagnose::selection {
+
+// The first step's near alternatives to `pick` (PathSummary::first_alternatives):
+// the scored candidates above their floors that remove at least
+// o.revisit_share of d_pick, and a drift's own family at its other time
+// constants, largest ΔRSS first, at most o.revisit_paths. Q, r: the span and
+// residual of the step (the datum's).
+void first_step_alternatives(const Problem& pb, const CandidateSet& cs, const SelectionOptions& o,
+                             const Mat& Q, const Vec& r, const std::vector<Score>& scores,
+                             const Term& pick, double d_pick, std::vector<Term>& out);
+
+}  // namespace abbe::diagnose::selection
