@@ -168,6 +168,9 @@ struct SelectionResult {
   std::vector<std::string> log;     // one line per step
 };
 
+// The forward selection from the datum, its backward check and final fit
+// (docs/diagnosis.md, step 3), with the revisit of the first step where the
+// path ends with a smooth function (SelectionOptions::revisit_paths).
 SelectionResult select_effects(const Problem& problem, const CandidateSet& candidates,
                                const SelectionOptions& options);
 
