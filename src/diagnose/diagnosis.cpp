@@ -55,33 +55,25 @@ RobustFit robust_fit(const Problem& pb, const DiagnoseOptions& o) {
   // threshold; the flagging restarts from there and its result is kept
   // when it leaves out fewer points.
   const bool group_check = oo.group_check && oo.max_passes >= 2;
-  SelectionResult all;
+  CandidateSet candidates = build_candidates(pb, o.candidates);
   double t_all = 0.0;
   std::vector<std::uint32_t> left;
   if (group_check) {
-    all = select_effects(pb, build_candidates(pb, o.candidates), o.selection);
+    SelectionResult all = select_effects(pb, candidates, o.selection);
     t_all = std::max(oo.k * robust_sigma(all.residual), oo.min_threshold_um);
     left = points_beyond(pb, residual_after(pb, all.datum, all.terms), t_all);
     // Nothing beyond the threshold of the model selected with every point:
     // whatever the flagging from the datum alone left out, the selection
     // with every point would win below (it leaves out none), so it is the
     // result — without the passes that would lead there.
-    if (left.empty()) {
-      RobustFit f;
-      f.work = without_points(pb, {});
-      f.candidates = build_candidates(f.work, o.candidates);
-      f.sel = std::move(all);
-      f.threshold = t_all;
-      return f;
-    }
+    if (left.empty()) return RobustFit{pb, std::move(candidates), std::move(all), {}, t_all};
   }
   CandidateSet datum_only;
-  datum_only.datum = build_candidates(pb, o.candidates).datum;
+  datum_only.datum = std::move(candidates.datum);
   const SelectionResult first = select_effects(pb, datum_only, quiet);
   const double threshold = std::max(oo.k * robust_sigma(first.residual), oo.min_threshold_um);
   RobustFit f = converge(pb, o, points_beyond(pb, first.residual, threshold), threshold);
-  if (f.drop.empty() || !group_check) return f;
-  if (left.size() >= f.drop.size()) return f;
+  if (f.drop.empty() || !group_check || left.size() >= f.drop.size()) return f;
   RobustFit g = converge(pb, o, std::move(left), t_all);
   return g.drop.size() < f.drop.size() ? g : f;
 }

@@ -2,7 +2,7 @@
 // One forward path of the selection (docs/diagnosis.md, step 3): the steps,
 // the backward check and the final fit, from the datum on — optionally with
 // its first step's pick given (the revisit of the first step, revisit.hpp).
-#include <Eigen/Core>
+#include <optional>
 #include <vector>
 
 #include "abbe/diagnose/candidates.hpp"
@@ -10,16 +10,13 @@
 
 namespace abbe::diagnose::selection {
 
-// What the revisit needs to weigh a path against another.
+// What the revisit needs of a path beyond its SelectionResult (whose terms
+// give its cost and columns, and cv_sse its held-out SSE).
 struct PathSummary {
-  double rss = 0.0;          // the joint fit's residual SS (before the final fit's stages)
-  double cv_sse = 0.0;       // its held-out SSE
-  double cost = 0.0;         // the chosen effects' cost on the criterion (criterion_cost)
-  Eigen::Index columns = 0;  // every chosen column, the datum's included
-  bool unexplained = false;  // a smooth `unexplained` function is among the chosen
-  // The first step's pick: a single named effect (kind unexplained when the
-  // first step chose a smooth function, a combination or nothing).
-  Term first;
+  double rss = 0.0;  // the joint fit's residual SS (before the final fit's stages)
+  // The first step's pick when it is a single named effect (not a smooth
+  // function, a combination or nothing).
+  std::optional<Term> first;
   // Not forced: the first step's other named candidates that remove at least
   // SelectionOptions::revisit_share of what the pick removes (significant
   // alone), and the pick's own family at its other time constants, largest

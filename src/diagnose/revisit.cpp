@@ -54,34 +54,59 @@ void first_step_alternatives(const Problem& pb, const CandidateSet& cs, const Se
 
 }  // namespace selection
 
+namespace {
+
+bool ends_with_smooth_function(const SelectionResult& res) {
+  return std::any_of(res.terms.begin(), res.terms.end(),
+                     [](const SelectedTerm& st) { return st.term.kind == TermKind::unexplained; });
+}
+
+// The path's cost on the criterion (its effects; the datum is every path's)
+// and its columns (the datum's too).
+double effects_cost(const SelectionResult& res, double searched_cost) {
+  double cost = 0.0;
+  for (const SelectedTerm& st : res.terms)
+    cost += selection::criterion_cost(st.term, searched_cost);
+  return cost;
+}
+
+double columns(const SelectionResult& res) {
+  int k = 0;
+  for (const SelectedTerm& st : res.datum) k += st.term.columns();
+  for (const SelectedTerm& st : res.terms) k += st.term.columns();
+  return static_cast<double>(k);
+}
+
+}  // namespace
+
 SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
                                const SelectionOptions& o) {
   selection::PathSummary kept;
   SelectionResult best = selection::select_path(pb, cs, o, nullptr, kept);
-  if (!kept.unexplained || kept.first_alternatives.empty()) return best;
+  if (!ends_with_smooth_function(best) || kept.first_alternatives.empty()) return best;
   const std::vector<Term> alternatives = kept.first_alternatives;
   SelectionOptions again = o;
   again.on_step = nullptr;  // the progress of the path that counts has been shown
   const auto n = static_cast<double>(pb.obs.size());
-  auto variance = [&](const selection::PathSummary& p) {
-    return p.rss / std::max(n - static_cast<double>(p.columns), 1.0);
+  auto variance = [&](const selection::PathSummary& p, const SelectionResult& res) {
+    return p.rss / std::max(n - columns(res), 1.0);
   };
   std::vector<std::string> notes;
   for (const Term& alt : alternatives) {
     selection::PathSummary path;
     SelectionResult res = selection::select_path(pb, cs, again, &alt, path);
-    const double s2 = std::min(variance(kept), variance(path));
-    const double ic_kept = kept.rss + s2 * std::log(n) * kept.cost;
-    const double ic_path = path.rss + s2 * std::log(n) * path.cost;
+    const double s2 = std::min(variance(kept, best), variance(path, res));
+    const double ic_kept = kept.rss + s2 * std::log(n) * effects_cost(best, o.searched_cost);
+    const double ic_path = path.rss + s2 * std::log(n) * effects_cost(res, o.searched_cost);
     // Better by more than the rounding of two fits of the same model (a
     // path whose first pick the backward check dropped may end where the
     // kept one did).
-    const bool wins = ic_path < ic_kept - 1e-6 * std::abs(ic_kept) && path.cv_sse <= kept.cv_sse;
+    const bool wins = ic_path < ic_kept - 1e-6 * std::abs(ic_kept) && res.cv_sse <= best.cv_sse;
     notes.push_back(fmt::format(
         "revisit: first step {} in place of {}: criterion {:.6g} against {:.6g}, held-out SSE "
         "{:.6g} against {:.6g}{}",
-        alt.label(), kept.first.label(), ic_path, ic_kept, path.cv_sse, kept.cv_sse,
-        wins ? ": taken" : ""));
+        alt.label(), kept.first ? kept.first->label() : std::string("nothing"), ic_path, ic_kept,
+        res.cv_sse, best.cv_sse, wins ? ": taken" : ""));
     if (wins) {
       best = std::move(res);
       kept = path;

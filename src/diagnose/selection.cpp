@@ -136,7 +136,6 @@ SelectionResult selection::select_path(const Problem& pb, const CandidateSet& cs
                                        selection::PathSummary& summary) {
   SelectionResult res;
   summary = {};
-  summary.first.kind = TermKind::unexplained;
   const auto n = static_cast<Eigen::Index>(pb.obs.size());
   const auto np = pb.points.size();
   const Vec& y = pb.y;
@@ -220,8 +219,6 @@ SelectionResult selection::select_path(const Problem& pb, const CandidateSet& cs
     const double rr = r.squaredNorm();
     const double dof_base = static_cast<double>(n - Q.cols());
     if (dof_base < 4.0) break;
-    Mat R, W;
-    point_sums(pb, r, R, W);
     // The practical floor in units of σ̂²: an effect that removes exactly
     // n·(f·σ̂)² would give ΔRSS/σ̂² ~ χ²_k(λ = n·f²) (its noise adds k and
     // scatters it); the candidate must exceed that distribution's upper α
@@ -255,6 +252,8 @@ SelectionResult selection::select_path(const Problem& pb, const CandidateSet& cs
       C = term_columns(pb, pick);
       d_pick = selection::removed_by(C, Q, r);
     } else {
+      Mat R, W;
+      point_sums(pb, r, R, W);
       // Searched families: pick the parameter by a quick projection, then
       // evaluate the best of each family exactly.
       selection::PowerCache power_cache;
@@ -503,12 +502,6 @@ SelectionResult selection::select_path(const Problem& pb, const CandidateSet& cs
   res.cv_sse = cv_prev;
   res.residual = r;
   summary.rss = r.squaredNorm();
-  summary.cv_sse = cv_prev;
-  summary.columns = X.cols();
-  for (std::size_t i = n_datum; i < chosen.size(); ++i) {
-    summary.cost += selection::criterion_cost(chosen[i], o.searched_cost);
-    if (chosen[i].kind == TermKind::unexplained) summary.unexplained = true;
-  }
   if (chosen.size() == n_datum) {
     res.sigma_um =
         std::sqrt(r.squaredNorm() / std::max<double>(static_cast<double>(n - X.cols()), 1.0));
