@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "linear_part.hpp"
 #include "searched_uncertainty.hpp"
 
 namespace abbe::diagnose::selection {
@@ -87,6 +88,8 @@ void fit_chosen(const Problem& pb, const Mat& X, const Vec& y, const Mat& Qd, co
       }
       if (!smooth && i >= n_datum)
         st.term.searched_stderr = searched_parameter_stderr(pb, st.term, f->Xs, f->inv, s2);
+      if (smooth)
+        fill_linear_part(pb, {named_fit.Xs, named_fit.inv, f->Xs, f->inv, s2}, col, bt, Qd, st);
       // SS this term alone removes given the others of its stage: βᵀ V⁻¹ β.
       const double drop = bt.dot(Vt.ldlt().solve(bt));
       const double of = i < n_datum ? res.baseline_sse : res.datum_sse;

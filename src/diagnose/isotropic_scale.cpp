@@ -9,18 +9,32 @@ namespace abbe::diagnose {
 IsotropicScale isotropic_scale(const std::vector<SelectedTerm>& effects, double alpha) {
   IsotropicScale r;
   std::vector<double> value, weight;
-  for (int axis = 0; axis < 3; ++axis)
-    for (const SelectedTerm& st : effects) {
-      const Term& t = st.term;
-      if (t.kind != TermKind::scale || t.axis != axis || !st.significant ||
-          !st.ambiguous_with.empty())
-        continue;
-      if (t.coef.empty() || t.stderr_.empty() || !(t.stderr_[0] > 0.0)) continue;
-      r.axes.push_back(axis);
-      value.push_back(t.coef[0]);
-      weight.push_back(1.0 / (t.stderr_[0] * t.stderr_[0]));
-      break;
-    }
+  auto usable = [](const Term& t, int axis) {
+    return t.kind == TermKind::scale && t.axis == axis && !t.coef.empty() && !t.stderr_.empty() &&
+           t.stderr_[0] > 0.0;
+  };
+  for (int axis = 0; axis < 3; ++axis) {
+    const Term* scale = nullptr;
+    bool from_smooth = false;
+    for (const SelectedTerm& st : effects)
+      if (usable(st.term, axis) && st.significant && st.ambiguous_with.empty()) {
+        scale = &st.term;
+        break;
+      }
+    // Without a named scale of the axis: the scale in a smooth function's
+    // linear part, where its value exceeds its uncertainty (as a name's).
+    for (const SelectedTerm& st : effects)
+      for (const Term& part : st.linear_parts)
+        if (!scale && usable(part, axis) && std::abs(part.coef[0]) > part.stderr_[0]) {
+          scale = &part;
+          from_smooth = true;
+        }
+    if (!scale) continue;
+    r.axes.push_back(axis);
+    r.from_linear_part.push_back(from_smooth);
+    value.push_back(scale->coef[0]);
+    weight.push_back(1.0 / (scale->stderr_[0] * scale->stderr_[0]));
+  }
   if (r.axes.size() < 2) return IsotropicScale{};
   double sw = 0.0, swv = 0.0;
   for (std::size_t i = 0; i < value.size(); ++i) {

@@ -47,11 +47,30 @@ bool value_significant(const Term& t) {
   return std::abs(p[0].second) > e[0].second;
 }
 
+// The parts of a smooth function's linear part whose value exceeds its
+// uncertainty (all of them are in the JSON report); empty when none does or
+// when they hold less than 1 % of the function (beside named scales and
+// squarenesses, which take the linear structure first).
+std::string linear_part_text(const SelectedTerm& st) {
+  if (st.linear_share < 0.01) return "";
+  std::string parts;
+  for (const Term& t : st.linear_parts)
+    if (value_significant(t))
+      parts += fmt::format("{}{} {}", parts.empty() ? "" : ", ", t.label(), effect_value_text(t));
+  if (parts.empty()) return "";
+  return fmt::format("its linear part ({:.0f} % of it; parts of a structure, not names): {}",
+                     100.0 * st.linear_share, parts);
+}
+
 std::string isotropic_text(const Diagnosis& d) {
   const IsotropicScale& iso = d.isotropic;
   if (!iso.found) return "";
   std::string axes;
-  for (int a : iso.axes) axes += fmt::format("{}scale {}", axes.empty() ? "" : ", ", axis_name(a));
+  for (std::size_t k = 0; k < iso.axes.size(); ++k)
+    axes += fmt::format("{}scale {}{}", axes.empty() ? "" : ", ", axis_name(iso.axes[k]),
+                        k < iso.from_linear_part.size() && iso.from_linear_part[k]
+                            ? " (a smooth function's linear part)"
+                            : "");
   return fmt::format(
       "isotropic scale: {} agree (χ² {:.2f} for {} degree{} of freedom): {:+.3g} ± {:.2g} ppm, "
       "consistent with one temperature difference ({:+.1f} K on steel at {:g} ppm/K, {:+.1f} K "
@@ -141,6 +160,21 @@ std::string report_json(const Diagnosis& d) {
     }
     e["params"] = params;
     e["stderr"] = err;
+    if (!st.linear_parts.empty()) {
+      json parts = json::array();
+      for (const Term& lp : st.linear_parts) {
+        json pp = json::object(), pe = json::object();
+        for (const auto& [k, v] : lp.params()) pp[k] = v;
+        for (const auto& [k, v] : lp.param_stderr()) pe[k] = v;
+        parts.push_back({{"kind", kind_id(lp.kind)},
+                         {"axis", axis_of(lp)},
+                         {"direction", direction_of(lp)},
+                         {"label", lp.label()},
+                         {"params", pp},
+                         {"stderr", pe}});
+      }
+      e["linear_part"] = {{"share", st.linear_share}, {"terms", parts}};
+    }
     e["explained_fraction"] = st.explained_fraction;
     e["unique_fraction"] = st.unique_fraction;
     e["shared_fraction"] = st.shared_fraction;
@@ -191,6 +225,7 @@ std::string report_json(const Diagnosis& d) {
     json axes = json::array();
     for (int a : d.isotropic.axes) axes.push_back(std::string(1, axis_name(a)));
     j["isotropic_scale"] = {{"axes", axes},
+                            {"from_linear_part", d.isotropic.from_linear_part},
                             {"ppm", d.isotropic.ppm},
                             {"u_ppm", d.isotropic.u_ppm},
                             {"chi2", d.isotropic.chi2},
@@ -255,6 +290,8 @@ std::string report_text(const Diagnosis& d) {
                        kind_id(t.kind), axis_of(t), direction_of(t), effect_value_text(t),
                        100.0 * st.explained_fraction, 100.0 * st.unique_fraction,
                        100.0 * st.shared_fraction, t.description());
+      if (const std::string lp = linear_part_text(st); !lp.empty())
+        s += fmt::format("  {:<14} {}\n", "", lp);
       if (!st.significant)
         s += fmt::format(
             "  {:<14} NOT SIGNIFICANT (not a name: its standard uncertainty exceeds its value)\n",

@@ -109,7 +109,10 @@ void render_diagnose_report(HtmlPage& page, const DiagnosisForReport& r) {
                       fmt::format("{:.1f} %", 100.0 * d.effects[i].explained_fraction),
                       fmt::format("{:.1f} %", 100.0 * d.effects[i].unique_fraction),
                       fmt::format("{:.1f} %", 100.0 * d.effects[i].shared_fraction),
-                      term.description()});
+                      term.description() + [&] {
+                        const std::string lp = diagnose::linear_part_text(d.effects[i]);
+                        return lp.empty() ? lp : "; " + lp;
+                      }()});
   }
   page.add_table(e);
   if (d.effects.empty()) page.add_note("No effect stands out of the noise.");

@@ -162,6 +162,27 @@ def test_diagnose_with_an_earlier_overlay(tmp_path):
     assert any(w.startswith("a drift in time") for w in blind)
 
 
+def test_diagnose_reports_the_linear_part_of_a_smooth_function(tmp_path):
+    # Plate 2130A: its plate scale (about -25 ppm in X and Y) lies inside two
+    # `unexplained` functions; the dict gives their linear parts with their
+    # uncertainties, and the isotropic scale they agree on.
+    plates = ROOT / "tests/data/plugplate"
+    cli_text("import", "plugplate", plates / "D2130A1", "-o", tmp_path / "2130A.csv")
+    d = abbe.diagnose(abbe.Machine(plates / "machine.yaml"), tmp_path / "2130A.csv")
+    scales = {}
+    for e in d["effects"]:
+        assert e["kind"] == "unexplained"
+        for part in e["linear_part"]["terms"]:
+            if part["kind"] == "scale":
+                scales[part["axis"]] = (part["params"]["ppm"], part["stderr"]["ppm"])
+        assert 0.0 < e["linear_part"]["share"] <= 1.0
+    assert set(scales) == {"X", "Y"}
+    for value, u in scales.values():
+        assert -30.0 < value < -20.0 and 0.3 < u < 2.0
+    iso = d["isotropic_scale"]
+    assert iso["axes"] == ["X", "Y"] and iso["from_linear_part"] == [True, True]
+
+
 def test_diagnose_infers_approach_directions(machine, tmp_path):
     # A reversal of Y hidden in a grid; the file without vx vy vz: the
     # reversal cannot be tested (a blind spot) unless the directions are

@@ -62,5 +62,35 @@ TEST(DiagnoseIsotropicScale, OnlyNamedScalesOfTwoAxesCount) {
   EXPECT_FALSE(isotropic_scale({scale(0, 10.0, 1.0), sq}).found);
 }
 
+// A smooth function whose linear part holds a scale (plate 2130A: an
+// `unexplained` dX(x, y) and dY(x, y) with scales −23.9 ± 0.89 and
+// −26.1 ± 0.77 ppm in them).
+SelectedTerm smooth_with_scale(int axis, double ppm, double u) {
+  SelectedTerm st;
+  st.term.kind = TermKind::unexplained;
+  st.term.direction = axis;
+  st.term.vars = {0, 1};
+  st.linear_parts = {scale(axis, ppm, u).term};
+  return st;
+}
+
+TEST(DiagnoseIsotropicScale, ASmoothFunctionsLinearPartStandsInForAMissingNamedScale) {
+  const IsotropicScale r =
+      isotropic_scale({smooth_with_scale(0, -23.9, 0.89), smooth_with_scale(1, -26.1, 0.77)});
+  ASSERT_TRUE(r.found);
+  EXPECT_EQ(r.axes, (std::vector<int>{0, 1}));
+  EXPECT_EQ(r.from_linear_part, (std::vector<bool>{true, true}));
+  const double w0 = 1.0 / (0.89 * 0.89), w1 = 1.0 / (0.77 * 0.77);
+  EXPECT_NEAR(r.ppm, (w0 * -23.9 + w1 * -26.1) / (w0 + w1), 1e-12);
+  // A named scale of the axis comes first: its value, not the part's.
+  const IsotropicScale named = isotropic_scale(
+      {smooth_with_scale(0, -30.0, 0.5), scale(0, -25.0, 1.0), smooth_with_scale(1, -26.0, 1.0)});
+  ASSERT_TRUE(named.found);
+  EXPECT_EQ(named.from_linear_part, (std::vector<bool>{false, true}));
+  EXPECT_NEAR(named.ppm, -25.5, 1e-12);
+  // A part whose uncertainty is not below its value does not count.
+  EXPECT_FALSE(isotropic_scale({scale(0, -25.0, 1.0), smooth_with_scale(1, -0.9, 1.0)}).found);
+}
+
 }  // namespace
 }  // namespace abbe::diagnose

@@ -19,15 +19,19 @@ inline constexpr double kExpansionAluminiumPpmPerK = 23.0;
 struct IsotropicScale {
   bool found = false;
   std::vector<int> axes;  // the axes whose scales agree (0 = X …)
-  double ppm = 0.0;       // their weighted mean
-  double u_ppm = 0.0;     // its standard uncertainty
-  double chi2 = 0.0;      // of the scales about the mean, axes.size() − 1 degrees of freedom
+  // Per axis: its scale is the linear part of a smooth function (not a name).
+  std::vector<bool> from_linear_part;
+  double ppm = 0.0;    // their weighted mean
+  double u_ppm = 0.0;  // its standard uncertainty
+  double chi2 = 0.0;   // of the scales about the mean, axes.size() − 1 degrees of freedom
   // The temperature difference that gives it, K (ppm / α).
   double kelvin_steel() const { return ppm / kExpansionSteelPpmPerK; }
   double kelvin_aluminium() const { return ppm / kExpansionAluminiumPpmPerK; }
 };
 
-// From the named scales (significant, not ambiguous) of two or three axes:
+// From the named scales (significant, not ambiguous) of two or three axes,
+// or for an axis without one, the scale in the linear part of a smooth
+// function (SelectedTerm::linear_parts) whose value exceeds its uncertainty:
 // found when their χ² about the weighted mean is below the upper `alpha`
 // quantile of χ² with (axes − 1) degrees of freedom.
 IsotropicScale isotropic_scale(const std::vector<SelectedTerm>& effects, double alpha = 0.05);

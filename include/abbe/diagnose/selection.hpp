@@ -149,6 +149,12 @@ struct SelectedTerm {
   std::vector<std::string> ambiguous_with;
   // With ambiguous_with: what measurement would tell them apart (separation.hpp).
   std::string separate_by;
+  // An `unexplained` function only: the scale and squarenesses its fitted
+  // structure contains (its projection on d_i ∝ s_a for each position
+  // variable a, beside the datum; coef and stderr_ set), and the share of
+  // the function's sum of squares they hold. Not names (linear_part.hpp).
+  std::vector<Term> linear_parts;
+  double linear_share = 0.0;
 };
 
 struct SelectionResult {
