@@ -23,14 +23,25 @@ void fill_linear_part(const Problem& pb, const SmoothFitMap& fit, Eigen::Index c
     t.direction = i;
     parts.push_back(t);
   }
-  if (parts.empty()) return;
   const Mat X = fit.smooth_X.middleCols(col, k);
   // L̃: the parts' columns beside the datum (their datum component removed,
-  // as the datum is fitted with every effect).
+  // as the datum is fitted with every effect). A part the datum holds
+  // whole (e.g. a squareness of a line measured in one direction, which its
+  // rotation takes) is not a part of anything beyond it: left out.
+  std::vector<Term> seen;
+  std::vector<Vec> columns;
+  for (const Term& t : parts) {
+    Vec c = term_columns(pb, t).col(0);
+    const double before = c.squaredNorm();
+    if (Qd.cols() > 0) c -= Qd * (Qd.transpose() * c);
+    if (!(c.squaredNorm() > 1e-9 * before)) continue;
+    seen.push_back(t);
+    columns.push_back(std::move(c));
+  }
+  parts = std::move(seen);
+  if (parts.empty()) return;
   Mat L(X.rows(), static_cast<Eigen::Index>(parts.size()));
-  for (std::size_t p = 0; p < parts.size(); ++p)
-    L.col(static_cast<Eigen::Index>(p)) = term_columns(pb, parts[p]).col(0);
-  if (Qd.cols() > 0) L -= Qd * (Qd.transpose() * L);
+  for (std::size_t p = 0; p < parts.size(); ++p) L.col(static_cast<Eigen::Index>(p)) = columns[p];
   const Mat LtL = L.transpose() * L;
   if (!(LtL.trace() > 0.0)) return;
   const Eigen::LDLT<Mat> ldlt(LtL);

@@ -230,6 +230,33 @@ TEST(DiagnoseLinearPart, WhatTheNamedStageTookIsNotInIt) {
               part(alone.st, TermKind::squareness, 0)->coef[0], 0.5);
 }
 
+TEST(DiagnoseLinearPart, APartTheDatumHoldsWholeIsLeftOut) {
+  // A datum that holds d_Y ∝ x whole (as a line's rotation would): the
+  // squareness is no part beyond it, the scale still is.
+  const Problem pb = plate(structure, 0.0, 0.5, 9);
+  const Term smooth = smooth_dy(pb, {0, 1}, 3);
+  std::vector<Term> datum = build_candidates(pb, CandidateOptions{}).datum;
+  Term sq;
+  sq.kind = TermKind::squareness;
+  sq.axis = 0;
+  sq.direction = 1;
+  datum.push_back(sq);
+  const Mat D = span::columns_of(pb, datum);
+  const Mat D_inv = (D.transpose() * D).ldlt().solve(Mat::Identity(D.cols(), D.cols()));
+  const Mat Qd = span::orthonormal(D);
+  const Mat X = term_columns(pb, smooth);
+  const Mat X_inv = (X.transpose() * X).ldlt().solve(Mat::Identity(X.cols(), X.cols()));
+  const Vec r1 = pb.y - Qd * (Qd.transpose() * pb.y);
+  SelectedTerm st;
+  st.term = smooth;
+  selection::fill_linear_part(pb, {D, D_inv, X, X_inv, 0.25}, 0, X_inv * (X.transpose() * r1), Qd,
+                              st);
+  ASSERT_EQ(st.linear_parts.size(), 1u);
+  EXPECT_EQ(st.linear_parts[0].kind, TermKind::scale);
+  EXPECT_NEAR(st.linear_parts[0].coef[0], -25.0, 4.0 * st.linear_parts[0].stderr_[0]);
+  EXPECT_TRUE(std::isfinite(st.linear_share));
+}
+
 TEST(DiagnoseLinearPart, TheMachineZeroAndTheDatumOffsetChangeNothing) {
   const Problem a = plate(structure, 0.0, 0.8, 7);
   const Problem b = plate(structure, -40.0, 0.8, 7, 150.0, -420.0);
