@@ -40,13 +40,7 @@ CandidateSet build_candidates(const Problem& pb, const CandidateOptions& o) {
   for (int j = 0; j < 3; ++j) {
     for (int i = 0; i < 3; ++i) {
       if (!present(i)) continue;
-      if (seen.varies_in(j, i)) {
-        Term t;
-        t.kind = i == j ? TermKind::scale : TermKind::squareness;
-        t.axis = j;
-        t.direction = i;
-        add(t);
-      }
+      if (seen.varies_in(j, i)) add(position_term(j, i));
       if (seen.reverses_in(j, i)) {
         Term t;
         t.kind = TermKind::reversal;

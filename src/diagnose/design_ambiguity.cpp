@@ -152,15 +152,6 @@ class LevelSpan {
   std::vector<Eigen::Matrix3d> gram_;  // per level: (Σ u uᵀ)⁺
 };
 
-// d_i ∝ s_a: the scale of a (i = a) or the squareness a→i.
-Term position_term(int a, int i) {
-  Term t;
-  t.kind = a == i ? TermKind::scale : TermKind::squareness;
-  t.axis = a;
-  t.direction = i;
-  return t;
-}
-
 // The static terms a drift of direction i becomes where t follows s_j, one
 // or two together: a scale or squareness of j; for a drift ∝ s_w·t also of
 // w, and the coupling w·j.

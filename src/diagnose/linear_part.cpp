@@ -17,11 +17,7 @@ void fill_linear_part(const Problem& pb, const SmoothFitMap& fit, Eigen::Index c
   std::vector<Term> parts;
   for (int a : smooth.vars) {
     if (a < 0 || a > 2) continue;  // positions only (t is not a scale's variable)
-    Term t;
-    t.kind = a == i ? TermKind::scale : TermKind::squareness;
-    t.axis = a;
-    t.direction = i;
-    parts.push_back(t);
+    parts.push_back(position_term(a, i));
   }
   const Mat X = fit.smooth_X.middleCols(col, k);
   // L̃: the parts' columns beside the datum (their datum component removed,

@@ -25,6 +25,14 @@ Eigen::Vector3d Term::evaluate(const PointContext& pc) const {
   return e;
 }
 
+Term position_term(int axis, int direction) {
+  Term t;
+  t.kind = axis == direction ? TermKind::scale : TermKind::squareness;
+  t.axis = axis;
+  t.direction = direction;
+  return t;
+}
+
 std::string Term::label() const { return effect_descriptor(kind).label(*this); }
 
 std::string Term::description() const { return effect_descriptor(kind).description(*this); }

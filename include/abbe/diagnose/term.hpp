@@ -84,6 +84,10 @@ struct Term {
   std::vector<std::pair<std::string, double>> param_stderr() const;
 };
 
+// d_i ∝ s_a, the deviation in direction i linear in the position of axis
+// a: the scale of a (i = a) or the squareness a→i.
+Term position_term(int axis, int direction);
+
 char axis_name(int a);             // 'X', 'Y', 'Z' ('-' for −1)
 const char* variable_name(int v);  // "x", "y", "z", "t"
 
