@@ -22,10 +22,12 @@ IsotropicScale isotropic_scale(const std::vector<SelectedTerm>& effects, double 
         break;
       }
     // Without a named scale of the axis: the scale in a smooth function's
-    // linear part, where its value exceeds its uncertainty (as a name's).
+    // linear part, where its value exceeds its uncertainty (as a name's) and
+    // the part is shown (kLinearPartMinShare).
     for (const SelectedTerm& st : effects)
       for (const Term& part : st.linear_parts)
-        if (!scale && usable(part, axis) && std::abs(part.coef[0]) > part.stderr_[0]) {
+        if (!scale && st.linear_share >= kLinearPartMinShare && usable(part, axis) &&
+            std::abs(part.coef[0]) > part.stderr_[0]) {
           scale = &part;
           from_smooth = true;
         }

@@ -49,10 +49,9 @@ bool value_significant(const Term& t) {
 
 // The parts of a smooth function's linear part whose value exceeds its
 // uncertainty (all of them are in the JSON report); empty when none does or
-// when they hold less than 1 % of the function (beside named scales and
-// squarenesses, which take the linear structure first).
+// when they hold less than kLinearPartMinShare of the function.
 std::string linear_part_text(const SelectedTerm& st) {
-  if (st.linear_share < 0.01) return "";
+  if (st.linear_share < kLinearPartMinShare) return "";
   std::string parts;
   for (const Term& t : st.linear_parts)
     if (value_significant(t))

@@ -71,6 +71,7 @@ SelectedTerm smooth_with_scale(int axis, double ppm, double u) {
   st.term.direction = axis;
   st.term.vars = {0, 1};
   st.linear_parts = {scale(axis, ppm, u).term};
+  st.linear_share = 0.5;
   return st;
 }
 
@@ -88,8 +89,12 @@ TEST(DiagnoseIsotropicScale, ASmoothFunctionsLinearPartStandsInForAMissingNamedS
   ASSERT_TRUE(named.found);
   EXPECT_EQ(named.from_linear_part, (std::vector<bool>{false, true}));
   EXPECT_NEAR(named.ppm, -25.5, 1e-12);
-  // A part whose uncertainty is not below its value does not count.
+  // A part whose uncertainty is not below its value does not count, nor
+  // one that holds less than 1 % of its function (not shown either).
   EXPECT_FALSE(isotropic_scale({scale(0, -25.0, 1.0), smooth_with_scale(1, -0.9, 1.0)}).found);
+  SelectedTerm faint = smooth_with_scale(1, -26.0, 1.0);
+  faint.linear_share = 0.005;
+  EXPECT_FALSE(isotropic_scale({scale(0, -25.0, 1.0), faint}).found);
 }
 
 }  // namespace

@@ -96,8 +96,8 @@ std::string effect_value_text(const Term& t);
 bool value_significant(const Term& t);
 // A smooth function's linear part: "its linear part (52 % of it; parts of a
 // structure, not names): scale Y -26.1 ± 0.77 ppm, …", listing the parts whose
-// value exceeds its uncertainty; "" when none does or they hold < 1 % of the
-// function (SelectedTerm::linear_parts).
+// value exceeds its uncertainty; "" when none does or they hold less than
+// kLinearPartMinShare of the function (SelectedTerm::linear_parts).
 std::string linear_part_text(const SelectedTerm& st);
 // The circular-test lines of the summary ("" without circles).
 std::string dynamic_text(const Diagnosis& d);

@@ -31,7 +31,8 @@ struct IsotropicScale {
 
 // From the named scales (significant, not ambiguous) of two or three axes,
 // or for an axis without one, the scale in the linear part of a smooth
-// function (SelectedTerm::linear_parts) whose value exceeds its uncertainty:
+// function (SelectedTerm::linear_parts) whose value exceeds its uncertainty
+// and whose function's linear share is at least kLinearPartMinShare:
 // found when their χ² about the weighted mean is below the upper `alpha`
 // quantile of χ² with (axes − 1) degrees of freedom.
 IsotropicScale isotropic_scale(const std::vector<SelectedTerm>& effects, double alpha = 0.05);

@@ -157,6 +157,11 @@ struct SelectedTerm {
   double linear_share = 0.0;
 };
 
+// Below this share of its function a linear part is neither shown nor used
+// (the isotropic scale): beside named scales and squarenesses, which take
+// the linear structure first, what is left of it is a rounding's worth.
+inline constexpr double kLinearPartMinShare = 0.01;
+
 struct SelectionResult {
   std::vector<SelectedTerm> terms;  // ordered by explained_fraction
   // The datum (offsets per set and direction, plate rotations): fitted with
