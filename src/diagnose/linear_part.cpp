@@ -14,32 +14,29 @@ void fill_linear_part(const Problem& pb, const SmoothFitMap& fit, Eigen::Index c
   st.linear_parts.clear();
   st.linear_share = 0.0;
   if (smooth.kind != TermKind::unexplained || i < 0 || k == 0) return;
+  // The parts d_i ∝ s_a, a each position variable of the function (t is not
+  // a scale's variable), with their columns L̃ beside the datum (their datum
+  // component removed, as the datum is fitted with every effect). A part the
+  // datum holds whole (e.g. a squareness of a line measured in one
+  // direction, which its rotation takes) is not a part of anything beyond
+  // it: left out.
   std::vector<Term> parts;
-  for (int a : smooth.vars) {
-    if (a < 0 || a > 2) continue;  // positions only (t is not a scale's variable)
-    parts.push_back(position_term(a, i));
-  }
-  const Mat X = fit.smooth_X.middleCols(col, k);
-  // L̃: the parts' columns beside the datum (their datum component removed,
-  // as the datum is fitted with every effect). A part the datum holds
-  // whole (e.g. a squareness of a line measured in one direction, which its
-  // rotation takes) is not a part of anything beyond it: left out.
-  std::vector<Term> seen;
   std::vector<Vec> columns;
-  for (const Term& t : parts) {
+  for (int a : smooth.vars) {
+    if (a < 0 || a > 2) continue;
+    const Term t = position_term(a, i);
     Vec c = term_columns(pb, t).col(0);
     const double before = c.squaredNorm();
     if (Qd.cols() > 0) c -= Qd * (Qd.transpose() * c);
     if (!(c.squaredNorm() > 1e-9 * before)) continue;
-    seen.push_back(t);
+    parts.push_back(t);
     columns.push_back(std::move(c));
   }
-  parts = std::move(seen);
   if (parts.empty()) return;
+  const auto X = fit.smooth_X.middleCols(col, k);
   Mat L(X.rows(), static_cast<Eigen::Index>(parts.size()));
   for (std::size_t p = 0; p < parts.size(); ++p) L.col(static_cast<Eigen::Index>(p)) = columns[p];
   const Mat LtL = L.transpose() * L;
-  if (!(LtL.trace() > 0.0)) return;
   const Eigen::LDLT<Mat> ldlt(LtL);
   // The parts of the function's values Xβ: c = W β, W = (L̃ᵀL̃)⁻¹ L̃ᵀ X.
   const Mat W = ldlt.solve(L.transpose() * X);
