@@ -46,6 +46,16 @@ PathState::PathState(const Problem& pb, const CandidateSet& cs, const SelectionO
   tests_generic = std::max(cs.generic_tests, 1);
   stride = std::max<std::size_t>(1, (np + o.scan_points - 1) / o.scan_points);
   lambda = static_cast<double>(pb.obs.size()) * o.min_effect_rms * o.min_effect_rms;
+  for (int j = 0; j < 3; ++j) {
+    std::vector<double> v;
+    v.reserve(np);
+    for (const PointContext& pc : pb.points) v.push_back(pc.s[j]);
+    std::sort(v.begin(), v.end());
+    std::size_t levels = 0;
+    for (std::size_t k = 0; k < v.size() && levels <= o.alias_levels; ++k)
+      if (k == 0 || v[k] - v[k - 1] > 1e-3) ++levels;
+    levelled[static_cast<std::size_t>(j)] = levels <= o.alias_levels;
+  }
 }
 
 // The practical floor in units of σ̂²: an effect that removes exactly
@@ -183,8 +193,11 @@ bool choose_step(const Problem& pb, const CandidateSet& cs, const SelectionOptio
       const auto i = static_cast<std::size_t>(s->c - scanned.data());
       const std::vector<double>& grid = cs.scanned[i].grid;
       if (grid.size() < 2) return;
-      scores[static_cast<std::size_t>(s - scores.data())].d =
-          refine_period_exactly(pb, Q, r, std::abs(1.0 / grid[1] - 1.0 / grid[0]), scanned[i]);
+      const double half_step = std::abs(1.0 / grid[1] - 1.0 / grid[0]);
+      Score& sc = scores[static_cast<std::size_t>(s - scores.data())];
+      sc.d = refine_period_exactly(pb, Q, r, half_step, scanned[i]);
+      if (o.rivals_by_test && !ps.levelled[static_cast<std::size_t>(s->c->term.axis)])
+        confirm_aliases(pb, Q, r, half_step, sc.d, step_view.rival_margin(), scanned[i]);
     };
     refine(best_named);
     for (const Score* s : structure.partners) refine(s);

@@ -35,6 +35,8 @@ struct PathState {
   std::size_t stride = 1;  // the period scan's subsample
   double lambda = 0.0;     // the practical floor's non-centrality, n·min_effect_rms²
   std::map<std::string, std::array<double, 3>> share_cache;  // by label, per direction
+  // Per axis: its positions are at most o.alias_levels distinct levels.
+  std::array<bool, 3> levelled{};
 
   // The practical floor for k columns, in units of σ̂² (min_effect_test).
   double practical(int k, const SelectionOptions& o);

@@ -263,23 +263,30 @@ std::vector<double> levels_of(std::vector<double> v, const DesignAmbiguityOption
 // (1/span in frequency), whose cycle removes most in place (ip), and what it
 // removes: a scan at 1/8 of the main lobe, then each local peak refined on a
 // grid 20 times finer (an alias fits exactly only at its frequency).
+// `skip`: a level the cycles are 0 at (left out of their fit), or none.
+constexpr std::size_t kNoLevel = static_cast<std::size_t>(-1);
+
+// The cycle at frequency f on the levels lv (levels × 2), 0 at `skip`.
+Mat cycle_at_levels(const std::vector<double>& lv, double f, std::size_t skip) {
+  Mat V(static_cast<Eigen::Index>(lv.size()), 2);
+  for (std::size_t l = 0; l < lv.size(); ++l) {
+    const double w = units::kTwoPi * f * lv[l];
+    V(static_cast<Eigen::Index>(l), 0) = l == skip ? 0.0 : std::sin(w);
+    V(static_cast<Eigen::Index>(l), 1) = l == skip ? 0.0 : std::cos(w);
+  }
+  return V;
+}
+
 std::pair<double, double> best_other_period(const LevelSpan::InPlace& ip,
                                             const std::vector<double>& lv, double period_mm,
-                                            const DesignAmbiguityOptions& o, double min_period_mm) {
+                                            const DesignAmbiguityOptions& o, double min_period_mm,
+                                            std::size_t skip = kNoLevel) {
   const double span = lv.back() - lv.front();
   const double f_e = 1.0 / period_mm, df = 1.0 / (8.0 * span);
   const double f_lo =
       1.0 / (o.max_period_mm > 0.0 ? o.max_period_mm : CandidateOptions{}.max_period_mm);
   const double f_hi = 1.0 / min_period_mm;
-  Mat V(static_cast<Eigen::Index>(lv.size()), 2);
-  auto removes_at = [&](double f) {
-    for (std::size_t l = 0; l < lv.size(); ++l) {
-      const double w = units::kTwoPi * f * lv[l];
-      V(static_cast<Eigen::Index>(l), 0) = std::sin(w);
-      V(static_cast<Eigen::Index>(l), 1) = std::cos(w);
-    }
-    return ip.removes(V);
-  };
+  auto removes_at = [&](double f) { return ip.removes(cycle_at_levels(lv, f, skip)); };
   std::vector<std::pair<double, double>> scan;  // (f, removed)
   for (double f = f_lo; f <= f_hi; f += df)
     if (std::abs(f - f_e) >= 1.0 / span) scan.emplace_back(f, removes_at(f));
@@ -363,20 +370,51 @@ void test_cycle_period(const Problem& pb, const Mat& D, const std::vector<Mat>& 
     const double s2 = std::max(whole->r.squaredNorm() - d_rest, 0.0) / std::max(dof, 1.0);
     if (s2 > 0.0) margin *= std::max(1.0, d_rest / k / s2);
   }
-  if (!(d_other > 0.0) || !(sw.d_e - d_other < margin)) return;
+  std::string without;  // the level the period rests on, if it does
+  double p_alt = p_other, d_alt = d_other;
+  if (!(d_other > 0.0) || !(sw.d_e - d_other < margin)) {
+    if (!o.level_out_test) return;
+    // Left out one level at a time: a period the other levels hold as
+    // clearly (no other period within the margin there) is the data's; one
+    // that another period matches once a single level is gone rests on that
+    // level (on few irregular levels a pitch error with harmonics, a sum of
+    // cycles, can make one cycle's best fit land on a wrong period that only
+    // one level prefers).
+    const LevelSpan::InPlace ip = levels.in_place(sw.QA, sw.rA, i);
+    for (std::size_t l = 0; l < lv.size() && without.empty(); ++l) {
+      const double d_own = ip.removes(cycle_at_levels(lv, 1.0 / et.period_mm, l));
+      const auto [d_l, p_l] = best_other_period(ip, lv, et.period_mm, o, min_period_mm, l);
+      if (d_l > 0.0 && d_own - d_l < margin) {
+        without = fmt::format("{:g}", lv[l]);
+        p_alt = p_l;
+        d_alt = d_l;
+      }
+    }
+    if (without.empty()) return;
+  }
   Term other = et;
-  other.period_mm = p_other;
+  other.period_mm = p_alt;
   add_alternative(effects[e], other.label());
   add_alternative(effects[e], levels_text);
   if (effects[e].separate_by.empty())
-    effects[e].separate_by = fmt::format(
-        "measure {} at more positions, at irregular spacing (on its {} levels a cycle of {} at "
-        "{:.4g} mm fits as well)",
-        axis_name(j), lv.size(), axis_name(j), p_other);
-  log.push_back(fmt::format(
-      "design: {} (ΔRSS {:.6g}) is not told from a cycle at {:.4g} mm on the {} levels of {} "
-      "(ΔRSS {:.6g})",
-      et.label(), sw.d_e, p_other, lv.size(), variable_name(j), d_other));
+    effects[e].separate_by =
+        without.empty()
+            ? fmt::format(
+                  "measure {} at more positions, at irregular spacing (on its {} levels a cycle "
+                  "of {} at {:.4g} mm fits as well)",
+                  axis_name(j), lv.size(), axis_name(j), p_alt)
+            : fmt::format(
+                  "measure {} at more positions, at irregular spacing (the period rests on the "
+                  "level {} = {} mm: without it a cycle of {} at {:.4g} mm fits as well)",
+                  axis_name(j), variable_name(j), without, axis_name(j), p_alt);
+  log.push_back(
+      without.empty()
+          ? fmt::format("design: {} (ΔRSS {:.6g}) is not told from a cycle at {:.4g} mm on the {} "
+                        "levels of {} (ΔRSS {:.6g})",
+                        et.label(), sw.d_e, p_alt, lv.size(), variable_name(j), d_alt)
+          : fmt::format("design: {} (ΔRSS {:.6g}) rests on the level {} = {}: without it a cycle "
+                        "at {:.4g} mm fits as well (ΔRSS {:.6g})",
+                        et.label(), sw.d_e, variable_name(j), without, p_alt, d_alt));
 }
 }  // namespace
 

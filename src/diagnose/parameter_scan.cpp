@@ -163,4 +163,20 @@ double refine_period_exactly(const Problem& pb, const Mat& Q, const Vec& r, doub
   return g_best;
 }
 
+void confirm_aliases(const Problem& pb, const Mat& Q, const Vec& r, double half_step, double d_pick,
+                     double margin, Cached& c) {
+  if (c.term.kind != TermKind::cyclic) return;
+  std::vector<double> kept;
+  for (double period : c.aliases) {
+    Cached a{c.term, Mat(), Mat(), Mat(), {}};
+    a.term.period_mm = period;
+    a.C = term_columns(pb, a.term);
+    a.CtC = a.C.transpose() * a.C;
+    a.QtC = Q.transpose() * a.C;
+    const double d = refine_period_exactly(pb, Q, r, half_step, a);
+    if (d_pick - d < margin) kept.push_back(a.term.period_mm);
+  }
+  c.aliases = std::move(kept);
+}
+
 }  // namespace abbe::diagnose::selection

@@ -46,4 +46,14 @@ Term scan_parameter(const ScanFamily& f, const ScanInput& in, PowerCache& power_
 double refine_period_exactly(const Problem& pb, const Mat& Q, const Vec& r, double half_step,
                              Cached& c);
 
+// The aliases of a chosen cycle c (removing d_pick) that these data do not
+// reject: each is refined like the pick (refine_period_exactly, ±half_step)
+// and kept, at its refined period, when it removes within `margin` of
+// d_pick (one column's test, as for the other rivals). The periodogram's
+// other peaks are only a shortlist: on regular levels an alias gives the
+// same samples and stays, but on irregular levels a sidelobe reaches 0.9 of
+// the peak's power and can still fit far worse.
+void confirm_aliases(const Problem& pb, const Mat& Q, const Vec& r, double half_step, double d_pick,
+                     double margin, Cached& c);
+
 }  // namespace abbe::diagnose::selection

@@ -107,8 +107,10 @@ const Score* Step::parsimonious(const Score* largest) const {
   return best;
 }
 
+double Step::rival_margin() const { return s2_ic * chi2_upper_quantile(1, o.alpha); }
+
 std::string Step::rivals(const Score& target, std::vector<std::string>& names) const {
-  const double margin = s2_ic * chi2_upper_quantile(1, o.alpha);
+  const double margin = rival_margin();
   const Vec fb = contribution(*target.c);
   std::vector<Term> rivals;
   for (const Score& s : scores) {

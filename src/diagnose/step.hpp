@@ -89,6 +89,9 @@ struct Step {
   // (`rivals_by_test`), and a cycle's aliases: their labels appended to
   // `names`. Returns what measurement would separate them (may be empty).
   std::string rivals(const Score& target, std::vector<std::string>& names) const;
+  // What the data must remove more for a rival to be rejected: σ̂²·χ²₁(alpha)
+  // of the information criterion's σ̂², one column's test.
+  double rival_margin() const;
 };
 
 }  // namespace abbe::diagnose::selection

@@ -184,13 +184,47 @@ TEST(DiagnoseDesignAmbiguity, ACycleIsNamedOnlyWhereTheLevelsFixItsPeriod) {
   }
 }
 
+// A period that rests on one level (level_out_test): a 13 mm pitch error
+// of X read at 9 levels 50 mm apart, where its aliases give the same
+// samples, and at two more levels off that grid (163 and 437 mm). With all
+// eleven levels no other period fits as well (the cycle is named without
+// the test); with one off-grid level alone a cycle at 6.1 mm does, so
+// leaving out either of them shows that the period rests on it, and the
+// cycle is not named.
+TEST(DiagnoseDesignAmbiguity, APeriodThatRestsOnOneLevelIsNotNamed) {
+  auto pitch = [](const PointContext& pc) {
+    return Eigen::Vector3d(4.0 * std::sin(2.0 * kPi * pc.s.x() / 13.0 + 0.4), 0.0, 0.0);
+  };
+  std::vector<PointContext> pts;
+  for (int i = 0; i <= 10; ++i)
+    for (int j = 0; j < 8; ++j)
+      pts.push_back(at(i < 9 ? 50.0 * i : (i == 9 ? 437.0 : 163.0), 50.0 * j));
+  const Problem pb = make_problem(pts, pitch, 5);
+  DesignAmbiguityOptions without_test;
+  without_test.level_out_test = false;
+  std::vector<SelectedTerm> with{fitted(cyclic(0, 13.0), {4.0, 0.0})}, without = with;
+  const auto log = mark_design_ambiguities(pb, {}, with, {}, 4.0);
+  mark_design_ambiguities(pb, {}, without, without_test, 4.0);
+  EXPECT_TRUE(without[0].ambiguous_with.empty());
+  ASSERT_FALSE(with[0].ambiguous_with.empty());
+  ASSERT_FALSE(log.empty());
+  const bool on_163 = log[0].find("rests on the level x = 163:") != std::string::npos;
+  const bool on_437 = log[0].find("rests on the level x = 437:") != std::string::npos;
+  EXPECT_TRUE(on_163 || on_437) << log[0];
+  EXPECT_NE(with[0].separate_by.find(on_163 ? "the period rests on the level x = 163 mm"
+                                            : "the period rests on the level x = 437 mm"),
+            std::string::npos)
+      << with[0].separate_by;
+}
+
 // The margin another period must come within is the noise of a function of
 // the levels (DesignAmbiguityOptions::level_noise_margin). A 2 µm pitch
 // error of 13 mm on 12 irregular levels of X, each level read 8 times
 // (noise 0.5 µm), with an error of each level that repeats in all its
 // readings (0.5 µm rms, as the model's own table error at a laser target
 // does): the levels' values scatter more than the readings, and another
-// period fits within that scatter in 7 of 20 draws (2 of 20 with σ̂² alone).
+// period fits within that scatter in 18 of 20 draws (12 of 20 with σ̂²
+// alone; 7 and 2 before each level was also left out in turn).
 // The margin is never below σ̂²'s: a cycle ambiguous without it is ambiguous
 // with it. Without the levels' error the decisions are the same.
 TEST(DiagnoseDesignAmbiguity, TheCyclePeriodMarginIsTheNoiseOfTheLevels) {

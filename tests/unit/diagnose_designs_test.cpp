@@ -1207,17 +1207,39 @@ TEST(DiagnoseDesigns, AChosenCyclesPeriodIsRefinedOnTheFit) {
 // lines case 4 (a cycle at 11.34 mm beside a pitch error of 18.7 mm) and
 // the irregular grid's cases 44 (a cycle of Y of 0.27 µm rms beside an
 // off-centre coupling) and 66 (a cycle at 8.94 mm for a pitch error of
-// 13.0 mm) are `ambiguous` with another period; with σ̂² alone each was a
+// 13.0 mm) are `ambiguous` with another period; with σ̂² alone (and
+// without the level-out test, which now also catches 44 and 66) each was a
 // wrong name.
 TEST(DiagnoseDesigns, TheCyclePeriodMarginIsTheLevelsNoise) {
   DesignAmbiguityOptions readings_only;
   readings_only.level_noise_margin = false;
+  readings_only.level_out_test = false;
   for (const auto& [design, i] : std::vector<std::pair<Design, int>>{
            {Design::axis_lines, 4}, {Design::grid_irregular, 44}, {Design::grid_irregular, 66}}) {
     const auto [h, seed] = sweep_case(design, i);
     const Case with = run_case(design, h, seed);
     EXPECT_NE(with.verdict, Verdict::wrong) << i << with.found;
     const Case without = run_case(design, h, seed, 0.0, nullptr, false, &readings_only);
+    EXPECT_EQ(without.verdict, Verdict::wrong) << i << without.found;
+  }
+}
+
+// The level-out test (DesignAmbiguityOptions::level_out_test): a pitch
+// error with its harmonic, read at 12 irregular levels of X (grid case 22,
+// 39.9 mm) or along a laser line's 21 targets (case 45, 39.4 mm of Z),
+// selected as a cycle at a period one level alone prefers (10.9 mm;
+// 13.2 mm). Leaving that level out, another period fits as well, and the
+// cycle is not named; without the test each was a wrong name.
+TEST(DiagnoseDesigns, APeriodThatRestsOnOneLevelIsNotAName) {
+  DesignAmbiguityOptions without_test;
+  without_test.level_out_test = false;
+  for (const auto& [design, i] : std::vector<std::pair<Design, int>>{{Design::grid_irregular, 22},
+                                                                     {Design::axis_lines, 45}}) {
+    const auto [h, seed] = sweep_case(design, i);
+    ASSERT_EQ(h.shape, Shape::pitch);
+    const Case with = run_case(design, h, seed);
+    EXPECT_NE(with.verdict, Verdict::wrong) << i << with.found;
+    const Case without = run_case(design, h, seed, 0.0, nullptr, false, &without_test);
     EXPECT_EQ(without.verdict, Verdict::wrong) << i << without.found;
   }
 }

@@ -76,6 +76,10 @@ struct DesignAmbiguityOptions {
   // error at each target repeats in every run, so the levels' values scatter
   // more than single readings; false: σ̂² alone).
   bool level_noise_margin = true;
+  // And with each level left out in turn: a period that another period
+  // matches (within the margin) once one level is gone rests on that level
+  // and is not named.
+  bool level_out_test = true;
   // The longest period the test tries (0: the candidates' default;
   // diagnose_problem gives its own candidates' max_period_mm).
   double max_period_mm = 0.0;

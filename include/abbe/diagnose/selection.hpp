@@ -54,6 +54,14 @@ struct SelectionOptions {
   // A cyclic period is ambiguous when another peak of the periodogram (not a
   // neighbour) reaches this share of the best peak's power (aliasing).
   double alias_power = 0.9;
+  // Those peaks are then fitted exactly and kept only where the data do not
+  // reject them against the pick (one column's test, as for other rivals),
+  // on an axis whose positions are not a few levels. On at most
+  // `alias_levels` levels they stay as found: there a pitch error with
+  // harmonics is a sum of cycles, and one cycle's exact fit at the wrong
+  // period can beat the true one alone (the design's own test,
+  // design_ambiguity, then judges the named periods beside each other).
+  std::size_t alias_levels = 40;
   std::size_t scan_points = 20000;  // points used to locate a period peak
   // The period of a cycle between two frequencies of the scan grid: the
   // peak refined by a parabola through the best power and its neighbours
