@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -280,23 +281,36 @@ Mat cycle_at_levels(const std::vector<double>& lv, double f, std::size_t skip) {
 std::pair<double, double> best_other_period(const LevelSpan::InPlace& ip,
                                             const std::vector<double>& lv, double period_mm,
                                             const DesignAmbiguityOptions& o, double min_period_mm,
-                                            std::size_t skip = kNoLevel) {
+                                            std::size_t skip = kNoLevel,
+                                            const std::vector<double>* only_peaks = nullptr,
+                                            std::vector<double>* peaks_out = nullptr) {
   const double span = lv.back() - lv.front();
   const double f_e = 1.0 / period_mm, df = 1.0 / (8.0 * span);
   const double f_lo =
       1.0 / (o.max_period_mm > 0.0 ? o.max_period_mm : CandidateOptions{}.max_period_mm);
   const double f_hi = 1.0 / min_period_mm;
   auto removes_at = [&](double f) { return ip.removes(cycle_at_levels(lv, f, skip)); };
-  std::vector<std::pair<double, double>> scan;  // (f, removed)
-  for (double f = f_lo; f <= f_hi; f += df)
-    if (std::abs(f - f_e) >= 1.0 / span) scan.emplace_back(f, removes_at(f));
+  std::vector<std::pair<double, double>> peaks;  // (removed on the scan, f)
+  if (only_peaks) {
+    for (double f : *only_peaks) peaks.emplace_back(0.0, f);
+  } else {
+    std::vector<std::pair<double, double>> scan;  // (f, removed)
+    for (double f = f_lo; f <= f_hi; f += df)
+      if (std::abs(f - f_e) >= 1.0 / span) scan.emplace_back(f, removes_at(f));
+    for (std::size_t k = 0; k < scan.size(); ++k)
+      if ((k == 0 || scan[k].second >= scan[k - 1].second) &&
+          (k + 1 == scan.size() || scan[k].second >= scan[k + 1].second))
+        peaks.emplace_back(scan[k].second, scan[k].first);
+    if (peaks_out) {
+      std::vector<std::pair<double, double>> by_size = peaks;
+      std::sort(by_size.begin(), by_size.end(), std::greater<>());
+      for (const auto& pk : by_size) peaks_out->push_back(pk.second);
+    }
+  }
   double d_best = 0.0, p_best = 0.0;
-  for (std::size_t k = 0; k < scan.size(); ++k) {
-    const bool peak = (k == 0 || scan[k].second >= scan[k - 1].second) &&
-                      (k + 1 == scan.size() || scan[k].second >= scan[k + 1].second);
-    if (!peak) continue;
+  for (const auto& pk : peaks) {
     for (int q = -20; q <= 20; ++q) {
-      const double f = scan[k].first + q * df / 20.0;
+      const double f = pk.second + q * df / 20.0;
       if (std::abs(f - f_e) < 1.0 / span || f < f_lo || f > f_hi) continue;
       const double d = removes_at(f);
       if (d > d_best) {
@@ -357,8 +371,10 @@ void test_cycle_period(const Problem& pb, const Mat& D, const std::vector<Mat>& 
         et.label(), sw.d_e, 100.0 * sw.d_e / d_levels, lv.size(), variable_name(j), d_levels));
     return;
   }
+  const LevelSpan::InPlace ip = levels.in_place(sw.QA, sw.rA, i);
+  std::vector<double> peaks;  // the other periods' scan peaks, the largest first
   const auto [d_other, p_other] =
-      best_other_period(levels.in_place(sw.QA, sw.rA, i), lv, et.period_mm, o, min_period_mm);
+      best_other_period(ip, lv, et.period_mm, o, min_period_mm, kNoLevel, nullptr, &peaks);
   double margin = sw.margin;
   if (whole) {  // level_noise_margin
     // What a function of the levels removes beside the whole fit, per degree
@@ -380,10 +396,12 @@ void test_cycle_period(const Problem& pb, const Mat& D, const std::vector<Mat>& 
     // level (on few irregular levels a pitch error with harmonics, a sum of
     // cycles, can make one cycle's best fit land on a wrong period that only
     // one level prefers).
-    const LevelSpan::InPlace ip = levels.in_place(sw.QA, sw.rA, i);
+    // (Without one level the other periods are sought near the largest
+    // peaks of the scan with every level, `level_out_peaks` of them.)
+    peaks.resize(std::min(peaks.size(), o.level_out_peaks));
     for (std::size_t l = 0; l < lv.size() && without.empty(); ++l) {
       const double d_own = ip.removes(cycle_at_levels(lv, 1.0 / et.period_mm, l));
-      const auto [d_l, p_l] = best_other_period(ip, lv, et.period_mm, o, min_period_mm, l);
+      const auto [d_l, p_l] = best_other_period(ip, lv, et.period_mm, o, min_period_mm, l, &peaks);
       if (d_l > 0.0 && d_own - d_l < margin) {
         without = fmt::format("{:g}", lv[l]);
         p_alt = p_l;

@@ -80,6 +80,9 @@ struct DesignAmbiguityOptions {
   // matches (within the margin) once one level is gone rests on that level
   // and is not named.
   bool level_out_test = true;
+  // Without a level, other periods are sought near this many of the largest
+  // peaks of the scan with every level (each refined as in the full scan).
+  std::size_t level_out_peaks = 8;
   // The longest period the test tries (0: the candidates' default;
   // diagnose_problem gives its own candidates' max_period_mm).
   double max_period_mm = 0.0;
