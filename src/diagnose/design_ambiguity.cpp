@@ -260,14 +260,11 @@ std::vector<double> levels_of(std::vector<double> v, const DesignAmbiguityOption
   return gap >= 2.0 * min_period_mm ? levels : std::vector<double>{};
 }
 
-// The period of the catalogue's range, away from `period_mm`'s main lobe
-// (1/span in frequency), whose cycle removes most in place (ip), and what it
-// removes: a scan at 1/8 of the main lobe, then each local peak refined on a
-// grid 20 times finer (an alias fits exactly only at its frequency).
-// `skip`: a level the cycles are 0 at (left out of their fit), or none.
+// No level left out (cycle_at_levels, best_other_period).
 constexpr std::size_t kNoLevel = static_cast<std::size_t>(-1);
 
-// The cycle at frequency f on the levels lv (levels × 2), 0 at `skip`.
+// The cycle at frequency f on the levels lv (levels × 2); 0 at the level
+// `skip`, which then takes no part in its fit.
 Mat cycle_at_levels(const std::vector<double>& lv, double f, std::size_t skip) {
   Mat V(static_cast<Eigen::Index>(lv.size()), 2);
   for (std::size_t l = 0; l < lv.size(); ++l) {
@@ -278,6 +275,12 @@ Mat cycle_at_levels(const std::vector<double>& lv, double f, std::size_t skip) {
   return V;
 }
 
+// The period of the catalogue's range, away from `period_mm`'s main lobe
+// (1/span in frequency), whose cycle removes most in place (ip), and what it
+// removes: a scan at 1/8 of the main lobe, then each local peak refined on a
+// grid 20 times finer (an alias fits exactly only at its frequency). With
+// `skip` the cycles leave that level out. `peaks_out`: the scan's peaks, the
+// largest first; `only_peaks`: refine these instead of scanning.
 std::pair<double, double> best_other_period(const LevelSpan::InPlace& ip,
                                             const std::vector<double>& lv, double period_mm,
                                             const DesignAmbiguityOptions& o, double min_period_mm,

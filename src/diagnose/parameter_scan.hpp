@@ -50,9 +50,10 @@ double refine_period_exactly(const Problem& pb, const Mat& Q, const Vec& r, doub
 // reject: each is refined like the pick (refine_period_exactly, ±half_step)
 // and kept, at its refined period, when it removes within `margin` of
 // d_pick (one column's test, as for the other rivals). The periodogram's
-// other peaks are only a shortlist: on regular levels an alias gives the
-// same samples and stays, but on irregular levels a sidelobe reaches 0.9 of
-// the peak's power and can still fit far worse.
+// other peaks are only a shortlist: a true alias (the same samples) stays,
+// but at irregular positions a sidelobe reaches 0.9 of the peak's power and
+// can still fit far worse. Used where the axis's positions are not a few
+// levels (SelectionOptions::alias_levels).
 void confirm_aliases(const Problem& pb, const Mat& Q, const Vec& r, double half_step, double d_pick,
                      double margin, Cached& c);
 
