@@ -260,7 +260,7 @@ std::vector<double> levels_of(std::vector<double> v, const DesignAmbiguityOption
   return gap >= 2.0 * min_period_mm ? levels : std::vector<double>{};
 }
 
-// No level left out (cycle_at_levels, best_other_period).
+// No level left out (cycle_at_levels, OtherPeriods).
 constexpr std::size_t kNoLevel = static_cast<std::size_t>(-1);
 
 // The cycle at frequency f on the levels lv (levels × 2); 0 at the level
@@ -275,55 +275,62 @@ Mat cycle_at_levels(const std::vector<double>& lv, double f, std::size_t skip) {
   return V;
 }
 
-// The period of the catalogue's range, away from `period_mm`'s main lobe
-// (1/span in frequency), whose cycle removes most in place (ip), and what it
-// removes: a scan at 1/8 of the main lobe, then each local peak refined on a
-// grid 20 times finer (an alias fits exactly only at its frequency). With
-// `skip` the cycles leave that level out. `peaks_out`: the scan's peaks, the
-// largest first; `only_peaks`: refine these instead of scanning.
-std::pair<double, double> best_other_period(const LevelSpan::InPlace& ip,
-                                            const std::vector<double>& lv, double period_mm,
-                                            const DesignAmbiguityOptions& o, double min_period_mm,
-                                            std::size_t skip = kNoLevel,
-                                            const std::vector<double>* only_peaks = nullptr,
-                                            std::vector<double>* peaks_out = nullptr) {
-  const double span = lv.back() - lv.front();
-  const double f_e = 1.0 / period_mm, df = 1.0 / (8.0 * span);
-  const double f_lo =
-      1.0 / (o.max_period_mm > 0.0 ? o.max_period_mm : CandidateOptions{}.max_period_mm);
-  const double f_hi = 1.0 / min_period_mm;
-  auto removes_at = [&](double f) { return ip.removes(cycle_at_levels(lv, f, skip)); };
-  std::vector<std::pair<double, double>> peaks;  // (removed on the scan, f)
-  if (only_peaks) {
-    for (double f : *only_peaks) peaks.emplace_back(0.0, f);
-  } else {
-    std::vector<std::pair<double, double>> scan;  // (f, removed)
-    for (double f = f_lo; f <= f_hi; f += df)
-      if (std::abs(f - f_e) >= 1.0 / span) scan.emplace_back(f, removes_at(f));
+// The other periods of the catalogue's range, away from `period_mm`'s main
+// lobe (1/span in frequency), on the levels lv, and what each one's cycle
+// removes in place (ip): the scan's local peaks at 1/8 of the main lobe,
+// each refined on a grid 20 times finer (an alias fits exactly only at its
+// frequency).
+class OtherPeriods {
+ public:
+  OtherPeriods(const LevelSpan::InPlace& ip, const std::vector<double>& lv, double period_mm,
+               const DesignAmbiguityOptions& o, double min_period_mm)
+      : ip_(ip),
+        lv_(lv),
+        span_(lv.back() - lv.front()),
+        f_e_(1.0 / period_mm),
+        df_(1.0 / (8.0 * span_)),
+        f_lo_(1.0 / (o.max_period_mm > 0.0 ? o.max_period_mm : CandidateOptions{}.max_period_mm)),
+        f_hi_(1.0 / min_period_mm) {}
+
+  // The scan's local peaks with every level, in scan order: (removed, f).
+  std::vector<std::pair<double, double>> scan_peaks() const {
+    std::vector<std::pair<double, double>> scan, peaks;  // (f, removed); (removed, f)
+    for (double f = f_lo_; f <= f_hi_; f += df_)
+      if (std::abs(f - f_e_) >= 1.0 / span_) scan.emplace_back(f, removes_at(f, kNoLevel));
     for (std::size_t k = 0; k < scan.size(); ++k)
       if ((k == 0 || scan[k].second >= scan[k - 1].second) &&
           (k + 1 == scan.size() || scan[k].second >= scan[k + 1].second))
         peaks.emplace_back(scan[k].second, scan[k].first);
-    if (peaks_out) {
-      std::vector<std::pair<double, double>> by_size = peaks;
-      std::sort(by_size.begin(), by_size.end(), std::greater<>());
-      for (const auto& pk : by_size) peaks_out->push_back(pk.second);
-    }
+    return peaks;
   }
-  double d_best = 0.0, p_best = 0.0;
-  for (const auto& pk : peaks) {
-    for (int q = -20; q <= 20; ++q) {
-      const double f = pk.second + q * df / 20.0;
-      if (std::abs(f - f_e) < 1.0 / span || f < f_lo || f > f_hi) continue;
-      const double d = removes_at(f);
-      if (d > d_best) {
-        d_best = d;
-        p_best = 1.0 / f;
+
+  // The period near the peaks `fs` whose cycle removes most with the level
+  // `skip` left out (kNoLevel: none), and what it removes: (removed, period).
+  std::pair<double, double> best_near(const std::vector<double>& fs, std::size_t skip) const {
+    double d_best = 0.0, p_best = 0.0;
+    for (double peak : fs) {
+      for (int q = -20; q <= 20; ++q) {
+        const double f = peak + q * df_ / 20.0;
+        if (std::abs(f - f_e_) < 1.0 / span_ || f < f_lo_ || f > f_hi_) continue;
+        const double d = removes_at(f, skip);
+        if (d > d_best) {
+          d_best = d;
+          p_best = 1.0 / f;
+        }
       }
     }
+    return {d_best, p_best};
   }
-  return {d_best, p_best};
-}
+
+  double removes_at(double f, std::size_t skip) const {
+    return ip_.removes(cycle_at_levels(lv_, f, skip));
+  }
+
+ private:
+  const LevelSpan::InPlace& ip_;
+  const std::vector<double>& lv_;
+  double span_, f_e_, df_, f_lo_, f_hi_;
+};
 
 // The cycle period test of effect e (a cycle of axis j in direction i): the
 // positions of s_j where direction i is measured, when they are levels (a
@@ -375,9 +382,11 @@ void test_cycle_period(const Problem& pb, const Mat& D, const std::vector<Mat>& 
     return;
   }
   const LevelSpan::InPlace ip = levels.in_place(sw.QA, sw.rA, i);
-  std::vector<double> peaks;  // the other periods' scan peaks, the largest first
-  const auto [d_other, p_other] =
-      best_other_period(ip, lv, et.period_mm, o, min_period_mm, kNoLevel, nullptr, &peaks);
+  const OtherPeriods others(ip, lv, et.period_mm, o, min_period_mm);
+  const std::vector<std::pair<double, double>> peaks = others.scan_peaks();
+  std::vector<double> peak_fs;
+  for (const auto& pk : peaks) peak_fs.push_back(pk.second);
+  const auto [d_other, p_other] = others.best_near(peak_fs, kNoLevel);
   double margin = sw.margin;
   if (whole) {  // level_noise_margin
     // What a function of the levels removes beside the whole fit, per degree
@@ -389,7 +398,7 @@ void test_cycle_period(const Problem& pb, const Mat& D, const std::vector<Mat>& 
     const double s2 = std::max(whole->r.squaredNorm() - d_rest, 0.0) / std::max(dof, 1.0);
     if (s2 > 0.0) margin *= std::max(1.0, d_rest / k / s2);
   }
-  std::string without;  // the level the period rests on, if it does
+  std::size_t rests_on = kNoLevel;  // the level the period rests on, if it does
   double p_alt = p_other, d_alt = d_other;
   if (!(d_other > 0.0) || !(sw.d_e - d_other < margin)) {
     if (!o.level_out_test) return;
@@ -398,20 +407,23 @@ void test_cycle_period(const Problem& pb, const Mat& D, const std::vector<Mat>& 
     // that another period matches once a single level is gone rests on that
     // level (on few irregular levels a pitch error with harmonics, a sum of
     // cycles, can make one cycle's best fit land on a wrong period that only
-    // one level prefers).
-    // (Without one level the other periods are sought near the largest
-    // peaks of the scan with every level, `level_out_peaks` of them.)
-    peaks.resize(std::min(peaks.size(), o.level_out_peaks));
-    for (std::size_t l = 0; l < lv.size() && without.empty(); ++l) {
-      const double d_own = ip.removes(cycle_at_levels(lv, 1.0 / et.period_mm, l));
-      const auto [d_l, p_l] = best_other_period(ip, lv, et.period_mm, o, min_period_mm, l, &peaks);
+    // one level prefers). The other periods are sought near the
+    // `level_out_peaks` largest peaks of the scan with every level.
+    std::vector<std::pair<double, double>> by_size = peaks;
+    std::sort(by_size.begin(), by_size.end(), std::greater<>());
+    by_size.resize(std::min(by_size.size(), o.level_out_peaks));
+    std::vector<double> largest;
+    for (const auto& pk : by_size) largest.push_back(pk.second);
+    for (std::size_t l = 0; l < lv.size() && rests_on == kNoLevel; ++l) {
+      const double d_own = others.removes_at(1.0 / et.period_mm, l);
+      const auto [d_l, p_l] = others.best_near(largest, l);
       if (d_l > 0.0 && d_own - d_l < margin) {
-        without = fmt::format("{:g}", lv[l]);
+        rests_on = l;
         p_alt = p_l;
         d_alt = d_l;
       }
     }
-    if (without.empty()) return;
+    if (rests_on == kNoLevel) return;
   }
   Term other = et;
   other.period_mm = p_alt;
@@ -419,23 +431,23 @@ void test_cycle_period(const Problem& pb, const Mat& D, const std::vector<Mat>& 
   add_alternative(effects[e], levels_text);
   if (effects[e].separate_by.empty())
     effects[e].separate_by =
-        without.empty()
+        rests_on == kNoLevel
             ? fmt::format(
                   "measure {} at more positions, at irregular spacing (on its {} levels a cycle "
                   "of {} at {:.4g} mm fits as well)",
                   axis_name(j), lv.size(), axis_name(j), p_alt)
             : fmt::format(
                   "measure {} at more positions, at irregular spacing (the period rests on the "
-                  "level {} = {} mm: without it a cycle of {} at {:.4g} mm fits as well)",
-                  axis_name(j), variable_name(j), without, axis_name(j), p_alt);
+                  "level {} = {:g} mm: without it a cycle of {} at {:.4g} mm fits as well)",
+                  axis_name(j), variable_name(j), lv[rests_on], axis_name(j), p_alt);
   log.push_back(
-      without.empty()
+      rests_on == kNoLevel
           ? fmt::format("design: {} (ΔRSS {:.6g}) is not told from a cycle at {:.4g} mm on the {} "
                         "levels of {} (ΔRSS {:.6g})",
                         et.label(), sw.d_e, p_alt, lv.size(), variable_name(j), d_alt)
-          : fmt::format("design: {} (ΔRSS {:.6g}) rests on the level {} = {}: without it a cycle "
+          : fmt::format("design: {} (ΔRSS {:.6g}) rests on the level {} = {:g}: without it a cycle "
                         "at {:.4g} mm fits as well (ΔRSS {:.6g})",
-                        et.label(), sw.d_e, variable_name(j), without, p_alt, d_alt));
+                        et.label(), sw.d_e, variable_name(j), lv[rests_on], p_alt, d_alt));
 }
 }  // namespace
 
