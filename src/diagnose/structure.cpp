@@ -88,6 +88,19 @@ class SmoothSpan {
   Mat G_;
 };
 
+// `t` is a linear part of a coupling among `members`: a scale or
+// squareness of the coupling's direction along one of its two axes.
+bool linear_part_of_coupling(const Term& t, const std::vector<const Score*>& members) {
+  if (t.kind != TermKind::scale && t.kind != TermKind::squareness) return false;
+  for (const Score* m : members) {
+    const Term& c = m->c->term;
+    if (c.kind == TermKind::coupling && c.direction == t.direction &&
+        (t.axis == c.axis || t.axis == c.with_axis))
+      return true;
+  }
+  return false;
+}
+
 // A combination: its members (the lead first), what they remove together
 // and their cost on the criterion.
 struct Combo {
@@ -123,8 +136,9 @@ Combo grow(const Step& st, const Score* lead, const std::vector<const Score*>& p
       const double s2j =
           std::max(st.rr - dj, 1e-300) / std::max(st.dof_base - static_cast<double>(kj), 1.0);
       const double floor_share =
-          s.c->term.kind == TermKind::cyclic && st.o.cyclic_partner_full_floor
-              ? 1.0
+          s.c->term.kind == TermKind::cyclic && st.o.cyclic_partner_full_floor ? 1.0
+          : st.o.coupling_parts_at_chi2 && linear_part_of_coupling(s.c->term, cb.members)
+              ? 0.0
               : st.o.partner_floor_share;
       const double thr_added =
           s2j * std::max(chi2_upper_quantile(s.c->term.columns(), st.o.alpha / st.tests_named),

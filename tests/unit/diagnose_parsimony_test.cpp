@@ -198,7 +198,10 @@ TEST(DiagnoseParsimony, AnOffCentreCouplingEntersWithBothItsLinearParts) {
                          for (const auto& line : with.log) l += line + "\n";
                          return l;
                        }();
+    // (And its linear parts not at their χ² alone — coupling_parts_at_chi2 —
+    // which lets the scale in on its own.)
     o.partner_floor_share = 1.0;
+    o.coupling_parts_at_chi2 = false;
     const SelectionResult full = select_effects(pb, build_candidates(pb, CandidateOptions{}), o);
     if ((named(full) & 4) == 0) ++scale_missing_with_full_floor;
   }

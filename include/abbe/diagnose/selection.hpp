@@ -99,6 +99,14 @@ struct SelectionOptions {
   // of its own, but not so small that the model's own table error (a few
   // tenths of a µm, present in every data set) fills the place.
   double partner_floor_share = 0.5;
+  // The linear parts of a coupling in the combination (a scale or
+  // squareness of its direction along either of its axes) need only their
+  // χ² as partners, not the floor: the catalogue's coupling is about the
+  // travel's centre, a real one about any point, and the point's offset is
+  // exactly those linear parts (a(s_i − c_i)(s_j − c_j) = a·s_i·s_j −
+  // a·c_j·s_i − a·c_i·s_j + const); small as they may be, they belong to
+  // the one structure.
+  bool coupling_parts_at_chi2 = true;
   // A cyclic partner (its period searched) must pass the whole practical
   // floor in what it adds, not `partner_floor_share` of it.
   bool cyclic_partner_full_floor = true;
