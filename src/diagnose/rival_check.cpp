@@ -45,6 +45,27 @@ std::optional<SwapTest> swap_test(const Problem& pb, const Mat& D, const std::ve
   return t;
 }
 
+bool is_proportional_drift(const Term& t) {
+  return t.kind == TermKind::thermal_drift && t.with_axis >= 0;
+}
+
+// The uniform drift of a drift's direction and time constant.
+Mat uniform_drift_of(const Problem& pb, const Term& drift) {
+  Term uniform = drift;
+  uniform.with_axis = -1;
+  return term_columns(pb, uniform);
+}
+
+// A drift in proportion to s_w about the machine's zero (columns C), with
+// the uniform drift beside it: the drift about any zero
+// (a·(s_w − w0)·f(t) = a·s_w·f(t) − a·w0·f(t)).
+Mat with_uniform_drift(const Problem& pb, const Term& drift, const Mat& C) {
+  const Mat U = uniform_drift_of(pb, drift);
+  Mat out(C.rows(), C.cols() + U.cols());
+  out << C, U;
+  return out;
+}
+
 // The candidates that could stand in place of `effect`: the fixed ones, the
 // drift families at each time constant, the cycles at the effect's period.
 std::vector<Term> stand_ins(const CandidateSet& cs, const Term& effect) {
@@ -162,22 +183,47 @@ std::vector<std::string> mark_unrejected_rivals(const Problem& pb,
       if (selected) continue;
       const Mat Cc = term_columns(pb, cand);
       if (!(Cc.squaredNorm() > 0.0)) continue;
+      // Two drifts in proportion to a position are compared each with its
+      // zero free (zero_free_drifts): with its uniform drift of the same
+      // direction and time constant beside it.
+      const bool both_proportional =
+          o.zero_free_drifts && is_proportional_drift(se.term) && is_proportional_drift(cand);
       // Prefilter: how well the candidate (after the datum) fits the effect.
-      const Mat Qc = orthonormal(residual_of(Qd, Cc));
+      // Between two drifts in proportion to a position, zero free: the
+      // candidate with its uniform drift, and of the effect the part its own
+      // uniform drift does not fit (where the machine's zero lies far from
+      // the data, the contribution about it is mostly that uniform drift).
+      const Mat Qc =
+          orthonormal(residual_of(Qd, both_proportional ? with_uniform_drift(pb, cand, Cc) : Cc));
       if (Qc.cols() == 0) continue;
-      const double corr = (Qc.transpose() * fe).norm() / fe.norm();
+      Vec shape = fe;
+      if (both_proportional) {
+        const Mat U = uniform_drift_of(pb, se.term);
+        Mat DU(D.rows(), D.cols() + U.cols());
+        DU << D, U;
+        shape = residual_of(orthonormal(DU), fe);
+      }
+      if (!(shape.norm() > 0.0)) continue;
+      const double corr = (Qc.transpose() * shape).norm() / shape.norm();
       if (corr < o.prefilter_corr) continue;
       for (const std::optional<SwapTest>* test : {&named_only, &with_smooth}) {
         if (!*test) continue;
         const SwapTest& t = **test;
-        const double d_c = t.removes(Cc);
-        if (d_c < t.d_e - t.margin) continue;
+        double d_c = 0.0, d_e = t.d_e;
+        if (both_proportional) {
+          d_c = t.removes(with_uniform_drift(pb, cand, Cc));
+          d_e = t.removes(with_uniform_drift(pb, se.term, cols[e]));
+        } else {
+          d_c = t.removes(Cc);
+        }
+        if (d_c < d_e - t.margin) continue;
         rivals.push_back(cand);
         log.push_back(fmt::format(
-            "data: {} (ΔRSS {:.6g}) is not preferred over {} in its place{} (ΔRSS {:.6g}, "
+            "data: {} (ΔRSS {:.6g}) is not preferred over {} in its place{}{} (ΔRSS {:.6g}, "
             "margin {:.3g})",
-            se.term.label(), t.d_e, cand.label(),
-            test == &with_smooth ? " beside the smooth functions" : "", d_c, t.margin));
+            se.term.label(), d_e, cand.label(),
+            test == &with_smooth ? " beside the smooth functions" : "",
+            both_proportional ? ", each with its zero free" : "", d_c, t.margin));
         break;
       }
     }

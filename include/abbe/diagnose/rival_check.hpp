@@ -41,6 +41,14 @@ struct RivalOptions {
   // rival (false: beside the datum and the named effects only).
   bool beside_smooth = true;
   double smooth_keep_share = 0.5;
+  // A named drift in proportion to a position (x·t→X) and a rival of that
+  // kind (y·t→Y) are each compared with their zero free, i.e. with the
+  // uniform drift of the same direction and time constant beside them: the
+  // catalogue's drift is about the machine's zero, a real one about where
+  // the expansion starts, which no design knows. Along the body diagonals
+  // y·t→Y about the zero fits a drift ∝ (x − x0)·t in X better than x·t→X
+  // about the zero does.
+  bool zero_free_drifts = true;
 };
 
 // Marks the effects (fitted, with coef) the data do not prefer over another
