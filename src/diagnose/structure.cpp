@@ -117,6 +117,7 @@ Combo grow(const Step& st, const Score* lead, const std::vector<const Score*>& p
   for (int m = 1; m < st.o.combinations; ++m) {
     const Score* add = nullptr;
     double d_add = cb.d, ic_add = 0.0;
+    bool part_add = false;
     Eigen::Index k_add = 0;
     for (const Score* sp : pool) {
       const Score& s = *sp;
@@ -135,24 +136,32 @@ Combo grow(const Step& st, const Score* lead, const std::vector<const Score*>& p
       const Eigen::Index kj = k_combo + s.c->C.cols();
       const double s2j =
           std::max(st.rr - dj, 1e-300) / std::max(st.dof_base - static_cast<double>(kj), 1.0);
+      const bool part = linear_part_of_coupling(s.c->term, cb.members);
       const double floor_share =
           s.c->term.kind == TermKind::cyclic && st.o.cyclic_partner_full_floor ? 1.0
-          : st.o.coupling_parts_at_chi2 && linear_part_of_coupling(s.c->term, cb.members)
-              ? 0.0
-              : st.o.partner_floor_share;
+          : st.o.coupling_parts_at_chi2 && part                                ? 0.0
+                                                : st.o.partner_floor_share;
       const double thr_added =
           s2j * std::max(chi2_upper_quantile(s.c->term.columns(), st.o.alpha / st.tests_named),
                          floor_share * st.lambda);
       // The partner that adds most on the criterion (a searched cycle that
       // fits a line as well as a one-column squareness costs more).
       const double ic = st.ic_gain(dj - cb.d, st.cost(s.c->term));
-      if (dj - cb.d > thr_added && (!add || ic > ic_add) &&
+      // A linear part of a coupling in the combination comes before any
+      // other partner (coupling_parts_first): with them the coupling is one
+      // about any centre, and another candidate that fits a linear part
+      // with more of the residual besides (an arm offset carrying the
+      // model's own table error) must then add beyond it.
+      const bool first = st.o.coupling_parts_first && part;
+      const bool better = !add || (first != part_add ? first : ic > ic_add);
+      if (dj - cb.d > thr_added && better &&
           (s.c->term.kind != TermKind::cyclic || !st.o.cyclic_partner_beyond_smooth ||
            smooth.adds(cb.members, s))) {
         k_add = kj;
         add = &s;
         d_add = dj;
         ic_add = ic;
+        part_add = first;
       }
     }
     if (!add) break;

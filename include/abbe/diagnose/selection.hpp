@@ -107,6 +107,10 @@ struct SelectionOptions {
   // a·c_j·s_i − a·c_i·s_j + const); small as they may be, they belong to
   // the one structure.
   bool coupling_parts_at_chi2 = true;
+  // And they join before any other partner (the best of them on the
+  // criterion first): an arm offset, which carries the model's own table
+  // error, otherwise takes a linear part's place.
+  bool coupling_parts_first = true;
   // A cyclic partner (its period searched) must pass the whole practical
   // floor in what it adds, not `partner_floor_share` of it.
   bool cyclic_partner_full_floor = true;
