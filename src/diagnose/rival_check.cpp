@@ -4,6 +4,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 
@@ -168,6 +169,21 @@ std::vector<std::string> mark_unrejected_rivals(const Problem& pb,
         Eigen::Map<const Vec>(se.term.coef.data(), static_cast<Eigen::Index>(se.term.coef.size()));
     if (se.term.coef.size() != static_cast<std::size_t>(cols[e].cols()) || !(fe.norm() > 0.0))
       fe = residual_of(Qd, named_only->Ce.col(0));
+    // A drift in proportion to a position, with its zero free
+    // (zero_free_drifts): its shape beyond its uniform drift, for the
+    // prefilter, and what it removes with that drift in each test.
+    const bool zero_free = o.zero_free_drifts && is_proportional_drift(se.term);
+    Vec shape_zero_free;
+    std::array<double, 2> d_zero_free{0.0, 0.0};
+    if (zero_free) {
+      const Mat U = uniform_drift_of(pb, se.term);
+      Mat DU(D.rows(), D.cols() + U.cols());
+      DU << D, U;
+      shape_zero_free = residual_of(orthonormal(DU), fe);
+      const Mat CU = with_uniform_drift(pb, se.term, cols[e]);
+      d_zero_free[0] = named_only->removes(CU);
+      if (with_smooth) d_zero_free[1] = with_smooth->removes(CU);
+    }
     std::vector<Term> rivals;
     for (const Term& cand : stand_ins(catalogue, se.term)) {
       // Parsimony: an alternative that costs more (columns, plus a
@@ -186,36 +202,24 @@ std::vector<std::string> mark_unrejected_rivals(const Problem& pb,
       // Two drifts in proportion to a position are compared each with its
       // zero free (zero_free_drifts): with its uniform drift of the same
       // direction and time constant beside it.
-      const bool both_proportional =
-          o.zero_free_drifts && is_proportional_drift(se.term) && is_proportional_drift(cand);
+      const bool both_proportional = zero_free && is_proportional_drift(cand);
       // Prefilter: how well the candidate (after the datum) fits the effect.
       // Between two drifts in proportion to a position, zero free: the
       // candidate with its uniform drift, and of the effect the part its own
       // uniform drift does not fit (where the machine's zero lies far from
       // the data, the contribution about it is mostly that uniform drift).
-      const Mat Qc =
-          orthonormal(residual_of(Qd, both_proportional ? with_uniform_drift(pb, cand, Cc) : Cc));
+      const Mat Cs = both_proportional ? with_uniform_drift(pb, cand, Cc) : Cc;
+      const Mat Qc = orthonormal(residual_of(Qd, Cs));
       if (Qc.cols() == 0) continue;
-      Vec shape = fe;
-      if (both_proportional) {
-        const Mat U = uniform_drift_of(pb, se.term);
-        Mat DU(D.rows(), D.cols() + U.cols());
-        DU << D, U;
-        shape = residual_of(orthonormal(DU), fe);
-      }
+      const Vec& shape = both_proportional ? shape_zero_free : fe;
       if (!(shape.norm() > 0.0)) continue;
       const double corr = (Qc.transpose() * shape).norm() / shape.norm();
       if (corr < o.prefilter_corr) continue;
       for (const std::optional<SwapTest>* test : {&named_only, &with_smooth}) {
         if (!*test) continue;
         const SwapTest& t = **test;
-        double d_c = 0.0, d_e = t.d_e;
-        if (both_proportional) {
-          d_c = t.removes(with_uniform_drift(pb, cand, Cc));
-          d_e = t.removes(with_uniform_drift(pb, se.term, cols[e]));
-        } else {
-          d_c = t.removes(Cc);
-        }
+        const double d_c = t.removes(Cs);
+        const double d_e = both_proportional ? d_zero_free[test == &named_only ? 0 : 1] : t.d_e;
         if (d_c < d_e - t.margin) continue;
         rivals.push_back(cand);
         log.push_back(fmt::format(
