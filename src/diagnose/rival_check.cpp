@@ -199,15 +199,13 @@ std::vector<std::string> mark_unrejected_rivals(const Problem& pb,
       if (selected) continue;
       const Mat Cc = term_columns(pb, cand);
       if (!(Cc.squaredNorm() > 0.0)) continue;
-      // Two drifts in proportion to a position are compared each with its
-      // zero free (zero_free_drifts): with its uniform drift of the same
-      // direction and time constant beside it.
+      // Two drifts in proportion to a position are compared zero free, the
+      // candidate too with its uniform drift beside it.
       const bool both_proportional = zero_free && is_proportional_drift(cand);
-      // Prefilter: how well the candidate (after the datum) fits the effect.
-      // Between two drifts in proportion to a position, zero free: the
-      // candidate with its uniform drift, and of the effect the part its own
-      // uniform drift does not fit (where the machine's zero lies far from
-      // the data, the contribution about it is mostly that uniform drift).
+      // Prefilter: how well the candidate (after the datum) fits the effect
+      // (zero free: the part of the effect its uniform drift does not fit;
+      // where the machine's zero lies far from the data, the contribution
+      // about it is mostly that uniform drift).
       const Mat Cs = both_proportional ? with_uniform_drift(pb, cand, Cc) : Cc;
       const Mat Qc = orthonormal(residual_of(Qd, Cs));
       if (Qc.cols() == 0) continue;

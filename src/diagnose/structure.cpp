@@ -101,6 +101,16 @@ bool linear_part_of_coupling(const Term& t, const std::vector<const Score*>& mem
   return false;
 }
 
+// The share of the practical floor a partner must add: the whole for a
+// cycle (cyclic_partner_full_floor), none for a linear part of a coupling
+// in the combination (coupling_parts_at_chi2: its χ² alone), else
+// partner_floor_share.
+double partner_floor_share(const SelectionOptions& o, const Term& t, bool coupling_part) {
+  if (t.kind == TermKind::cyclic && o.cyclic_partner_full_floor) return 1.0;
+  if (coupling_part && o.coupling_parts_at_chi2) return 0.0;
+  return o.partner_floor_share;
+}
+
 // A combination: its members (the lead first), what they remove together
 // and their cost on the criterion.
 struct Combo {
@@ -137,13 +147,9 @@ Combo grow(const Step& st, const Score* lead, const std::vector<const Score*>& p
       const double s2j =
           std::max(st.rr - dj, 1e-300) / std::max(st.dof_base - static_cast<double>(kj), 1.0);
       const bool part = linear_part_of_coupling(s.c->term, cb.members);
-      const double floor_share =
-          s.c->term.kind == TermKind::cyclic && st.o.cyclic_partner_full_floor ? 1.0
-          : st.o.coupling_parts_at_chi2 && part                                ? 0.0
-                                                : st.o.partner_floor_share;
       const double thr_added =
           s2j * std::max(chi2_upper_quantile(s.c->term.columns(), st.o.alpha / st.tests_named),
-                         floor_share * st.lambda);
+                         partner_floor_share(st.o, s.c->term, part) * st.lambda);
       // The partner that adds most on the criterion (a searched cycle that
       // fits a line as well as a one-column squareness costs more).
       const double ic = st.ic_gain(dj - cb.d, st.cost(s.c->term));
