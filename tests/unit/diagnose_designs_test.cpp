@@ -660,6 +660,19 @@ struct Case {
   std::vector<SelectedTerm> effects;  // what the diagnosis selected
 };
 
+// What the hidden deviation adds, on the fresh measurement `fp`, beyond its
+// best fit by the columns L beside the datum: 1 − rms(data − truth) /
+// rms(data − that fit), the datum removed from both (`orc`: the data less
+// the truth). `coef`: the fit's coefficients.
+double oracle_beyond(const Problem& fp, const Eigen::VectorXd& orc, const Eigen::MatrixXd& L,
+                     bool plane, Eigen::VectorXd* coef = nullptr) {
+  Eigen::MatrixXd Ld(L.rows(), L.cols());
+  for (Eigen::Index k = 0; k < L.cols(); ++k) Ld.col(k) = remove_datum(fp, L.col(k), plane);
+  const Eigen::VectorXd beta = Ld.colPivHouseholderQr().solve(remove_datum(fp, fp.y - orc, plane));
+  if (coef) *coef = beta;
+  return 1.0 - rms(remove_datum(fp, orc, plane)) / rms(remove_datum(fp, fp.y - L * beta, plane));
+}
+
 // Gross outliers: `fraction` of the points get one measured component
 // (dn on the ballbar) 20–50 µm off, sign at random. Returns their lines.
 std::set<std::size_t> add_outliers(io::MeasuredData& data, std::uint64_t seed, double fraction) {
@@ -808,8 +821,7 @@ Case run_case(Design design, const Hidden& h, std::uint64_t seed, double outlier
         levels.push_back(pc.s.z());
     const auto nl = static_cast<Eigen::Index>(levels.size());
     const Eigen::Index per = h.proportional ? 2 : 1;
-    const Eigen::VectorXd hv = fp.y - orc;
-    Eigen::MatrixXd L = Eigen::MatrixXd::Zero(hv.size(), per * nl);
+    Eigen::MatrixXd L = Eigen::MatrixXd::Zero(fp.y.size(), per * nl);
     for (std::size_t o = 0; o < fp.obs.size(); ++o) {
       const auto& ob = fp.obs[o];
       const PointContext& pc = fp.points[ob.point];
@@ -821,17 +833,12 @@ Case run_case(Design design, const Hidden& h, std::uint64_t seed, double outlier
       L(row, per * q) = ob.u[h.dir];
       if (h.proportional) L(row, per * q + 1) = ob.u[h.dir] * (pc.s[h.dir] - fp.travel_mid[h.dir]);
     }
-    Eigen::MatrixXd Ld(hv.size(), L.cols());
-    for (Eigen::Index k = 0; k < L.cols(); ++k) Ld.col(k) = remove_datum(fp, L.col(k), plane);
-    const Eigen::VectorXd beta = Ld.colPivHouseholderQr().solve(remove_datum(fp, hv, plane));
-    c.course_oracle =
-        1.0 - rms(remove_datum(fp, orc, plane)) / rms(remove_datum(fp, fp.y - L * beta, plane));
+    c.course_oracle = oracle_beyond(fp, orc, L, plane);
   }
   if (h.shape == Shape::coupling && h.also.empty()) {
     // The best linear part: slopes along the coupling's two axes (about the
     // travel's middle), fitted to the hidden deviation beside the datum.
-    const Eigen::VectorXd hv = fp.y - orc;
-    Eigen::MatrixXd L(hv.size(), 2);
+    Eigen::MatrixXd L(fp.y.size(), 2);
     for (std::size_t o = 0; o < fp.obs.size(); ++o) {
       const auto& ob = fp.obs[o];
       const PointContext& pc = fp.points[ob.point];
@@ -839,11 +846,8 @@ Case run_case(Design design, const Hidden& h, std::uint64_t seed, double outlier
       L(row, 0) = ob.u[h.dir] * (pc.s[h.axis] - fp.travel_mid[h.axis]);
       L(row, 1) = ob.u[h.dir] * (pc.s[h.with] - fp.travel_mid[h.with]);
     }
-    Eigen::MatrixXd Ld(hv.size(), 2);
-    for (Eigen::Index k = 0; k < 2; ++k) Ld.col(k) = remove_datum(fp, L.col(k), plane);
-    const Eigen::Vector2d slope = Ld.colPivHouseholderQr().solve(remove_datum(fp, hv, plane));
-    c.product_oracle =
-        1.0 - rms(remove_datum(fp, orc, plane)) / rms(remove_datum(fp, fp.y - L * slope, plane));
+    Eigen::VectorXd slope;
+    c.product_oracle = oracle_beyond(fp, orc, L, plane, &slope);
     for (const auto& [axis, coef] : linear_parts)
       if (coef * slope[axis == h.axis ? 0 : 1] > 0.0) c.linear_part_named = true;
   }
