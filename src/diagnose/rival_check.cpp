@@ -50,9 +50,11 @@ bool is_proportional_drift(const Term& t) {
   return t.kind == TermKind::thermal_drift && t.with_axis >= 0;
 }
 
-// The uniform drift of a drift's direction and time constant.
+// The uniform drift of a drift's direction and time constant (as the
+// catalogue has it: axis = direction, no position factor).
 Mat uniform_drift_of(const Problem& pb, const Term& drift) {
   Term uniform = drift;
+  uniform.axis = drift.direction;
   uniform.with_axis = -1;
   return term_columns(pb, uniform);
 }
@@ -176,10 +178,10 @@ std::vector<std::string> mark_unrejected_rivals(const Problem& pb,
     Vec shape_zero_free;
     std::array<double, 2> d_zero_free{0.0, 0.0};
     if (zero_free) {
-      const Mat U = uniform_drift_of(pb, se.term);
-      Mat DU(D.rows(), D.cols() + U.cols());
-      DU << D, U;
-      shape_zero_free = residual_of(orthonormal(DU), fe);
+      // fe is beside the datum already: only the uniform drift's own part
+      // beside it is taken out.
+      shape_zero_free =
+          residual_of(orthonormal(residual_of(Qd, uniform_drift_of(pb, se.term))), fe);
       const Mat CU = with_uniform_drift(pb, se.term, cols[e]);
       d_zero_free[0] = named_only->removes(CU);
       if (with_smooth) d_zero_free[1] = with_smooth->removes(CU);

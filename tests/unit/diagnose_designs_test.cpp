@@ -814,21 +814,21 @@ Case run_case(Design design, const Hidden& h, std::uint64_t seed, double outlier
   if (design == Design::grid_one_pass && h.shape == Shape::drift && h.also.empty()) {
     // Walked once, time follows the Z levels: the drift's best function of
     // the levels, fitted to the hidden deviation beside the datum.
-    std::vector<double> levels;
-    for (const PointContext& pc : fp.points)
-      if (std::none_of(levels.begin(), levels.end(),
-                       [&](double z) { return std::abs(z - pc.s.z()) < 1e-6; }))
-        levels.push_back(pc.s.z());
-    const auto nl = static_cast<Eigen::Index>(levels.size());
+    std::vector<double> levels;          // distinct z
+    std::vector<Eigen::Index> level_of;  // per point
+    for (const PointContext& pc : fp.points) {
+      auto at = std::find_if(levels.begin(), levels.end(),
+                             [&](double z) { return std::abs(z - pc.s.z()) < 1e-6; });
+      if (at == levels.end()) at = levels.insert(levels.end(), pc.s.z());
+      level_of.push_back(static_cast<Eigen::Index>(at - levels.begin()));
+    }
     const Eigen::Index per = h.proportional ? 2 : 1;
-    Eigen::MatrixXd L = Eigen::MatrixXd::Zero(fp.y.size(), per * nl);
+    Eigen::MatrixXd L =
+        Eigen::MatrixXd::Zero(fp.y.size(), per * static_cast<Eigen::Index>(levels.size()));
     for (std::size_t o = 0; o < fp.obs.size(); ++o) {
       const auto& ob = fp.obs[o];
       const PointContext& pc = fp.points[ob.point];
-      const auto q = static_cast<Eigen::Index>(
-          std::find_if(levels.begin(), levels.end(),
-                       [&](double z) { return std::abs(z - pc.s.z()) < 1e-6; }) -
-          levels.begin());
+      const Eigen::Index q = level_of[ob.point];
       const auto row = static_cast<Eigen::Index>(o);
       L(row, per * q) = ob.u[h.dir];
       if (h.proportional) L(row, per * q + 1) = ob.u[h.dir] * (pc.s[h.dir] - fp.travel_mid[h.dir]);
