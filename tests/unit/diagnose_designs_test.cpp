@@ -19,15 +19,19 @@
 // hidden effect named; parts of the same shape allowed, see consistent()),
 // `ambiguous` (the truth reported only among alternatives; an off-centre
 // coupling whose product part the design does not resolve counts as named
-// right by an unambiguous linear part with that part's sign, scored()),
-// `wrong` (a name
-// that is not the truth nor part of its shape), `none` (nothing named).
-// The measured rates are printed as a table (docs/diagnosis.md) and the
-// assertions hold the rates reached now, so that a regression fails.
+// right by an unambiguous linear part with that part's sign, scored(); a
+// drift whose alternatives are all forms of the same drift counts as named
+// right, same_drift_form()), `wrong` (a name that is not the truth nor part
+// of its shape), `none` (nothing named).
+// The measured rates are printed as a table (docs/diagnosis.md), with the
+// identifiable cases' rate by the oracle's gain (POWER: how the rate falls
+// near the practical floor), and the assertions hold the rates reached now,
+// so that a regression fails.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
@@ -606,6 +610,21 @@ bool consistent(const Term& t, const Hidden& h) {
   return false;
 }
 
+// An alternative the diagnosis names beside a drift that is one form of the
+// same drift: a thermal drift of the hidden direction, uniform or
+// proportional to a position, at any time constant (consistent() does not
+// tell these forms apart: the catalogue's proportional drift is about the
+// machine's zero, so far from the zero it is mostly the uniform drift).
+// Labels as Term::label() writes them: "thermal_drift x·t→Y (τ 900 s)",
+// "thermal_drift t→Y (at 3 time constants, 900 s – 1800 s)".
+bool same_drift_form(const std::string& alternative, const Hidden& h) {
+  if (h.shape != Shape::drift || alternative.rfind("thermal_drift ", 0) != 0) return false;
+  const std::string arrow = std::string("→") + "XYZ"[h.dir];
+  const auto at = alternative.find(arrow);
+  return at != std::string::npos && alternative.find("→", at + 1) == std::string::npos &&
+         (at + arrow.size() == alternative.size() || alternative[at + arrow.size()] == ' ');
+}
+
 // The named term that is the hidden effect itself (not only a part).
 bool is_truth(const Term& t, const Hidden& h) {
   if (!consistent(t, h)) return false;
@@ -656,6 +675,9 @@ struct Case {
   // -1: not such a case.
   double course_oracle = -1.0;
   bool linear_part_named = false;
+  // A drift named with alternatives that are all forms of the same drift
+  // (same_drift_form): counted right, and apart in the table.
+  bool by_form = false;
   std::vector<std::string> log;       // the diagnosis's selection log
   std::vector<SelectedTerm> effects;  // what the diagnosis selected
 };
@@ -728,6 +750,7 @@ Case run_case(Design design, const Hidden& h, std::uint64_t seed, double outlier
   c.noise_um = d.noise_um;
   c.noise_independent_um = d.noise_independent_um;
   bool truth_named = false, truth_ambiguous = false, wrong = false, any = false;
+  bool truth_named_by_form = false;
   std::vector<std::pair<int, double>> linear_parts;  // named linear parts: axis, coefficient
   for (const SelectedTerm& st : d.effects) {
     double ss = 0.0;
@@ -748,6 +771,11 @@ Case run_case(Design design, const Hidden& h, std::uint64_t seed, double outlier
         wrong = true;
       } else if (st.ambiguous_with.empty() && is_truth(st.term, h)) {
         truth_named = true;
+      } else if (is_truth(st.term, h) &&
+                 std::all_of(st.ambiguous_with.begin(), st.ambiguous_with.end(),
+                             [&](const std::string& a) { return same_drift_form(a, h); })) {
+        // Ambiguous only in the drift's form: its kind and direction named.
+        truth_named_by_form = true;
       } else {
         if (h.shape == Shape::coupling && st.ambiguous_with.empty() && !st.term.coef.empty())
           linear_parts.emplace_back(st.term.axis, st.term.coef[0]);
@@ -764,8 +792,9 @@ Case run_case(Design design, const Hidden& h, std::uint64_t seed, double outlier
   }
   if (wrong) {
     c.verdict = Verdict::wrong;
-  } else if (truth_named) {
+  } else if (truth_named || truth_named_by_form) {
     c.verdict = Verdict::right;
+    c.by_form = !truth_named;
   } else if (truth_ambiguous || any) {
     c.verdict = Verdict::ambiguous;
   } else {
@@ -894,9 +923,13 @@ struct Rates {
   int n_id = 0, id_right = 0, id_wrong = 0;
   int by_linear_part = 0;  // of id_right: a coupling by its linear part (scored())
   int by_course = 0;       // of n_un: a drift whose course within a level is not resolved
+  int by_form = 0;         // of id_right: a drift ambiguous only in its form (Case::by_form)
   int n_un = 0, un_ambiguous = 0, un_wrong = 0;  // "ambiguous" here: ambiguous or nothing named
   int n_null = 0, null_clean = 0;
   int gain_ok = 0, n_gain = 0;
+  // Identifiable cases by the oracle's gain (the effect's size as the design
+  // sees it): below 0.08, 0.08–0.12, from 0.12; named right in each.
+  std::array<int, 3> n_band{}, right_band{};
 
   // Counts a null case; its tag for the log.
   std::string add_null(Verdict v) {
@@ -942,6 +975,11 @@ Rates sweep(Design design, bool no_directions = false) {
       tag = r.add_identifiable(scored(c, h, &by_part));
       r.by_linear_part += by_part ? 1 : 0;
       if (by_part) tag += " (linear part)";
+      r.by_form += c.by_form ? 1 : 0;
+      const std::size_t band = c.oracle < 0.08 ? 0 : c.oracle < 0.12 ? 1 : 2;
+      ++r.n_band[band];
+      r.right_band[band] += tag.rfind("right", 0) == 0 ? 1 : 0;
+      if (c.by_form) tag += " (form)";
       ++r.n_gain;
       r.gain_ok += c.gain_ok ? 1 : 0;
     } else {
@@ -972,13 +1010,22 @@ Rates sweep(Design design, bool no_directions = false) {
       "0.7 oracle "
       "{}/{} ({:.0f} %)\n",
       label, r.id_right, r.n_id, pct(r.id_right, r.n_id),
-      r.by_linear_part ? fmt::format(" ({} couplings by their linear part)", r.by_linear_part) : "",
+      fmt::format(
+          "{}{}",
+          r.by_linear_part ? fmt::format(" ({} couplings by their linear part)", r.by_linear_part)
+                           : "",
+          r.by_form ? fmt::format(" ({} drifts ambiguous only in their form)", r.by_form) : ""),
       r.id_wrong, r.un_ambiguous, r.n_un, pct(r.un_ambiguous, r.n_un),
       r.by_course
           ? fmt::format(" ({} drifts whose course within a level is below resolution)", r.by_course)
           : "",
       r.un_wrong, pct(r.un_wrong, r.n_un), r.null_clean, r.n_null, r.gain_ok, r.n_gain,
       pct(r.gain_ok, r.n_gain));
+  std::cerr << fmt::format(
+      "POWER | {} | identifiable named right by the oracle's gain: 0.05–0.08 {}/{} | 0.08–0.12 "
+      "{}/{} | from 0.12 {}/{} ({:.1f} %)\n",
+      label, r.right_band[0], r.n_band[0], r.right_band[1], r.n_band[1], r.right_band[2],
+      r.n_band[2], pct(r.right_band[2], r.n_band[2]));
   return r;
 }
 
@@ -1041,8 +1088,11 @@ TEST(DiagnoseDesigns, Diagonals) { check(sweep(Design::diagonals), {0.0, 0.02, 0
 // 0, 0/15). With the chosen cycles' periods refined on the fit
 // (exact_period) 92 → 93/96 and 3 → 2 wrong; with the cycle period test's
 // margin the levels' noise (level_noise_margin) 94/96 and 1 wrong. A ballbar in XY
-// only: 64/69, 0 wrong, 0/81 (40 seeds: 12/14, 0, 0/16; the misses are
-// drifts of Y that one circle pair cannot tell from a drift ∝ x).
+// only: 64/69, 0 wrong, 0/81 (40 seeds: 12/14, 0, 0/16; the misses were
+// drifts of Y that one circle pair cannot tell from a drift ∝ x); with a
+// drift ambiguous only in its form counted as named (same_drift_form())
+// 68/69 (40 seeds: 14/14; 1000 seeds: 297/318, 93.4 %): its floors rose
+// from 0 to 0.9.
 // With a drift identifiable only where its course within the levels is
 // resolved (course_unresolved()): 72/75, 0 wrong, 0/75 wrong where not
 // identifiable (200 seeds; 40 seeds: 14/15, 0, 0/15; 1000 seeds: 337/352,
@@ -1069,7 +1119,7 @@ TEST(DiagnoseDesigns, GridWithoutDirectionsInferred) {
 TEST(DiagnoseDesigns, GridIrregular) {
   check(sweep(Design::grid_irregular), {0.9, 0.05, 0.02, 0.95, 0.95});
 }
-TEST(DiagnoseDesigns, BallbarXY) { check(sweep(Design::ballbar_xy), {0.0, 0.02, 0.02, 0.95, 0.0}); }
+TEST(DiagnoseDesigns, BallbarXY) { check(sweep(Design::ballbar_xy), {0.9, 0.02, 0.02, 0.95, 0.9}); }
 TEST(DiagnoseDesigns, AxisLines) {
   check(sweep(Design::axis_lines), {0.93, 0.04, 0.02, 0.95, 0.95});
 }
@@ -1434,6 +1484,38 @@ TEST(DiagnoseDesigns, ACouplingIsScoredByItsLinearPartOnlyWhereItsProductIsNotRe
   c.verdict = Verdict::ambiguous;  // as if only its linear parts were named
   c.linear_part_named = true;
   EXPECT_EQ(scored(c, h), Verdict::ambiguous);
+}
+
+// A drift named with alternatives that are all forms of the same drift (a
+// thermal drift of its direction, uniform or ∝ a position, at any time
+// constant) has its kind and direction named: ballbar case 266 (1000-seed
+// sweep), a uniform drift of Y, is named x·t→Y ~ t→Y at three time
+// constants (far from the machine's zero x·t→Y is mostly the uniform
+// drift). An alternative of another direction or kind keeps it ambiguous.
+TEST(DiagnoseDesigns, ADriftAmbiguousOnlyInItsFormIsNamed) {
+  Hidden drift_y;
+  drift_y.shape = Shape::drift;
+  drift_y.axis = drift_y.dir = 1;
+  EXPECT_TRUE(same_drift_form("thermal_drift t→Y (at 3 time constants, 900 s – 1800 s)", drift_y));
+  EXPECT_TRUE(same_drift_form("thermal_drift y·t→Y (τ 10800 s)", drift_y));
+  EXPECT_TRUE(same_drift_form("thermal_drift x·t→Y", drift_y));
+  EXPECT_FALSE(same_drift_form("thermal_drift z·t→Z (τ 600 s)", drift_y));
+  EXPECT_FALSE(same_drift_form("scale Y", drift_y));
+  EXPECT_FALSE(same_drift_form("reversal Y→Y growing along y", drift_y));
+  EXPECT_FALSE(same_drift_form("any function of z on its 3 levels", drift_y));
+  Hidden scale_y = drift_y;
+  scale_y.shape = Shape::scale;
+  EXPECT_FALSE(same_drift_form("thermal_drift t→Y", scale_y));
+
+  const auto [h, seed] = sweep_case(Design::ballbar, 266);
+  ASSERT_EQ(h.shape, Shape::drift);
+  ASSERT_EQ(h.dir, 1);
+  const Case c = run_case(Design::ballbar, h, seed);
+  EXPECT_EQ(c.verdict, Verdict::right) << c.found;
+  EXPECT_TRUE(c.by_form) << c.found;
+  ASSERT_EQ(c.effects.size(), 1u) << c.found;
+  EXPECT_EQ(c.effects[0].term.kind, TermKind::thermal_drift);
+  EXPECT_FALSE(c.effects[0].ambiguous_with.empty()) << c.found;
 }
 
 // Along the four body diagonals a drift ∝ (x − x0)·t in X, its zero
