@@ -915,10 +915,15 @@ Case run_case(Design design, const Hidden& h, std::uint64_t seed, double outlier
 // with that part's sign, it counts as named right, as a drift that grows
 // with the position does by its mean scale (consistent()). Every such case
 // is counted apart in the table (Rates::by_linear_part).
+// A part's oracle (product, course, beyond the unnamed parts) that was
+// measured for the case (not -1) and is below what the design resolves.
+bool measured_below_resolution(double part_oracle) {
+  return part_oracle > -0.5 && part_oracle < kResolvable;
+}
+
 Verdict scored(const Case& c, const Hidden& h, bool* by_linear_part = nullptr) {
-  const bool upgrade = h.shape == Shape::coupling && c.product_oracle > -0.5 &&
-                       c.product_oracle < kResolvable && c.verdict == Verdict::ambiguous &&
-                       c.linear_part_named;
+  const bool upgrade = h.shape == Shape::coupling && measured_below_resolution(c.product_oracle) &&
+                       c.verdict == Verdict::ambiguous && c.linear_part_named;
   if (by_linear_part) *by_linear_part = upgrade;
   return upgrade ? Verdict::right : c.verdict;
 }
@@ -928,9 +933,7 @@ Verdict scored(const Case& c, const Hidden& h, bool* by_linear_part = nullptr) {
 // of the levels (course_oracle) is such a function to these data, as
 // identifiable() says — counted with the cases the design cannot identify
 // (a drift named there is named by luck, a name of a function of z wrong).
-bool course_unresolved(const Case& c) {
-  return c.course_oracle > -0.5 && c.course_oracle < kResolvable;
-}
+bool course_unresolved(const Case& c) { return measured_below_resolution(c.course_oracle); }
 
 // An off-centre coupling is a product part plus a scale or squareness along
 // each of its axes. Where it adds less than kResolvable beyond its linear
@@ -939,7 +942,7 @@ bool course_unresolved(const Case& c) {
 // d_z ∝ x or y), what the design resolves of the coupling is a kind it
 // cannot name: the case is counted with the cases it cannot identify.
 bool identifiable_parts_unresolved(const Case& c) {
-  return c.identifiable_parts_oracle > -0.5 && c.identifiable_parts_oracle < kResolvable;
+  return measured_below_resolution(c.identifiable_parts_oracle);
 }
 
 int seeds() {
@@ -1006,24 +1009,24 @@ Rates sweep(Design design, bool no_directions = false) {
     std::string tag;
     if (h.shape == Shape::none) {
       tag = r.add_null(c.verdict);
-    } else if (identifiable(design, h) && c.oracle >= kResolvable && !course_unresolved(c) &&
-               !identifiable_parts_unresolved(c)) {
+    } else if (const bool resolvable = identifiable(design, h) && c.oracle >= kResolvable;
+               resolvable && !course_unresolved(c) && !identifiable_parts_unresolved(c)) {
       bool by_part = false;
-      tag = r.add_identifiable(scored(c, h, &by_part));
+      const Verdict v = scored(c, h, &by_part);
+      tag = r.add_identifiable(v);
       r.by_linear_part += by_part ? 1 : 0;
       if (by_part) tag += " (linear part)";
       r.by_form += c.by_form ? 1 : 0;
+      if (c.by_form) tag += " (form)";
       const std::size_t band = c.oracle < 0.08 ? 0 : c.oracle < 0.12 ? 1 : 2;
       ++r.n_band[band];
-      r.right_band[band] += tag.rfind("right", 0) == 0 ? 1 : 0;
-      if (c.by_form) tag += " (form)";
+      r.right_band[band] += v == Verdict::right ? 1 : 0;
       ++r.n_gain;
       r.gain_ok += c.gain_ok ? 1 : 0;
     } else {
       ++r.n_un;
-      r.by_course += identifiable(design, h) && c.oracle >= kResolvable && course_unresolved(c);
-      r.by_unnamed_parts +=
-          identifiable(design, h) && c.oracle >= kResolvable && identifiable_parts_unresolved(c);
+      r.by_course += resolvable && course_unresolved(c);
+      r.by_unnamed_parts += resolvable && identifiable_parts_unresolved(c);
       const bool amb = c.verdict == Verdict::ambiguous || c.verdict == Verdict::none;
       r.un_ambiguous += amb ? 1 : 0;
       r.un_wrong += c.verdict == Verdict::wrong ? 1 : 0;
