@@ -1,11 +1,54 @@
 #include "abbe/diagnose/candidates.hpp"
 
+#include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
+#include <string>
 
 #include "coverage.hpp"
 
 namespace abbe::diagnose {
+namespace {
+
+// The multiple correlation R of a reversal's growth along axis j,
+// g = sign(v_j)·x with x = (s_j − mid)/half, with the position x (a scale)
+// and the jump sign(v_j), all after their mean per set (the datum), over
+// the observations of direction i: R² is the share of g's variance the two
+// fit together; 1 where the position or the jump is constant there. (The
+// time is left to the data: over one run there and back a drift linear in
+// t is a jump plus a growth, and the rival checks compare them; leaving
+// the growth out where it follows t lets another term take it.)
+double growth_correlation(const Problem& pb, int j, int i) {
+  struct Sums {
+    double n = 0.0;
+    Eigen::Vector3d m = Eigen::Vector3d::Zero();  // g, x, sign(v_j)
+    Eigen::Matrix3d mm = Eigen::Matrix3d::Zero();
+  };
+  std::map<std::string, Sums> per_set;
+  const auto ji = static_cast<std::size_t>(j);
+  for (const Observation& ob : pb.obs) {
+    if (std::abs(ob.u[i]) <= 1e-9) continue;
+    const PointContext& pc = pb.points[ob.point];
+    const double v = static_cast<double>(pc.dir[ji]);
+    const double x = (pc.s[j] - pb.travel_mid[j]) / std::max(pb.travel_half[j], 1e-9);
+    const Eigen::Vector3d row(v * x, x, v);
+    Sums& s = per_set[pc.set];
+    s.n += 1.0;
+    s.m += row;
+    s.mm += row * row.transpose();
+  }
+  Eigen::Matrix3d S = Eigen::Matrix3d::Zero();  // the scatter about each set's mean
+  for (const auto& [set, s] : per_set) S += s.mm - s.m * s.m.transpose() / s.n;
+  if (!(S(0, 0) > 1e-12) || !(S(1, 1) > 1e-12) || !(S(2, 2) > 1e-12)) return 1.0;
+  const Eigen::Vector2d b = S.block<2, 1>(1, 0);
+  const Eigen::Vector2d beta =
+      S.bottomRightCorner<2, 2>().completeOrthogonalDecomposition().solve(b);
+  return std::sqrt(std::clamp(b.dot(beta) / S(0, 0), 0.0, 1.0));
+}
+
+}  // namespace
 
 CandidateSet build_candidates(const Problem& pb, const CandidateOptions& o) {
   CandidateSet cs;
@@ -47,6 +90,16 @@ CandidateSet build_candidates(const Problem& pb, const CandidateOptions& o) {
         t.axis = j;
         t.direction = i;
         add(t);
+        // Growing along its travel (in its own direction only: a jump
+        // across, d_i when j reverses, that also grows is not a catalogue
+        // shape).
+        if (o.growing_reversal && i == j && seen.varies_in(j, i) &&
+            growth_correlation(pb, j, i) <= o.max_growth_correlation) {
+          t.degree = 1;
+          t.centre = pb.travel_mid;
+          t.half = pb.travel_half;
+          add(t);
+        }
       }
       for (int k = j + 1; k < 3; ++k)
         if (seen.varies_in(j, i) && seen.varies_in(k, i)) {

@@ -116,6 +116,9 @@ std::string Step::rivals(const Score& target, std::vector<std::string>& names) c
   for (const Score& s : scores) {
     if (&s == &target || s.d < 0.9 * target.d) continue;
     if (cost(s.c->term) > cost(target.c->term)) continue;
+    // The same effect in a simpler form (a reversal without its growth) is
+    // not another name: the information criterion chose the form.
+    if (same_effect(s.c->term, target.c->term)) continue;
     if (o.rivals_by_test && target.d - s.d >= margin) continue;
     if (abs_correlation(fb, contribution(*s.c)) > o.ambiguous_corr) {
       names.push_back(s.c->term.label());

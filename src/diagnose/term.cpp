@@ -4,6 +4,11 @@
 
 namespace abbe::diagnose {
 
+bool same_effect(const Term& a, const Term& b) {
+  return a.kind == b.kind && a.axis == b.axis && a.direction == b.direction &&
+         a.with_axis == b.with_axis && a.set == b.set;
+}
+
 int Term::columns() const {
   const EffectDescriptor& d = effect_descriptor(kind);
   return d.columns ? d.columns(*this) : 1;

@@ -18,6 +18,15 @@ struct CandidateOptions {
   std::vector<double> tau_s{300, 600, 900, 1200, 1800, 2700, 3600, 5400, 7200, 10800, 0};
   int single_degree = 6;  // unexplained: Legendre degree in one variable
   int pair_degree = 4;    // ... per variable of a pair
+  // A reversal that grows along its travel (two columns: the jump and its
+  // change along the axis; in the axis's own direction) is a candidate
+  // beside the plain one where its
+  // growth sign(v_j)·(s_j − mid) is told from the position s_j and the
+  // jump: on the observations of the direction, after each set's mean (the
+  // datum), its multiple correlation with the two is at most this (an axis
+  // driven one way over most of its travel makes the growth a scale).
+  bool growing_reversal = true;
+  double max_growth_correlation = 0.5;
 };
 
 struct ScanFamily {

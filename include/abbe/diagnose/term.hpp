@@ -58,6 +58,8 @@ struct Term {
   // unexplained: Legendre products of the variables (0..2 = s_x, s_y, s_z, 3 = t)
   // scaled from [lo, hi] to [−1, 1], every degree combination up to `degree`
   // per variable except the constant.
+  // (reversal: degree 1 is the reversal growing along its travel, about
+  // `centre` in units of `half`.)
   std::vector<int> vars;
   int degree = 0;
   std::array<double, 4> lo{0, 0, 0, 0}, hi{1, 1, 1, 1};
@@ -87,6 +89,10 @@ struct Term {
 // d_i ∝ s_a, the deviation in direction i linear in the position of axis
 // a: the scale of a (i = a) or the squareness a→i.
 Term position_term(int axis, int direction);
+
+// The same effect (kind, axes, direction, set), perhaps in another form: a
+// reversal with and without its growth, a drift at another time constant.
+bool same_effect(const Term& a, const Term& b);
 
 char axis_name(int a);             // 'X', 'Y', 'Z' ('-' for −1)
 const char* variable_name(int v);  // "x", "y", "z", "t"
