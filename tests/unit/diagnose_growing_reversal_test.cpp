@@ -104,8 +104,8 @@ TEST(DiagnoseGrowingReversal, OverlayRoundTripAndBadField) {
     EXPECT_GT(e.where().line, 0u);
   }
   std::string no_half = yaml;
-  no_half.erase(no_half.find("    half:"), no_half.find('\n', no_half.find("    half:")) -
-                                               no_half.find("    half:") + 1);
+  const std::size_t half_at = no_half.find("    half:");
+  no_half.erase(half_at, no_half.find('\n', half_at) - half_at + 1);
   EXPECT_THROW(Overlay::parse(no_half, "g.yaml"), InputError);
 }
 

@@ -87,8 +87,8 @@ TEST(FanucDialect, DwellInMillisecondsOrSeconds) {
 TEST(FanucDialect, CycleRepeatsKAreLinuxcncL) {
   const std::string head = "G17 G21 G90 G0 X0. Y0. Z10.\nG91 G98 G81 X10. Y0. Z-5. R-8. ";
   const auto fanuc = run(head + "K3 F100.\nG80\n");
-  const auto linuxcnc = run(head + "L3 F100.\nG80\n", IntegerNumbers::least_increment,
-                            Dialect::linuxcnc);
+  const auto linuxcnc =
+      run(head + "L3 F100.\nG80\n", IntegerNumbers::least_increment, Dialect::linuxcnc);
   ASSERT_EQ(fanuc.size(), linuxcnc.size());
   ASSERT_GT(fanuc.size(), 6U);
   for (std::size_t i = 0; i < fanuc.size(); ++i)
@@ -137,10 +137,10 @@ TEST(FanucDialect, EightDigitPCarriesTheRepeatCount) {
 }
 
 TEST(FanucDialect, NestedSubprograms) {
-  const auto m = run(
-      "O1\nG90 G0 X0. Y0. Z0.\nM98 P2 L2\nM30\n"
-      "O2\nM98 P3 L2\nG91 G0 Y1.\nG90\nM99\n"
-      "O3\nG91 G0 X1.\nG90\nM99\n");
+  const auto m =
+      run("O1\nG90 G0 X0. Y0. Z0.\nM98 P2 L2\nM30\n"
+          "O2\nM98 P3 L2\nG91 G0 Y1.\nG90\nM99\n"
+          "O3\nG91 G0 X1.\nG90\nM99\n");
   // O2 twice; each pass: O3 twice (X+1, X+1) then Y+1.
   ASSERT_EQ(m.size(), 7U);
   expect_end(m.back(), 4.0, 2.0, 0.0);
@@ -165,8 +165,9 @@ TEST(FanucDialect, RefusalsNameTheConstruct) {
   EXPECT_EQ(error_of("G0 X1.\nG68 X0. Y0. R45.\n"),
             "f.nc:2:1: error: coordinate rotation (G68) is not supported");
   EXPECT_EQ(error_of("G51 X0 Y0 P2000\n"), "f.nc:1:1: error: scaling (G51) is not supported");
-  EXPECT_EQ(error_of("G54.1 P1\n"), "f.nc:1:1: error: additional work offsets (G54.1) is not "
-                                    "supported");
+  EXPECT_EQ(error_of("G54.1 P1\n"),
+            "f.nc:1:1: error: additional work offsets (G54.1) is not "
+            "supported");
   EXPECT_EQ(error_of("O1\nM98 P9999\nM30\n"),
             "f.nc:2:1: error: subprogram O9999 is not in this file");
   EXPECT_EQ(error_of("M98\n"), "f.nc:1:1: error: M98 without P (the program number to call)");
@@ -175,8 +176,7 @@ TEST(FanucDialect, RefusalsNameTheConstruct) {
             "O-numbered program");
   EXPECT_EQ(error_of("O1\nM98 P2\nM30\nO2\nG0 X1.\n"),
             "f.nc:5: error: the file ends inside a subprogram (no M99)");
-  EXPECT_EQ(error_of("O1\nM98 P1\n"),
-            "f.nc:2:1: error: subprograms nested deeper than 10 levels");
+  EXPECT_EQ(error_of("O1\nM98 P1\n"), "f.nc:2:1: error: subprograms nested deeper than 10 levels");
   EXPECT_EQ(error_of("O1\nM30\nO1\nM99\n"),
             "f.nc:3:1: error: program number O1 is defined twice in this file");
 }
