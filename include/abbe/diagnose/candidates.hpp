@@ -20,11 +20,11 @@ struct CandidateOptions {
   int pair_degree = 4;    // ... per variable of a pair
   // A reversal that grows along its travel (two columns: the jump and its
   // change along the axis; in the axis's own direction) is a candidate
-  // beside the plain one where its
-  // growth sign(v_j)·(s_j − mid) is told from the position s_j and the
-  // jump: on the observations of the direction, after each set's mean (the
-  // datum), its multiple correlation with the two is at most this (an axis
-  // driven one way over most of its travel makes the growth a scale).
+  // beside the plain one where its growth sign(v_j)·(s_j − mid) is told
+  // from the position s_j and the jump: on the observations of the
+  // direction, after each set's mean (the datum), its multiple correlation
+  // with the two is at most this (an axis driven one way over most of its
+  // travel makes the growth a scale).
   bool growing_reversal = true;
   double max_growth_correlation = 0.5;
 };
