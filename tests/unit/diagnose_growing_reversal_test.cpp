@@ -66,6 +66,10 @@ TEST(DiagnoseGrowingReversal, ColumnsByHand) {
   t.stderr_ = {0.1, 0.2};
   ASSERT_EQ(t.param_stderr().size(), 2u);
   EXPECT_EQ(t.param_stderr()[1].second, 0.2);
+  // The text table shows the jump ± u; the description the growth ± u.
+  EXPECT_NE(t.description().find("+1.00 ± 0.2 µm more at the travel's end (x = 150.0 mm)"),
+            std::string::npos)
+      << t.description();
   // Without its growth it is the plain reversal, one column.
   t.degree = 0;
   EXPECT_EQ(t.columns(), 1);

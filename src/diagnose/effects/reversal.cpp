@@ -30,14 +30,20 @@ EffectDescriptor reversal() {
                       : fmt::format("reversal {}→{}", axis_name(t.axis), axis_name(t.direction));
   };
   d.description = [](const Term& t) {
-    if (growing(t))
+    if (growing(t)) {
+      // The growth with its standard uncertainty where the fit gave one (the
+      // text table's value column holds the jump's).
+      const std::string growth =
+          t.stderr_.size() > 1 && t.stderr_[1] > 0.0
+              ? fmt::format("{:+.2f} ± {:.2g}", coef_or_zero(t, 1), t.stderr_[1])
+              : fmt::format("{:+.2f}", coef_or_zero(t, 1));
       return fmt::format(
-          "{} jumps by {:+.2f} µm when {} reverses at {} = {:.1f} mm, {:+.2f} µm more at the "
+          "{} jumps by {:+.2f} µm when {} reverses at {} = {:.1f} mm, {} µm more at the "
           "travel's end ({} = {:.1f} mm): backlash / lost motion that changes along the travel "
           "(uneven wear)",
           axis_name(t.direction), coef_or_zero(t, 0), axis_name(t.axis), variable_name(t.axis),
-          t.centre[t.axis], coef_or_zero(t, 1), variable_name(t.axis),
-          t.centre[t.axis] + t.half[t.axis]);
+          t.centre[t.axis], growth, variable_name(t.axis), t.centre[t.axis] + t.half[t.axis]);
+    }
     return fmt::format("{} jumps by {:+.2f} µm when {} reverses: backlash / lost motion",
                        axis_name(t.direction), coef_or_zero(t, 0), axis_name(t.axis));
   };
