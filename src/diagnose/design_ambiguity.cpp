@@ -607,13 +607,13 @@ std::vector<std::string> mark_design_ambiguities(const Problem& pb,
       const Term& rt = effects[rv].term;
       if (rt.kind != TermKind::reversal || rt.axis < 0) continue;
       const int j = rt.axis;
-      // The reversal's growth along its travel: sign(v_j)/2 · (s_j − mid)/half.
-      Vec growth = cols[rv].col(0);
-      for (std::size_t ob = 0; ob < pb.obs.size(); ++ob) {
-        const PointContext& pc = pb.points[pb.obs[ob].point];
-        growth[static_cast<Eigen::Index>(ob)] *=
-            (pc.s[j] - pb.travel_mid[j]) / std::max(pb.travel_half[j], 1e-9);
-      }
+      // The reversal's growth along its travel, sign(v_j)/2 · (s_j − mid)/half:
+      // the growing reversal's second column (effects/reversal.cpp).
+      Term grown = rt;
+      grown.degree = 1;
+      grown.centre = pb.travel_mid;
+      grown.half = pb.travel_half.cwiseMax(1e-9);
+      const Vec growth = term_columns(pb, grown).col(1);
       for (std::size_t e = 0; e < effects.size(); ++e) {
         const Term& et = effects[e].term;
         if (e == rv || et.kind == TermKind::unexplained || et.kind == TermKind::reversal) continue;
