@@ -4,6 +4,7 @@
 // their Gram matrices cached, what it removes from the residual, and the
 // point-level sums the smooth families and the parameter scans use.
 #include <Eigen/Core>
+#include <string>
 #include <vector>
 
 #include "abbe/diagnose/residuals.hpp"
@@ -20,6 +21,19 @@ struct Cached {
   Mat CtC;                      // k × k
   Mat QtC;                      // p × k, extended as Q grows
   std::vector<double> aliases;  // cyclic: other periods that fit these points as well
+};
+
+// What a step found a pick could be instead: other names (rivals) and, for
+// a cycle, other periods that fit these points as well (its aliases: the
+// same effect, its period not resolved).
+struct Alternatives {
+  std::vector<std::string> names;
+  std::vector<double> periods_mm;
+  bool empty() const { return names.empty() && periods_mm.empty(); }
+  void clear() {
+    names.clear();
+    periods_mm.clear();
+  }
 };
 
 // ΔRSS of adding C to the selected span Q (r ⟂ Q; QtC = QᵀC). Returns −1

@@ -221,10 +221,11 @@ bool choose_step(const Problem& pb, const CandidateSet& cs, const SelectionOptio
       out.C = std::move(Cn);
       out.partners.push_back(s->c->term);
       out.partner_amb.emplace_back();
-      std::vector<std::string>& amb = out.partner_amb.back();
+      Alternatives& amb = out.partner_amb.back();
       std::string sep = step_view.rivals(*s, amb);
       for (const Term& t : swapped_in)
-        if (std::find(amb.begin(), amb.end(), t.label()) == amb.end()) amb.push_back(t.label());
+        if (std::find(amb.names.begin(), amb.names.end(), t.label()) == amb.names.end())
+          amb.names.push_back(t.label());
       if (sep.empty() && !swapped_in.empty())
         sep = separating_measurement(s->c->term, swapped_in, {});
       out.partner_separation.push_back(sep);

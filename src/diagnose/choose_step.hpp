@@ -54,10 +54,10 @@ struct StepChoice {
   Term pick;
   Mat C;  // the pick's columns and its partners'
   double d = 0.0;
-  std::vector<std::string> amb;
+  Alternatives amb;
   std::string separation;
   std::vector<Term> partners;
-  std::vector<std::vector<std::string>> partner_amb;
+  std::vector<Alternatives> partner_amb;
   std::vector<std::string> partner_separation;
   // Where a smooth function is the pick: the best significant named
   // candidate, which takes its place if the function fails the held-out

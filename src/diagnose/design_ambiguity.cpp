@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <map>
 #include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -332,6 +334,55 @@ class OtherPeriods {
   double span_, f_e_, df_, f_lo_, f_hi_;
 };
 
+// Whether s_j moves in lockstep with another axis on every line of the
+// design: within each set, over the points measured along i, |r| ≥ 0.99
+// between s_j and some other s_k. Along a body diagonal a cycle of j is a
+// cycle of k at its period scaled by their slope: its kind may be told,
+// not its axis.
+bool moves_with_another_axis(const Problem& pb, int j, int i) {
+  struct Sums {
+    Eigen::Vector3d s = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d ss = Eigen::Matrix3d::Zero();
+    double n = 0.0;
+  };
+  std::map<std::string, Sums> per_set;
+  std::vector<bool> seen(pb.points.size(), false);
+  for (const Observation& ob : pb.obs)
+    if (std::abs(ob.u[i]) > 1e-9 && !seen[ob.point]) {
+      seen[ob.point] = true;
+      const PointContext& pc = pb.points[ob.point];
+      Sums& m = per_set[pc.set];
+      m.s += pc.s;
+      m.ss += pc.s * pc.s.transpose();
+      m.n += 1.0;
+    }
+  bool any = false;
+  for (const auto& entry : per_set) {
+    const Sums& m = entry.second;
+    if (m.n < 3.0) continue;
+    const Eigen::Vector3d mean = m.s / m.n;
+    const Eigen::Matrix3d c = m.ss / m.n - mean * mean.transpose();
+    if (!(c(j, j) > 1e-9 * (1.0 + c.trace()))) continue;  // s_j still on this line
+    any = true;
+    bool locked = false;
+    for (int k = 0; k < 3; ++k)
+      locked = locked || (k != j && c(k, k) > 0.0 && c(j, k) * c(j, k) >= 0.98 * c(j, j) * c(k, k));
+    if (!locked) return false;
+  }
+  return any;
+}
+
+// A cycle's other periods (SelectedTerm::other_periods_mm) as alternatives:
+// its period not resolved and its kind not told either.
+void periods_as_alternatives(SelectedTerm& st) {
+  for (double p : st.other_periods_mm) {
+    Term other = st.term;
+    other.period_mm = p;
+    add_alternative(st, other.label());
+  }
+  st.other_periods_mm.clear();
+}
+
 // The cycle period test of effect e (a cycle of axis j in direction i): the
 // positions of s_j where direction i is measured, when they are levels (a
 // laser line's targets, a grid's levels). A cycle there is known by its
@@ -342,13 +393,16 @@ class OtherPeriods {
 // function of the levels removes in its place (`cycle_share_of_levels`),
 // else it is a piece of a structure that is not a cycle (e.g. the model's
 // own table error at the levels), its period the one of many that fit best.
+// Returns whether the data tell the cycle's kind (its period may still be
+// unresolved: SelectedTerm::other_periods_mm; DesignAmbiguityOptions
+// period_only_*).
 // The datum and every effect fitted together: its span and residual.
 struct WholeFit {
   Mat Q;
   Vec r;
 };
 
-void test_cycle_period(const Problem& pb, const Mat& D, const std::vector<Mat>& cols, std::size_t e,
+bool test_cycle_period(const Problem& pb, const Mat& D, const std::vector<Mat>& cols, std::size_t e,
                        std::vector<SelectedTerm>& effects, const DesignAmbiguityOptions& o,
                        double min_period_mm, const WholeFit* whole, std::vector<std::string>& log) {
   const Term& et = effects[e].term;
@@ -361,14 +415,26 @@ void test_cycle_period(const Problem& pb, const Mat& D, const std::vector<Mat>& 
       v.push_back(pb.points[ob.point].s[j]);
     }
   const std::vector<double> lv = levels_of(std::move(v), o, min_period_mm);
-  if (lv.size() <= o.few_levels) return;  // none, or the few-levels rule's
-  const SwapTest sw = swap_test(pb, D, cols, e, o.swap_alpha);
-  if (!sw.valid) return;
-  const LevelSpan levels(pb, j, lv);
+  if (lv.empty()) return false;
   const std::string levels_text =
       fmt::format("any function of {} on its {} levels", variable_name(j), lv.size());
+  // The selection's aliases where the kind is not told either: other
+  // cycles, and any function of the levels.
+  auto kind_not_told = [&](SelectedTerm& st) {
+    if (!st.other_periods_mm.empty()) {
+      periods_as_alternatives(st);
+      add_alternative(st, levels_text);
+    }
+    return false;
+  };
+  // The few-levels rule's: a cycle fits any values there.
+  if (lv.size() <= o.few_levels) return kind_not_told(effects[e]);
+  const SwapTest sw = swap_test(pb, D, cols, e, o.swap_alpha);
+  if (!sw.valid) return kind_not_told(effects[e]);
+  const LevelSpan levels(pb, j, lv);
   const double d_levels = levels.removes_in_place(sw.QA, sw.rA, i);
   if (sw.d_e < o.cycle_share_of_levels * d_levels) {
+    kind_not_told(effects[e]);
     add_alternative(effects[e], levels_text);
     if (effects[e].separate_by.empty())
       effects[e].separate_by = fmt::format(
@@ -379,14 +445,9 @@ void test_cycle_period(const Problem& pb, const Mat& D, const std::vector<Mat>& 
         "design: {} (ΔRSS {:.6g}) is {:.0f} % of what any function of the {} levels of {} "
         "removes in its place (ΔRSS {:.6g})",
         et.label(), sw.d_e, 100.0 * sw.d_e / d_levels, lv.size(), variable_name(j), d_levels));
-    return;
+    return false;
   }
   const LevelSpan::InPlace ip = levels.in_place(sw.QA, sw.rA, i);
-  const OtherPeriods others(ip, lv, et.period_mm, o, min_period_mm);
-  const std::vector<std::pair<double, double>> peaks = others.scan_peaks();
-  std::vector<double> peak_fs;
-  for (const auto& pk : peaks) peak_fs.push_back(pk.second);
-  const auto [d_other, p_other] = others.best_near(peak_fs, kNoLevel);
   double margin = sw.margin;
   if (whole) {  // level_noise_margin
     // What a function of the levels removes beside the whole fit, per degree
@@ -398,10 +459,33 @@ void test_cycle_period(const Problem& pb, const Mat& D, const std::vector<Mat>& 
     const double s2 = std::max(whole->r.squaredNorm() - d_rest, 0.0) / std::max(dof, 1.0);
     if (s2 > 0.0) margin *= std::max(1.0, d_rest / k / s2);
   }
+  // Its kind is the data's where it holds nearly all of the levels'
+  // structure and a smooth function of s_j (a polynomial) removes less in
+  // its place by the margin: then a period
+  // another period matches is the cycle's unresolved period, not another
+  // name.
+  const int degree =
+      std::max(std::min(o.period_only_smooth_degree, static_cast<int>(lv.size()) - 3), 1);
+  Mat P(static_cast<Eigen::Index>(lv.size()), degree + 1);  // with its constant
+  const double mid = 0.5 * (lv.front() + lv.back()), half = 0.5 * (lv.back() - lv.front());
+  for (std::size_t l = 0; l < lv.size(); ++l)
+    for (Eigen::Index k = 0; k < P.cols(); ++k)
+      P(static_cast<Eigen::Index>(l), k) = std::pow((lv[l] - mid) / half, static_cast<double>(k));
+  const double d_smooth = ip.removes(P);
+  const bool kind_told = lv.size() >= o.period_only_min_levels &&
+                         sw.d_e >= o.period_only_share * d_levels && sw.d_e - d_smooth >= margin &&
+                         !moves_with_another_axis(pb, j, i);
+  if (!kind_told) kind_not_told(effects[e]);  // the selection's aliases
+
+  const OtherPeriods others(ip, lv, et.period_mm, o, min_period_mm);
+  const std::vector<std::pair<double, double>> peaks = others.scan_peaks();
+  std::vector<double> peak_fs;
+  for (const auto& pk : peaks) peak_fs.push_back(pk.second);
+  const auto [d_other, p_other] = others.best_near(peak_fs, kNoLevel);
   std::size_t rests_on = kNoLevel;  // the level the period rests on, if it does
   double p_alt = p_other, d_alt = d_other;
   if (!(d_other > 0.0) || !(sw.d_e - d_other < margin)) {
-    if (!o.level_out_test) return;
+    if (!o.level_out_test) return kind_told;
     // Left out one level at a time: a period the other levels hold as
     // clearly (no other period within the margin there) is the data's; one
     // that another period matches once a single level is gone rests on that
@@ -423,14 +507,33 @@ void test_cycle_period(const Problem& pb, const Mat& D, const std::vector<Mat>& 
         d_alt = d_l;
       }
     }
-    if (rests_on == kNoLevel) return;
+    if (rests_on == kNoLevel) return kind_told;
+  }
+  const std::string without = rests_on == kNoLevel ? std::string()
+                                                   : fmt::format(" without the level {} = {:g} mm",
+                                                                 variable_name(j), lv[rests_on]);
+  SelectedTerm& st = effects[e];
+  if (kind_told) {
+    st.other_periods_mm.push_back(p_alt);
+    if (st.separate_by.empty())
+      st.separate_by = fmt::format(
+          "measure {} at more positions, at irregular spacing (on its {} levels a cycle of {} at "
+          "{:.4g} mm fits as well{})",
+          axis_name(j), lv.size(), axis_name(j), p_alt, without);
+    log.push_back(fmt::format(
+        "design: {} (ΔRSS {:.6g}, {:.0f} % of what any function of the {} levels of {} removes; "
+        "a smooth function of {} {:.6g}) is a cycle, its period not resolved: {:.4g} mm fits as "
+        "well{} (ΔRSS {:.6g})",
+        et.label(), sw.d_e, 100.0 * sw.d_e / d_levels, lv.size(), variable_name(j),
+        variable_name(j), d_smooth, p_alt, without, d_alt));
+    return true;
   }
   Term other = et;
   other.period_mm = p_alt;
-  add_alternative(effects[e], other.label());
-  add_alternative(effects[e], levels_text);
-  if (effects[e].separate_by.empty())
-    effects[e].separate_by =
+  add_alternative(st, other.label());
+  add_alternative(st, levels_text);
+  if (st.separate_by.empty())
+    st.separate_by =
         rests_on == kNoLevel
             ? fmt::format(
                   "measure {} at more positions, at irregular spacing (on its {} levels a cycle "
@@ -448,7 +551,9 @@ void test_cycle_period(const Problem& pb, const Mat& D, const std::vector<Mat>& 
           : fmt::format("design: {} (ΔRSS {:.6g}) rests on the level {} = {:g}: without it a cycle "
                         "at {:.4g} mm fits as well (ΔRSS {:.6g})",
                         et.label(), sw.d_e, variable_name(j), lv[rests_on], p_alt, d_alt));
+  return false;
 }
+
 }  // namespace
 
 std::array<std::vector<double>, 3> levelled_axes(const Problem& pb, const DesignAmbiguityOptions& o,
@@ -599,8 +704,15 @@ std::vector<std::string> mark_design_ambiguities(const Problem& pb,
       Vec r = residual_of(Q, pb.y);
       whole = WholeFit{std::move(Q), std::move(r)};
     }
-    test_cycle_period(pb, D, cols, e, effects, o, min_period_mm, whole ? &*whole : nullptr, log);
+    if (!test_cycle_period(pb, D, cols, e, effects, o, min_period_mm, whole ? &*whole : nullptr,
+                           log))
+      periods_as_alternatives(effects[e]);
   }
+  // A cycle's period is left unresolved only where the cycle period test
+  // told its kind; the selection's aliases of any other cycle (no levels:
+  // a toolpath's, a ballbar's, the diagonals') are alternatives.
+  for (std::size_t e = 0; !o.cycle_period_test && e < effects.size(); ++e)
+    periods_as_alternatives(effects[e]);
 
   if (o.growing_reversal) {
     for (std::size_t rv = 0; rv < effects.size(); ++rv) {

@@ -13,7 +13,7 @@ void fit_chosen(const Problem& pb, const Mat& X, const Vec& y, const Mat& Qd, co
                 SelectionResult& res) {
   const Eigen::Index n = y.size();
   const std::vector<Term>& chosen = ch.terms;
-  const std::vector<std::vector<std::string>>& ambiguous = ch.ambiguous;
+  const std::vector<Alternatives>& ambiguous = ch.ambiguous;
   const std::vector<std::string>& separations = ch.separations;
   const std::size_t n_datum = ch.n_datum;
   // Two stages: the named effects jointly, then the smooth (unexplained)
@@ -95,8 +95,9 @@ void fit_chosen(const Problem& pb, const Mat& X, const Vec& y, const Mat& Qd, co
       const double of = i < n_datum ? res.baseline_sse : res.datum_sse;
       st.explained_fraction = of > 0.0 ? drop / of : 0.0;
       st.unique_fraction = st.explained_fraction;
-      st.ambiguous_with = ambiguous[i];
-      if (!st.ambiguous_with.empty()) st.separate_by = separations[i];
+      st.ambiguous_with = ambiguous[i].names;
+      st.other_periods_mm = ambiguous[i].periods_mm;
+      if (!ambiguous[i].empty()) st.separate_by = separations[i];
       col += k;
       if (i < n_datum) {
         res.datum.push_back(std::move(st));

@@ -17,7 +17,7 @@ namespace abbe::diagnose::selection {
 // term's alternatives and what would separate them.
 struct Chosen {
   const std::vector<Term>& terms;
-  const std::vector<std::vector<std::string>>& ambiguous;
+  const std::vector<Alternatives>& ambiguous;
   const std::vector<std::string>& separations;
   std::size_t n_datum = 0;
 };

@@ -47,6 +47,15 @@ bool value_significant(const Term& t) {
   return std::abs(p[0].second) > e[0].second;
 }
 
+std::string period_unresolved_text(const SelectedTerm& st) {
+  if (st.other_periods_mm.empty() || !st.ambiguous_with.empty()) return "";
+  std::string periods;
+  for (double p : st.other_periods_mm)
+    periods += fmt::format("{}{:.4g} mm", periods.empty() ? "" : ", ", p);
+  return fmt::format("period not resolved: {} {} as well", periods,
+                     st.other_periods_mm.size() == 1 ? "fits" : "fit");
+}
+
 // The parts of a smooth function's linear part whose value exceeds its
 // uncertainty (all of them are in the JSON report); empty when none does or
 // when they hold less than kLinearPartMinShare of the function.
@@ -179,6 +188,9 @@ std::string report_json(const Diagnosis& d) {
     e["shared_fraction"] = st.shared_fraction;
     e["description"] = t.description();
     e["ambiguous_with"] = st.ambiguous_with;
+    // A cycle named whose period is not resolved: the other periods that
+    // fit as well (its status stays "named": kind, axis, direction are).
+    if (!st.other_periods_mm.empty()) e["other_periods_mm"] = st.other_periods_mm;
     if (!st.separate_by.empty()) e["separate_by"] = st.separate_by;
     // Not a name: the design cannot tell this effect from its alternatives
     // (ambiguous), or its uncertainty exceeds its value (not_significant).
@@ -295,6 +307,11 @@ std::string report_text(const Diagnosis& d) {
         s += fmt::format(
             "  {:<14} NOT SIGNIFICANT (not a name: its standard uncertainty exceeds its value)\n",
             "");
+      if (const std::string pu = period_unresolved_text(st); !pu.empty()) {
+        s += fmt::format("  {:<14} NAMED, ITS PERIOD NOT: {}\n", "", pu);
+        if (!st.separate_by.empty())
+          s += fmt::format("  {:<14} to resolve it: {}\n", "", st.separate_by);
+      }
       if (!st.ambiguous_with.empty()) {
         std::string a;
         for (const auto& x : st.ambiguous_with) a += (a.empty() ? "" : "; ") + x;

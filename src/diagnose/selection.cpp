@@ -132,7 +132,7 @@ SelectionResult selection::select_path(const Problem& pb, const CandidateSet& cs
   Mat Q(n, 0);
   Mat X(n, 0);
   std::vector<Term> chosen;
-  std::vector<std::vector<std::string>> ambiguous;
+  std::vector<Alternatives> ambiguous;
   std::vector<std::string> separations;  // per chosen term: what would tell it from its rivals
   std::vector<int> step_of;              // per chosen term: its step (−1: the datum)
   for (const Term& t : cs.datum) {

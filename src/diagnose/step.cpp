@@ -109,7 +109,7 @@ const Score* Step::parsimonious(const Score* largest) const {
 
 double Step::rival_margin() const { return s2_ic * chi2_upper_quantile(1, o.alpha); }
 
-std::string Step::rivals(const Score& target, std::vector<std::string>& names) const {
+std::string Step::rivals(const Score& target, Alternatives& alt) const {
   const double margin = rival_margin();
   const Vec fb = contribution(*target.c);
   std::vector<Term> rivals;
@@ -121,15 +121,11 @@ std::string Step::rivals(const Score& target, std::vector<std::string>& names) c
     if (same_effect(s.c->term, target.c->term)) continue;
     if (o.rivals_by_test && target.d - s.d >= margin) continue;
     if (abs_correlation(fb, contribution(*s.c)) > o.ambiguous_corr) {
-      names.push_back(s.c->term.label());
+      alt.names.push_back(s.c->term.label());
       rivals.push_back(s.c->term);
     }
   }
-  for (double period : target.c->aliases) {
-    Term alias = target.c->term;
-    alias.period_mm = period;
-    names.push_back(alias.label());
-  }
+  alt.periods_mm.insert(alt.periods_mm.end(), target.c->aliases.begin(), target.c->aliases.end());
   return separating_measurement(target.c->term, rivals, target.c->aliases);
 }
 

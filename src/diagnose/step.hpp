@@ -86,9 +86,10 @@ struct Step {
   // Ambiguity: the candidates of no higher cost that remove at least 0.9
   // of the target's ΔRSS, whose fitted contributions coincide with its
   // (`ambiguous_corr`) and which the data do not reject against it
-  // (`rivals_by_test`), and a cycle's aliases: their labels appended to
-  // `names`. Returns what measurement would separate them (may be empty).
-  std::string rivals(const Score& target, std::vector<std::string>& names) const;
+  // (`rivals_by_test`): their labels appended to `alt.names`; and a cycle's
+  // aliases, to `alt.periods_mm`. Returns what measurement would separate
+  // them (may be empty).
+  std::string rivals(const Score& target, Alternatives& alt) const;
   // What the data must remove more for a rival to be rejected: σ̂²·χ²₁(alpha)
   // of the information criterion's σ̂², one column's test.
   double rival_margin() const;

@@ -111,7 +111,8 @@ void render_diagnose_report(HtmlPage& page, const DiagnosisForReport& r) {
                       fmt::format("{:.1f} %", 100.0 * d.effects[i].shared_fraction),
                       term.description() + [&] {
                         const std::string lp = diagnose::linear_part_text(d.effects[i]);
-                        return lp.empty() ? lp : "; " + lp;
+                        const std::string pu = diagnose::period_unresolved_text(d.effects[i]);
+                        return (lp.empty() ? lp : "; " + lp) + (pu.empty() ? pu : "; " + pu);
                       }()});
   }
   page.add_table(e);

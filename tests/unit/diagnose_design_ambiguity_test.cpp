@@ -2,14 +2,17 @@
 // levelled axes, a cycle beside other functions of the same levels, and an
 // effect that is the growth of a reversal along its travel. Hand-made
 // problems with known answers.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <random>
 
 #include "abbe/diagnose/design_ambiguity.hpp"
+#include "abbe/diagnose/diagnosis.hpp"
 #include "diagnose_test_problem.hpp"
 
 namespace abbe::diagnose {
@@ -146,14 +149,24 @@ TEST(DiagnoseDesignAmbiguity, EffectsOfDifferentAxesStayNamed) {
   EXPECT_TRUE(eff[0].ambiguous_with.empty());
 }
 
-// The cycle period test: a pitch error of X (13 mm, 4 µm) measured at the
-// levels of X only. On 24 irregular levels its period is the data's: no
+// Its period not the data's: ambiguous, or named with the period unresolved.
+bool period_not_told(const SelectedTerm& st) {
+  return !st.ambiguous_with.empty() || !st.other_periods_mm.empty();
+}
+
+// The cycle period test: a pitch error of X (4 µm) measured at the levels
+// of X only. On 24 irregular levels its period (13 mm) is the data's: no
 // other period of 4–100 mm fits the levels as well, and the cycle stays
 // named. On 12 regular levels 50 mm apart every period aliases: another
-// period fits as well and the cycle is ambiguous with it.
+// period fits as well. Its kind may still be the data's: at 14.71 mm
+// (= 50/3.4) the samples are a wave of 125 mm (the alias at that spacing)
+// that no smooth function of x follows, and the cycle is named with its
+// period unresolved; at 13 mm they are a wave of 325 mm that a polynomial
+// of degree 6 follows, and the cycle is ambiguous with any function of x.
 TEST(DiagnoseDesignAmbiguity, ACycleIsNamedOnlyWhereTheLevelsFixItsPeriod) {
-  auto pitch = [](const PointContext& pc) {
-    return Eigen::Vector3d(4.0 * std::sin(2.0 * kPi * pc.s.x() / 13.0 + 0.4), 0.0, 0.0);
+  double period = 13.0;
+  auto pitch = [&period](const PointContext& pc) {
+    return Eigen::Vector3d(4.0 * std::sin(2.0 * kPi * pc.s.x() / period + 0.4), 0.0, 0.0);
   };
   auto levels_of_x = [](int levels, bool jitter) {
     std::mt19937_64 rng(11);
@@ -168,20 +181,72 @@ TEST(DiagnoseDesignAmbiguity, ACycleIsNamedOnlyWhereTheLevelsFixItsPeriod) {
   };
   struct Design {
     int levels;
-    bool jitter, ambiguous;
+    bool jitter;
+    double period;
+    bool period_unresolved, ambiguous;
   };
-  for (const Design d : {Design{24, true, false}, Design{12, false, true}}) {
+  for (const Design d :
+       {Design{24, true, 13.0, false, false}, Design{12, false, 50.0 / 3.4, true, false},
+        Design{12, false, 13.0, false, true}}) {
+    period = d.period;
     const Problem pb = make_problem(levels_of_x(d.levels, d.jitter), pitch, 5);
-    std::vector<SelectedTerm> eff{fitted(cyclic(0, 13.0), {4.0, 0.0})};
+    std::vector<SelectedTerm> eff{fitted(cyclic(0, d.period), {4.0, 0.0})};
     const auto log = mark_design_ambiguities(pb, {}, eff, {}, 4.0);
-    EXPECT_EQ(!eff[0].ambiguous_with.empty(), d.ambiguous)
-        << d.levels << " levels" << (d.jitter ? " irregular" : " regular");
-    if (d.ambiguous) {
+    const std::string what =
+        fmt::format("{} levels{}, {} mm", d.levels, d.jitter ? " irregular" : " regular", d.period);
+    EXPECT_EQ(!eff[0].other_periods_mm.empty(), d.period_unresolved) << what;
+    EXPECT_EQ(!eff[0].ambiguous_with.empty(), d.ambiguous) << what;
+    if (d.period_unresolved || d.ambiguous) {
       ASSERT_FALSE(log.empty());
-      EXPECT_NE(log[0].find("is not told from a cycle at"), std::string::npos) << log[0];
+      EXPECT_NE(
+          log[0].find(d.ambiguous ? "is not told from a cycle at" : "its period not resolved"),
+          std::string::npos)
+          << log[0];
       EXPECT_NE(eff[0].separate_by.find("measure X at more positions"), std::string::npos);
     }
+    if (d.ambiguous) {
+      EXPECT_NE(std::find(eff[0].ambiguous_with.begin(), eff[0].ambiguous_with.end(),
+                          "any function of x on its 12 levels"),
+                eff[0].ambiguous_with.end());
+    }
   }
+}
+
+// A cycle named with its period unresolved, in the reports: the text says
+// so beside the effect ("NAMED, ITS PERIOD NOT"), with what would resolve
+// it; the JSON keeps the status "named" and lists the other periods.
+TEST(DiagnoseDesignAmbiguity, ACycleWithItsPeriodUnresolvedInTheReports) {
+  const double period = 50.0 / 3.4;
+  std::vector<PointContext> pts;
+  for (int i = 0; i < 12; ++i)
+    for (int j = 0; j < 8; ++j) pts.push_back(at(50.0 * i, 50.0 * j));
+  const Problem pb = make_problem(
+      pts,
+      [&](const PointContext& pc) {
+        return Eigen::Vector3d(4.0 * std::sin(2.0 * kPi * pc.s.x() / period + 0.4), 0.0, 0.0);
+      },
+      5);
+  Diagnosis d;
+  d.model = "ae-arm";
+  d.effects = {fitted(cyclic(0, period), {4.0, 0.0})};
+  d.effects[0].term.stderr_ = {0.05, 0.05};
+  mark_design_ambiguities(pb, {}, d.effects, {}, 4.0);
+  ASSERT_TRUE(d.effects[0].ambiguous_with.empty());
+  ASSERT_FALSE(d.effects[0].other_periods_mm.empty());
+  const std::string text = report_text(d);
+  EXPECT_NE(text.find("NAMED, ITS PERIOD NOT: period not resolved: "), std::string::npos) << text;
+  EXPECT_NE(text.find("to resolve it: measure X at more positions"), std::string::npos) << text;
+  EXPECT_EQ(text.find("AMBIGUOUS"), std::string::npos) << text;
+  const auto j = nlohmann::json::parse(report_json(d));
+  const auto& e = j.at("effects").at(0);
+  EXPECT_EQ(e.at("status"), "named");
+  EXPECT_EQ(e.at("other_periods_mm").get<std::vector<double>>(), d.effects[0].other_periods_mm);
+  EXPECT_TRUE(e.at("ambiguous_with").empty());
+  // Resolved: no such line, no such key.
+  d.effects[0].other_periods_mm.clear();
+  EXPECT_EQ(report_text(d).find("PERIOD NOT"), std::string::npos);
+  EXPECT_FALSE(
+      nlohmann::json::parse(report_json(d)).at("effects").at(0).contains("other_periods_mm"));
 }
 
 // A period that rests on one level (level_out_test): a 13 mm pitch error
@@ -189,9 +254,10 @@ TEST(DiagnoseDesignAmbiguity, ACycleIsNamedOnlyWhereTheLevelsFixItsPeriod) {
 // samples, and at two more levels off that grid (163 and 437 mm). With all
 // eleven levels no other period fits as well (the cycle is named without
 // the test); with one off-grid level alone a cycle at 6.1 mm does, so
-// leaving out either of them shows that the period rests on it, and the
-// cycle is not named.
-TEST(DiagnoseDesignAmbiguity, APeriodThatRestsOnOneLevelIsNotNamed) {
+// leaving out either of them shows that the period rests on it: the cycle
+// (its kind the data's, no smooth function of x follows its samples) is
+// named with its period unresolved.
+TEST(DiagnoseDesignAmbiguity, APeriodThatRestsOnOneLevelIsNotResolved) {
   auto pitch = [](const PointContext& pc) {
     return Eigen::Vector3d(4.0 * std::sin(2.0 * kPi * pc.s.x() / 13.0 + 0.4), 0.0, 0.0);
   };
@@ -205,14 +271,15 @@ TEST(DiagnoseDesignAmbiguity, APeriodThatRestsOnOneLevelIsNotNamed) {
   std::vector<SelectedTerm> with{fitted(cyclic(0, 13.0), {4.0, 0.0})}, without = with;
   const auto log = mark_design_ambiguities(pb, {}, with, {}, 4.0);
   mark_design_ambiguities(pb, {}, without, without_test, 4.0);
-  EXPECT_TRUE(without[0].ambiguous_with.empty());
-  ASSERT_FALSE(with[0].ambiguous_with.empty());
+  EXPECT_FALSE(period_not_told(without[0]));
+  EXPECT_TRUE(with[0].ambiguous_with.empty());
+  ASSERT_EQ(with[0].other_periods_mm.size(), 1u);
   ASSERT_FALSE(log.empty());
-  const bool on_163 = log[0].find("rests on the level x = 163:") != std::string::npos;
-  const bool on_437 = log[0].find("rests on the level x = 437:") != std::string::npos;
+  const bool on_163 = log[0].find("without the level x = 163 mm") != std::string::npos;
+  const bool on_437 = log[0].find("without the level x = 437 mm") != std::string::npos;
   EXPECT_TRUE(on_163 || on_437) << log[0];
-  EXPECT_NE(with[0].separate_by.find(on_163 ? "the period rests on the level x = 163 mm"
-                                            : "the period rests on the level x = 437 mm"),
+  EXPECT_NE(with[0].separate_by.find(on_163 ? "without the level x = 163 mm"
+                                            : "without the level x = 437 mm"),
             std::string::npos)
       << with[0].separate_by;
 }
@@ -259,11 +326,14 @@ TEST(DiagnoseDesignAmbiguity, TheCyclePeriodMarginIsTheNoiseOfTheLevels) {
       std::vector<SelectedTerm> with{fitted(cyclic(0, 13.0), {2.0, 0.0})}, without = with;
       mark_design_ambiguities(pb, {}, with, {}, 4.0);
       mark_design_ambiguities(pb, {}, without, readings_only, 4.0);
-      const bool a_with = !with[0].ambiguous_with.empty();
-      const bool a_without = !without[0].ambiguous_with.empty();
+      const bool a_with = period_not_told(with[0]);
+      const bool a_without = period_not_told(without[0]);
       ambiguous_with += a_with ? 1 : 0;
       ambiguous_without += a_without ? 1 : 0;
-      same += with[0].ambiguous_with == without[0].ambiguous_with ? 1 : 0;
+      same += with[0].ambiguous_with == without[0].ambiguous_with &&
+                      with[0].other_periods_mm == without[0].other_periods_mm
+                  ? 1
+                  : 0;
       EXPECT_TRUE(a_with || !a_without) << "draw " << k << ": the margin fell below σ̂²'s";
     }
     std::cout << "level error " << level_error << " µm: ambiguous " << ambiguous_with << "/"

@@ -587,8 +587,10 @@ bool is_datum(const Term& t) {
 
 // Is the term the hidden effect, or a part of its shape (the linear part of
 // an off-centre coupling is a squareness/scale along its axes; a drift
-// proportional to s_dir may be named with or without the axis)?
-bool consistent(const Term& t, const Hidden& h) {
+// proportional to s_dir may be named with or without the axis)? A cycle
+// whose period the diagnosis reports unresolved (`period_unresolved`:
+// SelectedTerm::other_periods_mm) is graded on kind, axis and direction.
+bool consistent(const Term& t, const Hidden& h, bool period_unresolved = false) {
   if (t.direction != h.dir && t.kind != TermKind::unexplained) return false;
   switch (h.shape) {
     case Shape::scale:
@@ -601,6 +603,7 @@ bool consistent(const Term& t, const Hidden& h) {
       // Its period too: the fundamental or its second harmonic, within 10 %
       // (a cycle at another period is an alias, not this pitch error).
       if (t.kind != TermKind::cyclic || t.axis != h.axis) return false;
+      if (period_unresolved) return true;
       auto near = [&](double p) { return std::abs(t.period_mm - p) <= 0.1 * p; };
       return near(h.period) || near(0.5 * h.period);
     }
@@ -634,8 +637,8 @@ bool same_drift_form(const std::string& alternative, const Hidden& h) {
 }
 
 // The named term that is the hidden effect itself (not only a part).
-bool is_truth(const Term& t, const Hidden& h) {
-  if (!consistent(t, h)) return false;
+bool is_truth(const Term& t, const Hidden& h, bool period_unresolved = false) {
+  if (!consistent(t, h, period_unresolved)) return false;
   if (h.shape == Shape::coupling) return t.kind == TermKind::coupling;
   return true;
 }
@@ -694,6 +697,9 @@ struct Case {
   // A drift named with alternatives that are all forms of the same drift
   // (same_drift_form): counted right, and apart in the table.
   bool by_form = false;
+  // A cycle named with its period unresolved (other_periods_mm), graded on
+  // kind, axis and direction (consistent()).
+  bool by_period = false;
   std::vector<std::string> log;       // the diagnosis's selection log
   std::vector<SelectedTerm> effects;  // what the diagnosis selected
 };
@@ -776,18 +782,21 @@ Case run_case(Design design, const Hidden& h, std::uint64_t seed, double outlier
     }
     std::string alt;
     for (const auto& a : st.ambiguous_with) alt += (alt.empty() ? " ~ " : " | ") + a;
+    for (double p : st.other_periods_mm) alt += fmt::format(" or period {:.4g} mm", p);
     c.found += fmt::format(" [{} {:.2f}{}]", st.term.label(),
                            std::sqrt(ss / static_cast<double>(pb.obs.size())), alt);
     if (is_datum(st.term)) continue;
     if (st.term.kind == TermKind::unexplained) continue;
     if (!st.significant) continue;  // its uncertainty exceeds its value: not a name
     any = true;
-    if (h.shape != Shape::none && consistent(st.term, h)) {
+    const bool by_period = !st.other_periods_mm.empty();
+    if (h.shape != Shape::none && consistent(st.term, h, by_period)) {
       if (!sign_right(st.term, h)) {
         wrong = true;
-      } else if (st.ambiguous_with.empty() && is_truth(st.term, h)) {
+      } else if (st.ambiguous_with.empty() && is_truth(st.term, h, by_period)) {
         truth_named = true;
-      } else if (is_truth(st.term, h) &&
+        c.by_period = c.by_period || by_period;
+      } else if (is_truth(st.term, h, by_period) &&
                  std::all_of(st.ambiguous_with.begin(), st.ambiguous_with.end(),
                              [&](const std::string& a) { return same_drift_form(a, h); })) {
         // Ambiguous only in the drift's form: its kind and direction named.
@@ -987,6 +996,7 @@ struct Rates {
   int by_course = 0;         // of n_un: a drift whose course within a level is not resolved
   int by_growth = 0;         // of n_un: a reversal whose growth is not resolved (diagonals)
   int by_form = 0;           // of id_right: a drift ambiguous only in its form (Case::by_form)
+  int by_period = 0;         // of id_right: a cycle named with its period unresolved
   int by_unnamed_parts = 0;  // of n_un: identifiable_parts_unresolved()
   int n_un = 0, un_ambiguous = 0, un_wrong = 0;  // "ambiguous" here: ambiguous or nothing named
   int n_null = 0, null_clean = 0;
@@ -1044,6 +1054,8 @@ Rates sweep(Design design, bool no_directions = false) {
       if (by_part) tag += " (linear part)";
       r.by_form += c.by_form ? 1 : 0;
       if (c.by_form) tag += " (form)";
+      r.by_period += v == Verdict::right && c.by_period ? 1 : 0;
+      if (v == Verdict::right && c.by_period) tag += " (period)";
       const std::size_t band = c.oracle < 0.08 ? 0 : c.oracle < 0.12 ? 1 : 2;
       ++r.n_band[band];
       r.right_band[band] += v == Verdict::right ? 1 : 0;
@@ -1085,10 +1097,11 @@ Rates sweep(Design design, bool no_directions = false) {
       "{}/{} ({:.0f} %)\n",
       label, r.id_right, r.n_id, pct(r.id_right, r.n_id),
       fmt::format(
-          "{}{}",
+          "{}{}{}",
           r.by_linear_part ? fmt::format(" ({} couplings by their linear part)", r.by_linear_part)
                            : "",
-          r.by_form ? fmt::format(" ({} drifts ambiguous only in their form)", r.by_form) : ""),
+          r.by_form ? fmt::format(" ({} drifts ambiguous only in their form)", r.by_form) : "",
+          r.by_period ? fmt::format(" ({} cycles with their period unresolved)", r.by_period) : ""),
       r.id_wrong, r.un_ambiguous, r.n_un, pct(r.un_ambiguous, r.n_un),
       fmt::format(
           "{}{}{}",
@@ -1257,10 +1270,12 @@ TwoEffects two_effects_case(int i, const SelectionOptions* selection = nullptr,
     bool part = false;
     for (int k = 0; k < 2; ++k) {
       const Hidden& hk = k == 0 ? r.h : r.h2;
-      if (!consistent(t, hk)) continue;
+      const bool by_period = !st.other_periods_mm.empty();
+      if (!consistent(t, hk, by_period)) continue;
       part = true;
       if (!sign_right(t, hk)) r.bad = true;
-      if (st.ambiguous_with.empty() && is_truth(t, hk) && sign_right(t, hk)) r.named[k] = true;
+      if (st.ambiguous_with.empty() && is_truth(t, hk, by_period) && sign_right(t, hk))
+        r.named[k] = true;
     }
     if (!part && st.ambiguous_with.empty()) r.bad = true;
   }
@@ -1508,6 +1523,29 @@ TEST(DiagnoseDesigns, APeriodThatRestsOnOneLevelIsNotAName) {
     EXPECT_NE(with.verdict, Verdict::wrong) << i << with.found;
     const Case without = run_case(design, h, seed, 0.0, nullptr, false, &without_test);
     EXPECT_EQ(without.verdict, Verdict::wrong) << i << without.found;
+  }
+}
+
+// A period not resolved is not a kind not resolved (DesignAmbiguityOptions
+// period_only_*): irregular grid cases 120 and 577, pitch errors of X
+// (24.9 and 26.4 mm, with their harmonic) selected as a cycle at their
+// period (24.85, 26.39 mm) that rests on one level (without x = −914 or
+// −990 mm another period fits as well). The cycle holds over 99 % of what
+// any function of the 12 levels holds and no smooth function of x follows
+// it: named, its period unresolved (other_periods_mm); with the rule off,
+// `ambiguous` — no name.
+TEST(DiagnoseDesigns, APitchErrorWhosePeriodIsNotResolvedIsNamedByItsKind) {
+  DesignAmbiguityOptions kind_with_period;
+  kind_with_period.period_only_min_levels = 1000;
+  for (const int i : {120, 577}) {
+    const auto [h, seed] = sweep_case(Design::grid_irregular, i);
+    ASSERT_EQ(h.shape, Shape::pitch);
+    const Case with = run_case(Design::grid_irregular, h, seed);
+    EXPECT_EQ(with.verdict, Verdict::right) << i << with.found;
+    EXPECT_TRUE(with.by_period) << i << with.found;
+    const Case without =
+        run_case(Design::grid_irregular, h, seed, 0.0, nullptr, false, &kind_with_period);
+    EXPECT_EQ(without.verdict, Verdict::ambiguous) << i << without.found;
   }
 }
 

@@ -80,6 +80,25 @@ struct DesignAmbiguityOptions {
   // matches (within the margin) once one level is gone rests on that level
   // and is not named.
   bool level_out_test = true;
+  // A cycle whose period another period matches (either test above) is
+  // still a cycle of its axis where the design tells its kind: on at least
+  // `period_only_min_levels` levels it removes at least `period_only_share`
+  // of what any
+  // function of the levels removes in its place, and more than a smooth
+  // function of the axis there (a polynomial of degree 1 to
+  // `period_only_smooth_degree`, at most levels − 3) by the margin, and
+  // its axis does not move in lockstep with another on every line (a body
+  // diagonal: a cycle of one axis is a cycle of the other there). Then it
+  // is named with its period unresolved (SelectedTerm::other_periods_mm),
+  // not `ambiguous`. (A cycle at a searched frequency holds 0.95 of noise
+  // on L levels — L − 1 values beside the offset, two of them its columns —
+  // with a chance of about 0.05^((L − 3)/2) per independent frequency: 3·10⁻³
+  // for L = 8, 6·10⁻⁶ for L = 11, times the few hundred frequencies of the
+  // catalogue's range. The selection's own aliases of a cycle are kept as
+  // its other periods only where this tells its kind.)
+  std::size_t period_only_min_levels = 11;
+  double period_only_share = 0.95;
+  int period_only_smooth_degree = 6;
   // Without a level, other periods are sought near this many of the largest
   // peaks of the scan with every level (each refined as in the full scan).
   std::size_t level_out_peaks = 8;

@@ -99,6 +99,9 @@ bool value_significant(const Term& t);
 // value exceeds its uncertainty; "" when none does or they hold less than
 // kLinearPartMinShare of the function (SelectedTerm::linear_parts).
 std::string linear_part_text(const SelectedTerm& st);
+// A cycle named with its period unresolved (SelectedTerm::other_periods_mm):
+// "period not resolved: 7.52 mm fits as well"; "" otherwise.
+std::string period_unresolved_text(const SelectedTerm& st);
 // The circular-test lines of the summary ("" without circles).
 std::string dynamic_text(const Diagnosis& d);
 // The blind-spot lines of the summary ("" when none).

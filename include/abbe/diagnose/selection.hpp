@@ -167,7 +167,12 @@ struct SelectedTerm {
   // parameter) is not below the value: not a name (diagnosis.cpp).
   bool significant = true;
   std::vector<std::string> ambiguous_with;
-  // With ambiguous_with: what measurement would tell them apart (separation.hpp).
+  // A cycle named (its kind, axis and direction told by the design) whose
+  // period is not: other periods that fit as well, in mm
+  // (design_ambiguity.hpp).
+  std::vector<double> other_periods_mm;
+  // With ambiguous_with or other_periods_mm: what measurement would tell
+  // them apart (separation.hpp, design_ambiguity.hpp).
   std::string separate_by;
   // An `unexplained` function only: the scale and squarenesses its fitted
   // structure contains (its projection on d_i ∝ s_a for each position
