@@ -80,8 +80,12 @@ std::vector<BlindSpot> blind_spots(const Problem& pb, const DesignAmbiguityOptio
              : fmt::format("a cycle of {} shorter than {:.4g} mm (a pitch error)", axis_name(a),
                            2.0 * gap),
          fmt::format("{} stands on {} levels {:.4g} mm or more apart: they alias every shorter "
-                     "period",
-                     axis_name(a), lv.size(), gap),
+                     "period{}",
+                     axis_name(a), lv.size(), gap,
+                     lv.size() >= design.period_only_min_levels
+                         ? " (where no smooth function follows its samples, a cycle's kind is "
+                           "still named, its period not)"
+                         : ""),
          fmt::format("sample {} at irregular spacing", axis_name(a))});
   }
   return out;

@@ -372,15 +372,21 @@ bool moves_with_another_axis(const Problem& pb, int j, int i) {
   return any;
 }
 
-// A cycle's other periods (SelectedTerm::other_periods_mm) as alternatives:
-// its period not resolved and its kind not told either.
-void periods_as_alternatives(SelectedTerm& st) {
-  for (double p : st.other_periods_mm) {
-    Term other = st.term;
-    other.period_mm = p;
-    add_alternative(st, other.label());
-  }
-  st.other_periods_mm.clear();
+// The datum and every effect fitted together: its span and residual.
+struct WholeFit {
+  Mat Q;
+  Vec r;
+};
+
+// The smooth functions of s_j on its levels lv (levels × (degree + 1)):
+// 1, u, …, u^degree with u = (s_j − mid)/half over the levels' span.
+Mat smooth_at_levels(const std::vector<double>& lv, int degree) {
+  Mat P(static_cast<Eigen::Index>(lv.size()), degree + 1);
+  const double mid = 0.5 * (lv.front() + lv.back()), half = 0.5 * (lv.back() - lv.front());
+  for (std::size_t l = 0; l < lv.size(); ++l)
+    for (Eigen::Index k = 0; k < P.cols(); ++k)
+      P(static_cast<Eigen::Index>(l), k) = std::pow((lv[l] - mid) / half, static_cast<double>(k));
+  return P;
 }
 
 // The cycle period test of effect e (a cycle of axis j in direction i): the
@@ -395,13 +401,7 @@ void periods_as_alternatives(SelectedTerm& st) {
 // own table error at the levels), its period the one of many that fit best.
 // Returns whether the data tell the cycle's kind (its period may still be
 // unresolved: SelectedTerm::other_periods_mm; DesignAmbiguityOptions
-// period_only_*).
-// The datum and every effect fitted together: its span and residual.
-struct WholeFit {
-  Mat Q;
-  Vec r;
-};
-
+// period_only_*). `whole`: the datum and every effect fitted together.
 bool test_cycle_period(const Problem& pb, const Mat& D, const std::vector<Mat>& cols, std::size_t e,
                        std::vector<SelectedTerm>& effects, const DesignAmbiguityOptions& o,
                        double min_period_mm, const WholeFit* whole, std::vector<std::string>& log) {
@@ -461,17 +461,11 @@ bool test_cycle_period(const Problem& pb, const Mat& D, const std::vector<Mat>& 
   }
   // Its kind is the data's where it holds nearly all of the levels'
   // structure and a smooth function of s_j (a polynomial) removes less in
-  // its place by the margin: then a period
-  // another period matches is the cycle's unresolved period, not another
-  // name.
+  // its place by the margin: then a period another period matches is the
+  // cycle's unresolved period, not another name.
   const int degree =
       std::max(std::min(o.period_only_smooth_degree, static_cast<int>(lv.size()) - 3), 1);
-  Mat P(static_cast<Eigen::Index>(lv.size()), degree + 1);  // with its constant
-  const double mid = 0.5 * (lv.front() + lv.back()), half = 0.5 * (lv.back() - lv.front());
-  for (std::size_t l = 0; l < lv.size(); ++l)
-    for (Eigen::Index k = 0; k < P.cols(); ++k)
-      P(static_cast<Eigen::Index>(l), k) = std::pow((lv[l] - mid) / half, static_cast<double>(k));
-  const double d_smooth = ip.removes(P);
+  const double d_smooth = ip.removes(smooth_at_levels(lv, degree));
   const bool kind_told = lv.size() >= o.period_only_min_levels &&
                          sw.d_e >= o.period_only_share * d_levels && sw.d_e - d_smooth >= margin &&
                          !moves_with_another_axis(pb, j, i);
@@ -555,6 +549,15 @@ bool test_cycle_period(const Problem& pb, const Mat& D, const std::vector<Mat>& 
 }
 
 }  // namespace
+
+void periods_as_alternatives(SelectedTerm& st) {
+  for (double p : st.other_periods_mm) {
+    Term other = st.term;
+    other.period_mm = p;
+    add_alternative(st, other.label());
+  }
+  st.other_periods_mm.clear();
+}
 
 std::array<std::vector<double>, 3> levelled_axes(const Problem& pb, const DesignAmbiguityOptions& o,
                                                  double min_period_mm) {

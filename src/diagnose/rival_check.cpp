@@ -8,6 +8,7 @@
 #include <cmath>
 #include <optional>
 
+#include "abbe/diagnose/design_ambiguity.hpp"
 #include "abbe/diagnose/separation.hpp"
 #include "abbe/diagnose/statistics.hpp"
 #include "span.hpp"
@@ -232,6 +233,9 @@ std::vector<std::string> mark_unrejected_rivals(const Problem& pb,
       }
     }
     for (const std::string& label : rival_labels(rivals)) se.ambiguous_with.push_back(label);
+    // A cycle named with its period unresolved that has a rival: its other
+    // periods are alternatives too.
+    if (!rivals.empty()) periods_as_alternatives(se);
     if (!rivals.empty() && se.separate_by.empty())
       se.separate_by = separating_measurement(se.term, rivals, {});
   }

@@ -90,8 +90,20 @@ TEST(DiagnoseBlindSpots, ALineSeesItsDirectionAlongItsAxisOnly) {
   EXPECT_TRUE(has(w, "every effect that varies with z"));
   EXPECT_FALSE(has(w, "a drift in time"));
   EXPECT_FALSE(has(w, "a reversal of X"));
-  // Targets 40 mm apart on 11 levels: the cycles below 80 mm alias.
+  // Targets 40 mm apart on 11 levels: the cycles below 80 mm alias. On 11
+  // levels a cycle's kind may still be named (its period not), and the
+  // reason says so; not on 10 (DesignAmbiguityOptions::period_only_min_levels).
   EXPECT_TRUE(has(w, "a cycle of X shorter than 80 mm"));
+  for (const std::size_t min_levels : {11u, 12u}) {
+    DesignAmbiguityOptions o;
+    o.period_only_min_levels = min_levels;
+    for (const BlindSpot& b : blind_spots(pb, o, 4.0, 100.0)) {
+      if (b.what.rfind("a cycle of X", 0) != 0) continue;
+      const bool says =
+          b.reason.find("a cycle's kind is still named, its period not") != std::string::npos;
+      EXPECT_EQ(says, min_levels == 11u) << b.reason;
+    }
+  }
 }
 
 TEST(DiagnoseBlindSpots, RegularLevelsCannotSeeTheCyclesTheyAlias) {

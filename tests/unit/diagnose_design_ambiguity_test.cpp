@@ -249,6 +249,26 @@ TEST(DiagnoseDesignAmbiguity, ACycleWithItsPeriodUnresolvedInTheReports) {
       nlohmann::json::parse(report_json(d)).at("effects").at(0).contains("other_periods_mm"));
 }
 
+// A cycle whose other periods become alternatives (once it has a rival,
+// rival_check.cpp, or its kind is not told): the same cycle at each of
+// them, no other period left.
+TEST(DiagnoseDesignAmbiguity, OtherPeriodsBecomeAlternatives) {
+  SelectedTerm st = fitted(cyclic(0, 13.0), {4.0, 0.0});
+  st.other_periods_mm = {5.47, 31.2};
+  st.ambiguous_with = {"scale X"};
+  periods_as_alternatives(st);
+  EXPECT_TRUE(st.other_periods_mm.empty());
+  ASSERT_EQ(st.ambiguous_with.size(), 3u);
+  EXPECT_EQ(st.ambiguous_with[0], "scale X");
+  Term at = st.term;
+  at.period_mm = 5.47;
+  EXPECT_EQ(st.ambiguous_with[1], at.label());
+  at.period_mm = 31.2;
+  EXPECT_EQ(st.ambiguous_with[2], at.label());
+  periods_as_alternatives(st);  // nothing left to move
+  EXPECT_EQ(st.ambiguous_with.size(), 3u);
+}
+
 // A period that rests on one level (level_out_test): a 13 mm pitch error
 // of X read at 9 levels 50 mm apart, where its aliases give the same
 // samples, and at two more levels off that grid (163 and 437 mm). With all

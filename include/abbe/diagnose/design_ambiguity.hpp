@@ -117,6 +117,11 @@ std::array<std::vector<double>, 3> levelled_axes(const Problem& problem,
                                                  const DesignAmbiguityOptions& options,
                                                  double min_period_mm);
 
+// A cycle's other periods (SelectedTerm::other_periods_mm) moved to its
+// alternatives (`ambiguous_with`, as the same cycle at those periods): its
+// period not resolved, and now not its name either.
+void periods_as_alternatives(SelectedTerm& effect);
+
 // Marks the effects (fitted, with coef) the design cannot tell apart;
 // `datum`: the fitted datum terms. Returns one log line per marked effect.
 std::vector<std::string> mark_design_ambiguities(const Problem& problem,
