@@ -399,10 +399,11 @@ Mat smooth_at_levels(const std::vector<double>& lv, int degree) {
 // function of the levels removes in its place (`cycle_share_of_levels`),
 // else it is a piece of a structure that is not a cycle (e.g. the model's
 // own table error at the levels), its period the one of many that fit best.
-// Returns whether the data tell the cycle's kind (its period may still be
-// unresolved: SelectedTerm::other_periods_mm; DesignAmbiguityOptions
-// period_only_*). `whole`: the datum and every effect fitted together.
-bool test_cycle_period(const Problem& pb, const Mat& D, const std::vector<Mat>& cols, std::size_t e,
+// Where the data tell the cycle's kind, a period another period matches
+// stays its unresolved period (SelectedTerm::other_periods_mm;
+// DesignAmbiguityOptions period_only_*); elsewhere its other periods become
+// alternatives. `whole`: the datum and every effect fitted together.
+void test_cycle_period(const Problem& pb, const Mat& D, const std::vector<Mat>& cols, std::size_t e,
                        std::vector<SelectedTerm>& effects, const DesignAmbiguityOptions& o,
                        double min_period_mm, const WholeFit* whole, std::vector<std::string>& log) {
   const Term& et = effects[e].term;
@@ -415,29 +416,31 @@ bool test_cycle_period(const Problem& pb, const Mat& D, const std::vector<Mat>& 
       v.push_back(pb.points[ob.point].s[j]);
     }
   const std::vector<double> lv = levels_of(std::move(v), o, min_period_mm);
-  if (lv.empty()) return false;
+  SelectedTerm& st = effects[e];
+  if (lv.empty()) {  // not levels: the selection's aliases are alternatives
+    periods_as_alternatives(st);
+    return;
+  }
   const std::string levels_text =
       fmt::format("any function of {} on its {} levels", variable_name(j), lv.size());
-  // The selection's aliases where the kind is not told either: other
-  // cycles, and any function of the levels.
-  auto kind_not_told = [&](SelectedTerm& st) {
-    if (!st.other_periods_mm.empty()) {
-      periods_as_alternatives(st);
-      add_alternative(st, levels_text);
-    }
-    return false;
+  // Its other periods where the kind is not told either: other cycles, and
+  // any function of the levels.
+  auto kind_not_told = [&] {
+    if (st.other_periods_mm.empty()) return;
+    periods_as_alternatives(st);
+    add_alternative(st, levels_text);
   };
   // The few-levels rule's: a cycle fits any values there.
-  if (lv.size() <= o.few_levels) return kind_not_told(effects[e]);
+  if (lv.size() <= o.few_levels) return kind_not_told();
   const SwapTest sw = swap_test(pb, D, cols, e, o.swap_alpha);
-  if (!sw.valid) return kind_not_told(effects[e]);
+  if (!sw.valid) return kind_not_told();
   const LevelSpan levels(pb, j, lv);
   const double d_levels = levels.removes_in_place(sw.QA, sw.rA, i);
   if (sw.d_e < o.cycle_share_of_levels * d_levels) {
-    kind_not_told(effects[e]);
-    add_alternative(effects[e], levels_text);
-    if (effects[e].separate_by.empty())
-      effects[e].separate_by = fmt::format(
+    kind_not_told();
+    add_alternative(st, levels_text);
+    if (st.separate_by.empty())
+      st.separate_by = fmt::format(
           "measure {} at more positions, at irregular spacing (on its {} levels the cycle is "
           "{:.0f} % of what a function of the levels explains there)",
           axis_name(j), lv.size(), 100.0 * sw.d_e / d_levels);
@@ -445,7 +448,7 @@ bool test_cycle_period(const Problem& pb, const Mat& D, const std::vector<Mat>& 
         "design: {} (ΔRSS {:.6g}) is {:.0f} % of what any function of the {} levels of {} "
         "removes in its place (ΔRSS {:.6g})",
         et.label(), sw.d_e, 100.0 * sw.d_e / d_levels, lv.size(), variable_name(j), d_levels));
-    return false;
+    return;
   }
   const LevelSpan::InPlace ip = levels.in_place(sw.QA, sw.rA, i);
   double margin = sw.margin;
@@ -469,7 +472,7 @@ bool test_cycle_period(const Problem& pb, const Mat& D, const std::vector<Mat>& 
   const bool kind_told = lv.size() >= o.period_only_min_levels &&
                          sw.d_e >= o.period_only_share * d_levels && sw.d_e - d_smooth >= margin &&
                          !moves_with_another_axis(pb, j, i);
-  if (!kind_told) kind_not_told(effects[e]);  // the selection's aliases
+  if (!kind_told) kind_not_told();  // the selection's aliases
 
   const OtherPeriods others(ip, lv, et.period_mm, o, min_period_mm);
   const std::vector<std::pair<double, double>> peaks = others.scan_peaks();
@@ -479,7 +482,7 @@ bool test_cycle_period(const Problem& pb, const Mat& D, const std::vector<Mat>& 
   std::size_t rests_on = kNoLevel;  // the level the period rests on, if it does
   double p_alt = p_other, d_alt = d_other;
   if (!(d_other > 0.0) || !(sw.d_e - d_other < margin)) {
-    if (!o.level_out_test) return kind_told;
+    if (!o.level_out_test) return;
     // Left out one level at a time: a period the other levels hold as
     // clearly (no other period within the margin there) is the data's; one
     // that another period matches once a single level is gone rests on that
@@ -501,14 +504,13 @@ bool test_cycle_period(const Problem& pb, const Mat& D, const std::vector<Mat>& 
         d_alt = d_l;
       }
     }
-    if (rests_on == kNoLevel) return kind_told;
+    if (rests_on == kNoLevel) return;
   }
   const std::string without = rests_on == kNoLevel ? std::string()
                                                    : fmt::format(" without the level {} = {:g} mm",
                                                                  variable_name(j), lv[rests_on]);
-  SelectedTerm& st = effects[e];
+  st.other_periods_mm.push_back(p_alt);
   if (kind_told) {
-    st.other_periods_mm.push_back(p_alt);
     if (st.separate_by.empty())
       st.separate_by = fmt::format(
           "measure {} at more positions, at irregular spacing (on its {} levels a cycle of {} at "
@@ -520,11 +522,9 @@ bool test_cycle_period(const Problem& pb, const Mat& D, const std::vector<Mat>& 
         "well{} (ΔRSS {:.6g})",
         et.label(), sw.d_e, 100.0 * sw.d_e / d_levels, lv.size(), variable_name(j),
         variable_name(j), d_smooth, p_alt, without, d_alt));
-    return true;
+    return;
   }
-  Term other = et;
-  other.period_mm = p_alt;
-  add_alternative(st, other.label());
+  periods_as_alternatives(st);  // the other period is then another cycle's name
   add_alternative(st, levels_text);
   if (st.separate_by.empty())
     st.separate_by =
@@ -545,7 +545,6 @@ bool test_cycle_period(const Problem& pb, const Mat& D, const std::vector<Mat>& 
           : fmt::format("design: {} (ΔRSS {:.6g}) rests on the level {} = {:g}: without it a cycle "
                         "at {:.4g} mm fits as well (ΔRSS {:.6g})",
                         et.label(), sw.d_e, variable_name(j), lv[rests_on], p_alt, d_alt));
-  return false;
 }
 
 }  // namespace
@@ -707,9 +706,7 @@ std::vector<std::string> mark_design_ambiguities(const Problem& pb,
       Vec r = residual_of(Q, pb.y);
       whole = WholeFit{std::move(Q), std::move(r)};
     }
-    if (!test_cycle_period(pb, D, cols, e, effects, o, min_period_mm, whole ? &*whole : nullptr,
-                           log))
-      periods_as_alternatives(effects[e]);
+    test_cycle_period(pb, D, cols, e, effects, o, min_period_mm, whole ? &*whole : nullptr, log);
   }
   // A cycle's period is left unresolved only where the cycle period test
   // told its kind; the selection's aliases of any other cycle (no levels:

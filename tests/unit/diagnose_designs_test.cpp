@@ -1535,16 +1535,15 @@ TEST(DiagnoseDesigns, APeriodThatRestsOnOneLevelIsNotAName) {
 // it: named, its period unresolved (other_periods_mm); with the rule off,
 // `ambiguous` — no name.
 TEST(DiagnoseDesigns, APitchErrorWhosePeriodIsNotResolvedIsNamedByItsKind) {
-  DesignAmbiguityOptions kind_with_period;
-  kind_with_period.period_only_min_levels = 1000;
+  DesignAmbiguityOptions rule_off;  // no design has 1000 levels
+  rule_off.period_only_min_levels = 1000;
   for (const int i : {120, 577}) {
     const auto [h, seed] = sweep_case(Design::grid_irregular, i);
     ASSERT_EQ(h.shape, Shape::pitch);
     const Case with = run_case(Design::grid_irregular, h, seed);
     EXPECT_EQ(with.verdict, Verdict::right) << i << with.found;
     EXPECT_TRUE(with.by_period) << i << with.found;
-    const Case without =
-        run_case(Design::grid_irregular, h, seed, 0.0, nullptr, false, &kind_with_period);
+    const Case without = run_case(Design::grid_irregular, h, seed, 0.0, nullptr, false, &rule_off);
     EXPECT_EQ(without.verdict, Verdict::ambiguous) << i << without.found;
   }
 }

@@ -83,9 +83,8 @@ struct DesignAmbiguityOptions {
   // A cycle whose period another period matches (either test above) is
   // still a cycle of its axis where the design tells its kind: on at least
   // `period_only_min_levels` levels it removes at least `period_only_share`
-  // of what any
-  // function of the levels removes in its place, and more than a smooth
-  // function of the axis there (a polynomial of degree 1 to
+  // of what any function of the levels removes in its place, and more than
+  // a smooth function of the axis there (a polynomial of degree 0 to
   // `period_only_smooth_degree`, at most levels − 3) by the margin, and
   // its axis does not move in lockstep with another on every line (a body
   // diagonal: a cycle of one axis is a cycle of the other there). Then it
