@@ -14,6 +14,10 @@
 
 namespace abbe::diagnose::selection {
 
+namespace {
+constexpr int kTimeVariable = 3;  // Term::vars: 0..2 the positions, 3 the time
+}  // namespace
+
 PathState::PathState(const Problem& pb, const CandidateSet& cs, const SelectionOptions& o,
                      const Mat& Q) {
   for (const Term& t : cs.fixed) {
@@ -150,6 +154,12 @@ bool choose_step(const Problem& pb, const CandidateSet& cs, const SelectionOptio
   double g_best_excess = 0.0, g_best_d = 0.0;
   Term g_best;
   bool have_generic = false;
+  struct SmoothFit {
+    const Term* term;
+    int direction;
+    double d;
+  };
+  std::vector<SmoothFit> smooth_fits;  // every smooth function above its floors
   for (const GenericFamily& g : ps.generic) {
     const Mat B = generic_basis(pb, g.term);
     const Mat BtR = B.transpose() * R;
@@ -163,6 +173,7 @@ bool choose_step(const Problem& pb, const CandidateSet& cs, const SelectionOptio
       const double s2 = std::max(rr - d, 1e-300) / std::max(dof_base - k, 1.0);
       const double thr =
           s2 * std::max(chi2_upper_quantile(k, o.alpha / ps.tests_generic), ps.practical(k, o));
+      if (d > thr) smooth_fits.push_back({&g.term, i, d});
       if (d > thr && d - thr > g_best_excess) {
         g_best_excess = d - thr;
         g_best_d = d;
@@ -181,6 +192,23 @@ bool choose_step(const Problem& pb, const CandidateSet& cs, const SelectionOptio
   step_view.g_best_d = g_best_d;
   StructureChoice structure;
   explain_structure(step_view, best_named, step, structure, log);
+  // Where no named part of the best smooth function's variables explains
+  // it, the parts of another smooth function of the positions that finds
+  // the structure as well are tried too (structure_near_share).
+  if (have_generic && o.structure_near_share > 0.0 && !structure.lead_explains &&
+      !structure.combination_wins) {
+    for (const SmoothFit& f : smooth_fits)
+      if (f.direction == g_best.direction && f.term->vars != g_best.vars &&
+          std::find(f.term->vars.begin(), f.term->vars.end(), kTimeVariable) ==
+              f.term->vars.end() &&
+          f.d >= o.structure_near_share * g_best_d)
+        step_view.structure_vars.push_back(f.term->vars);
+    if (!step_view.structure_vars.empty()) {
+      StructureChoice wider;
+      explain_structure(step_view, best_named, step, wider, log);
+      if (wider.lead_explains || wider.combination_wins) structure = std::move(wider);
+    }
+  }
   if (structure.lead_explains || structure.combination_wins) best_named = structure.lead;
   // The chosen cycles' periods on the exact ΔRSS (after the choice, so
   // that the finer period does not give a cycle an edge over the fixed
@@ -209,6 +237,13 @@ bool choose_step(const Problem& pb, const CandidateSet& cs, const SelectionOptio
     out.C = best_named->c->C;
     out.d = best_named->d;
     out.separation = step_view.rivals(*best_named, out.amb);
+    if (structure.combination_wins) {
+      for (const Term& t : structure.lead_rivals)
+        if (std::find(out.amb.names.begin(), out.amb.names.end(), t.label()) == out.amb.names.end())
+          out.amb.names.push_back(t.label());
+      if (out.separation.empty() && !structure.lead_rivals.empty())
+        out.separation = separating_measurement(out.pick, structure.lead_rivals, {});
+    }
     // A combination that won against a smooth function enters whole: its
     // members explain the structure together (a partner alone may be
     // below the practical floor, e.g. the squareness part of an

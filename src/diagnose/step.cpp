@@ -77,7 +77,11 @@ double Step::together(const std::vector<const Score*>& members) const {
 }
 
 bool Step::in_structure(const Score& sc) const {
-  if (!have_generic || !within_variables(sc.c->term, g_best.vars)) return false;
+  if (!have_generic) return false;
+  bool within = within_variables(sc.c->term, g_best.vars);
+  for (const std::vector<int>& vars : structure_vars)
+    within = within || within_variables(sc.c->term, vars);
+  if (!within) return false;
   // Its share along each direction, once per candidate (by label).
   const std::string key = sc.c->term.label();
   auto it = share_cache.find(key);

@@ -59,6 +59,9 @@ struct Step {
   bool have_generic = false;
   Term g_best;
   double g_best_d = 0.0;
+  // The variables of every other smooth function along g_best's direction
+  // that finds the structure as well (SelectionOptions::structure_near_share).
+  std::vector<std::vector<int>> structure_vars;
 
   // Parsimony: an information criterion that charges every column ln(n)
   // residual variances and a searched period or time constant
@@ -71,7 +74,8 @@ struct Step {
   // ΔRSS of several candidates together (orthogonal to the selected span).
   double together(const std::vector<const Score*>& members) const;
   // A candidate is a part of the structure the best smooth function
-  // explains when it is a function of its variables only, moving at least
+  // explains when it is a function of its variables only (or of those of
+  // a smooth function that finds it as well: structure_vars), moving at least
   // half along its direction (not, e.g., an arm offset that moves X and Y
   // beside a structure in Z; a reversal counts, it follows the rows of a
   // walk).

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <iterator>
 
 #include "abbe/diagnose/statistics.hpp"
 #include "span.hpp"
@@ -213,14 +214,15 @@ Combo best_combination(const Step& st, const Score* lead, std::size_t shortlist,
   return best;
 }
 
-// A partner the data do not prefer over another candidate in its place (the
+// A member the data do not prefer over another candidate in its place (the
 // combination with the other removes less by no more than a one-column χ²
-// at `alpha`) is reported with it as ambiguous.
-std::vector<std::vector<Term>> partner_rivals(const Step& st, const Combo& combo,
-                                              std::size_t shortlist) {
+// at `alpha`) is reported with it as ambiguous: per member, the lead first
+// (lead_rivals_in_combination; else the lead's entry stays empty).
+std::vector<std::vector<Term>> member_rivals(const Step& st, const Combo& combo,
+                                             std::size_t shortlist) {
   const double swap_margin = st.s2_ic * chi2_upper_quantile(1, st.o.alpha);
-  std::vector<std::vector<Term>> rivals(combo.members.size() - 1);
-  for (std::size_t m = 1; m < combo.members.size(); ++m)
+  std::vector<std::vector<Term>> rivals(combo.members.size());
+  for (std::size_t m = st.o.lead_rivals_in_combination ? 0 : 1; m < combo.members.size(); ++m)
     for (std::size_t i = 0; i < shortlist; ++i) {
       const Score& s = st.scores[i];
       if (!may_join(st, s, combo.members)) continue;
@@ -230,7 +232,7 @@ std::vector<std::vector<Term>> partner_rivals(const Step& st, const Combo& combo
         continue;  // the same effect (another period or time constant)
       std::vector<const Score*> swapped = combo.members;
       swapped[m] = &s;
-      if (st.together(swapped) >= combo.d - swap_margin) rivals[m - 1].push_back(s.c->term);
+      if (st.together(swapped) >= combo.d - swap_margin) rivals[m].push_back(s.c->term);
     }
   return rivals;
 }
@@ -289,7 +291,10 @@ void explain_structure(const Step& st, const Score* best_named, int step, Struct
   log.push_back(
       fmt::format("step {}: {} (ΔRSS {:.6g}) explain what {} explains (ΔRSS {:.6g}) at lower cost",
                   step + 1, names, best.d, st.g_best.label(), st.g_best_d));
-  out.partner_rivals = partner_rivals(st, best, shortlist);
+  std::vector<std::vector<Term>> rivals = member_rivals(st, best, shortlist);
+  out.lead_rivals = std::move(rivals.front());
+  out.partner_rivals.assign(std::make_move_iterator(rivals.begin() + 1),
+                            std::make_move_iterator(rivals.end()));
 }
 
 }  // namespace abbe::diagnose::selection

@@ -18,6 +18,7 @@ struct StructureChoice {
   std::vector<const Score*> partners;
   double d_partners = 0.0;                        // ΔRSS of the whole combination
   std::vector<std::vector<Term>> partner_rivals;  // per partner: what may stand in its place
+  std::vector<Term> lead_rivals;                  // and in the lead's place
   // Drifts re-scanned at other time constants for the combination (a
   // partner may point to one): kept for the step.
   std::deque<Cached> rescanned;

@@ -128,6 +128,22 @@ struct SelectionOptions {
   // floors alone, the largest significant part leads a combination (false:
   // no combination then).
   bool lead_below_floor = true;
+  // The structure's variables. Where no named part of the best smooth
+  // function's variables explains its structure, a smooth function of the
+  // positions only (not of the time) along the same direction that removes
+  // at least this share of the best one's ΔRSS finds the same structure,
+  // and the named parts of its variables are tried too
+  // (Step::structure_vars): on a serpentine grid the time follows the rows
+  // and the levels, so a function of (z, t) fits one of (y, z) nearly as
+  // well. (With time too, on circles — where every variable is a function
+  // of the angle — drifts at τ = 300 s stood for a scale: wrong names.)
+  // 0: the best smooth function's variables only.
+  double structure_near_share = 0.9;
+  // The lead of a combination is `ambiguous` with a candidate that takes
+  // its place in the combination without a significant loss, as every
+  // partner is (false: the partners only; the lead then has only the
+  // rivals it has alone).
+  bool lead_rivals_in_combination = true;
   // The flexibility of a smooth `unexplained` function that wins a step is
   // chosen by the held-out SSE among these Legendre degrees (one variable;
   // per variable of a pair); empty: the candidates' fixed degree.
