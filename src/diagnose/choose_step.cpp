@@ -15,7 +15,19 @@
 namespace abbe::diagnose::selection {
 
 namespace {
-constexpr int kTimeVariable = 3;  // Term::vars: 0..2 the positions, 3 the time
+
+// A member of a combination: the candidates that take its place in the
+// combination (StructureChoice::member_rivals) join its alternatives, and
+// name what would separate them where its own rivals did not.
+void add_rivals_in_combination(const Term& member, const std::vector<Term>& swapped_in,
+                               Alternatives& amb, std::string& separation) {
+  for (const Term& t : swapped_in)
+    if (std::find(amb.names.begin(), amb.names.end(), t.label()) == amb.names.end())
+      amb.names.push_back(t.label());
+  if (separation.empty() && !swapped_in.empty())
+    separation = separating_measurement(member, swapped_in, {});
+}
+
 }  // namespace
 
 PathState::PathState(const Problem& pb, const CandidateSet& cs, const SelectionOptions& o,
@@ -206,7 +218,10 @@ bool choose_step(const Problem& pb, const CandidateSet& cs, const SelectionOptio
     if (!step_view.structure_vars.empty()) {
       StructureChoice wider;
       explain_structure(step_view, best_named, step, wider, log);
-      if (wider.lead_explains || wider.combination_wins) structure = std::move(wider);
+      if (wider.lead_explains || wider.combination_wins)
+        structure = std::move(wider);
+      else
+        step_view.structure_vars.clear();
     }
   }
   if (structure.lead_explains || structure.combination_wins) best_named = structure.lead;
@@ -237,20 +252,14 @@ bool choose_step(const Problem& pb, const CandidateSet& cs, const SelectionOptio
     out.C = best_named->c->C;
     out.d = best_named->d;
     out.separation = step_view.rivals(*best_named, out.amb);
-    if (structure.combination_wins) {
-      for (const Term& t : structure.lead_rivals)
-        if (std::find(out.amb.names.begin(), out.amb.names.end(), t.label()) == out.amb.names.end())
-          out.amb.names.push_back(t.label());
-      if (out.separation.empty() && !structure.lead_rivals.empty())
-        out.separation = separating_measurement(out.pick, structure.lead_rivals, {});
-    }
+    if (structure.combination_wins)
+      add_rivals_in_combination(out.pick, structure.member_rivals.front(), out.amb, out.separation);
     // A combination that won against a smooth function enters whole: its
     // members explain the structure together (a partner alone may be
     // below the practical floor, e.g. the squareness part of an
     // off-centre coupling), so each is kept with it, with its own rivals.
     for (std::size_t m = 0; m < structure.partners.size(); ++m) {
       const Score* s = structure.partners[m];
-      const std::vector<Term>& swapped_in = structure.partner_rivals[m];
       Mat Cn(n, out.C.cols() + s->c->C.cols());
       Cn << out.C, s->c->C;
       out.C = std::move(Cn);
@@ -258,11 +267,7 @@ bool choose_step(const Problem& pb, const CandidateSet& cs, const SelectionOptio
       out.partner_amb.emplace_back();
       Alternatives& amb = out.partner_amb.back();
       std::string sep = step_view.rivals(*s, amb);
-      for (const Term& t : swapped_in)
-        if (std::find(amb.names.begin(), amb.names.end(), t.label()) == amb.names.end())
-          amb.names.push_back(t.label());
-      if (sep.empty() && !swapped_in.empty())
-        sep = separating_measurement(s->c->term, swapped_in, {});
+      add_rivals_in_combination(s->c->term, structure.member_rivals[m + 1], amb, sep);
       out.partner_separation.push_back(sep);
     }
     if (!structure.partners.empty()) out.d = structure.d_partners;

@@ -53,7 +53,7 @@ bool generic_of(const Term& t, int j) {
 bool depends_on_time(const Term& t) {
   if (t.kind == TermKind::thermal_drift) return true;
   return t.kind == TermKind::unexplained &&
-         std::find(t.vars.begin(), t.vars.end(), 3) != t.vars.end();
+         std::find(t.vars.begin(), t.vars.end(), kTimeVariable) != t.vars.end();
 }
 
 // The share of the time's variance left within the levels of s_j (1 where

@@ -23,7 +23,7 @@ bool within_variables(const Term& t, const std::vector<int>& vars) {
     case TermKind::coupling:
       return has(t.axis) && has(t.with_axis);
     case TermKind::thermal_drift:
-      return has(3) && (t.with_axis < 0 || has(t.with_axis));
+      return has(kTimeVariable) && (t.with_axis < 0 || has(t.with_axis));
     case TermKind::reversal:  // on a serpentine walk a function of the other axes' rows
       return true;
     default:

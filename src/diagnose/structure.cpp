@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <iterator>
 
 #include "abbe/diagnose/statistics.hpp"
 #include "span.hpp"
@@ -291,10 +290,7 @@ void explain_structure(const Step& st, const Score* best_named, int step, Struct
   log.push_back(
       fmt::format("step {}: {} (ΔRSS {:.6g}) explain what {} explains (ΔRSS {:.6g}) at lower cost",
                   step + 1, names, best.d, st.g_best.label(), st.g_best_d));
-  std::vector<std::vector<Term>> rivals = member_rivals(st, best, shortlist);
-  out.lead_rivals = std::move(rivals.front());
-  out.partner_rivals.assign(std::make_move_iterator(rivals.begin() + 1),
-                            std::make_move_iterator(rivals.end()));
+  out.member_rivals = member_rivals(st, best, shortlist);
 }
 
 }  // namespace abbe::diagnose::selection

@@ -16,9 +16,10 @@ struct StructureChoice {
   bool lead_explains = false;     // the lead alone explains the structure
   bool combination_wins = false;  // the lead with `partners` explains it
   std::vector<const Score*> partners;
-  double d_partners = 0.0;                        // ΔRSS of the whole combination
-  std::vector<std::vector<Term>> partner_rivals;  // per partner: what may stand in its place
-  std::vector<Term> lead_rivals;                  // and in the lead's place
+  double d_partners = 0.0;  // ΔRSS of the whole combination
+  // Per member, the lead first: what may stand in its place in the
+  // combination (the lead's only with lead_rivals_in_combination).
+  std::vector<std::vector<Term>> member_rivals;
   // Drifts re-scanned at other time constants for the combination (a
   // partner may point to one): kept for the step.
   std::deque<Cached> rescanned;

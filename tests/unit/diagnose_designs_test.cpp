@@ -709,6 +709,16 @@ struct Case {
   std::vector<SelectedTerm> effects;  // what the diagnosis selected
 };
 
+// The tool tip a measured point stands for (to evaluate a hidden shape there).
+sim::TipState tip_at(const PointContext& pc) {
+  sim::TipState tip;
+  tip.p = pc.p;
+  tip.tool_length = pc.s.z() - pc.p.z();
+  tip.dir = pc.dir;
+  tip.time = pc.t;
+  return tip;
+}
+
 // What the hidden deviation adds, on the fresh measurement `fp`, beyond its
 // best fit by the columns L beside the datum: 1 − rms(data − truth) /
 // rms(data − that fit), the datum removed from both (`orc`: the data less
@@ -851,11 +861,7 @@ Case run_case(Design design, const Hidden& h, std::uint64_t seed, double outlier
       if (!is_datum(st.term)) pred += st.term.evaluate(pc);
     const auto row = static_cast<Eigen::Index>(o);
     ext[row] -= ob.u.dot(pred);
-    sim::TipState tip;
-    tip.p = pc.p;
-    tip.tool_length = pc.s.z() - pc.p.z();
-    tip.dir = pc.dir;
-    tip.time = pc.t;
+    const sim::TipState tip = tip_at(pc);
     orc[row] -= ob.u.dot(h.at(tip, b));
     for (std::size_t k = 0; k < parts.size(); ++k)
       part_orc[k][row] -= ob.u.dot(parts[k].at(tip, b));
@@ -908,20 +914,15 @@ Case run_case(Design design, const Hidden& h, std::uint64_t seed, double outlier
   if (design == Design::diagonals && h.shape == Shape::drift && !h.proportional && h.also.empty()) {
     // The hidden course in time, moved to each other direction and fitted
     // to the hidden deviation beside the datum.
+    std::vector<double> course(fp.points.size());
+    for (std::size_t q = 0; q < fp.points.size(); ++q)
+      course[q] = h.at(tip_at(fp.points[q]), b)[h.dir];
     c.direction_oracle = 1.0;
     for (int j = 0; j < 3; ++j) {
       if (j == h.dir) continue;
       Eigen::MatrixXd L(fp.y.size(), 1);
-      for (std::size_t o = 0; o < fp.obs.size(); ++o) {
-        const auto& ob = fp.obs[o];
-        const PointContext& pc = fp.points[ob.point];
-        sim::TipState tip;
-        tip.p = pc.p;
-        tip.tool_length = pc.s.z() - pc.p.z();
-        tip.dir = pc.dir;
-        tip.time = pc.t;
-        L(static_cast<Eigen::Index>(o), 0) = ob.u[j] * h.at(tip, b)[h.dir];
-      }
+      for (std::size_t o = 0; o < fp.obs.size(); ++o)
+        L(static_cast<Eigen::Index>(o), 0) = fp.obs[o].u[j] * course[fp.obs[o].point];
       c.direction_oracle = std::min(c.direction_oracle, oracle_beyond(fp, orc, L, plane));
     }
   }

@@ -11,6 +11,10 @@
 
 namespace abbe::diagnose {
 
+// The variables a smooth function (Term::vars) is built on: 0..2 the axis
+// positions s_x, s_y, s_z, and this one the time.
+constexpr int kTimeVariable = 3;
+
 // What the basis functions need to know about one measured point.
 struct PointContext {
   Eigen::Vector3d p = Eigen::Vector3d::Zero();  // tool tip P, mm
@@ -60,7 +64,7 @@ struct Term {
   // per variable except the constant.
   // (reversal: degree 1 is the reversal growing along its travel, about
   // `centre` in units of `half`.)
-  std::vector<int> vars;
+  std::vector<int> vars;  // kTimeVariable: the time
   int degree = 0;
   std::array<double, 4> lo{0, 0, 0, 0}, hi{1, 1, 1, 1};
 
