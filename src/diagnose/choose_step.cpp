@@ -9,6 +9,7 @@
 #include "abbe/diagnose/statistics.hpp"
 #include "parameter_scan.hpp"
 #include "revisit.hpp"
+#include "smooth_surplus.hpp"
 #include "step.hpp"
 #include "structure.hpp"
 
@@ -225,45 +226,19 @@ bool choose_step(const Problem& pb, const CandidateSet& cs, const SelectionOptio
     }
   }
   if (structure.lead_explains || structure.combination_wins) best_named = structure.lead;
-  // What the smooth function adds beside the named part of its structure
-  // that leads (above its floors; a cycle only where it adds beside the
-  // smooth function): where that passes none of the smooth function's
-  // floors, the part explains the structure (smooth_surplus_test).
+  // What the smooth function adds beside a named part of its structure:
+  // where that passes none of its own floors, the part explains the
+  // structure (smooth_surplus_test).
   bool surplus_below_floor = false;
-  const Score* part = structure.lead;
   if (o.smooth_surplus_test && have_generic && !structure.lead_explains &&
-      !structure.combination_wins) {
-    const Mat Cs = term_columns(pb, g_best);
-    // Beside the lead by variables: the best named candidate moving along
-    // the smooth function's direction whose fitted contribution the smooth
-    // function reproduces (on a circle every position is a function of the
-    // angle and the pass).
-    if ((!part || !(part->d > part->thr)) && best_named &&
-        best_named->c->term.kind != TermKind::arm_offset &&
-        best_named->c->term.kind != TermKind::cyclic &&
-        share_along(pb, best_named->c->term, g_best.direction) >= 0.5) {
-      const Vec f = step_view.contribution(*best_named->c);
-      if (removed_by(Cs, Q, f) >= 0.9 * f.squaredNorm()) part = best_named;
+      !structure.combination_wins && !(best_named && best_named->d >= o.name_ratio * g_best_d)) {
+    const auto smooth_floor = [&](int k, double s2) {
+      return s2 * std::max(chi2_upper_quantile(k, o.alpha / ps.tests_generic), ps.practical(k, o));
+    };
+    if (const Score* part = part_by_surplus(step_view, structure.lead, smooth_floor, step, log)) {
+      best_named = part;
+      surplus_below_floor = true;
     }
-  }
-  if (o.smooth_surplus_test && have_generic && part && part->d > part->thr &&
-      !structure.lead_explains && !structure.combination_wins &&
-      part->d < o.name_ratio * g_best_d) {
-    const Mat Cs = term_columns(pb, g_best);
-    Mat Cb(n, part->c->C.cols() + Cs.cols());
-    Cb << part->c->C, Cs;
-    const double d_both = removed_by(Cb, Q, r);
-    const double surplus = d_both - part->d;
-    const int k = static_cast<int>(Cs.cols());
-    const double s2 =
-        std::max(rr - d_both, 1e-300) / std::max(dof_base - static_cast<double>(Cb.cols()), 1.0);
-    const double thr =
-        s2 * std::max(chi2_upper_quantile(k, o.alpha / ps.tests_generic), ps.practical(k, o));
-    surplus_below_floor = surplus <= thr;
-    log.push_back(fmt::format("step {}: {} adds {:.6g} beside {} (ΔRSS {:.6g}); its floor {:.6g}",
-                              step + 1, g_best.label(), surplus, part->c->term.label(), part->d,
-                              thr));
-    if (surplus_below_floor) best_named = part;
   }
   // The chosen cycles' periods on the exact ΔRSS (after the choice, so
   // that the finer period does not give a cycle an edge over the fixed

@@ -144,14 +144,14 @@ struct SelectionOptions {
   // partner is (false: the partners only; the lead then has only the
   // rivals it has alone).
   bool lead_rivals_in_combination = true;
-  // The smooth function's surplus. Where the best named candidate explains
-  // less than `name_ratio` of the smooth function's ΔRSS, and no
-  // combination explains it, the named candidate still explains the
-  // structure when what the smooth function adds beside it does not pass
-  // the smooth function's own floors (its χ² and the practical floor): the
-  // rest is the noise a wide function fits, or a structure below the floor
-  // (on a circle, the model's own table error beside a scale). False: the
-  // share alone decides.
+  // The smooth function's surplus. Where no named part of the best smooth
+  // function's structure explains `name_ratio` of its ΔRSS, alone or in a
+  // combination, a part still explains the structure when what the smooth
+  // function adds beside it passes none of the smooth function's own floors
+  // (its χ² and the practical floor): the rest is the noise a wide function
+  // fits, or a structure below the floor (on a circle, the model's own
+  // table error beside a small scale). The parts tried: smooth_surplus.hpp.
+  // False: the share alone decides.
   bool smooth_surplus_test = true;
   // The flexibility of a smooth `unexplained` function that wins a step is
   // chosen by the held-out SSE among these Legendre degrees (one variable;
