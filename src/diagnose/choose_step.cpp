@@ -225,6 +225,18 @@ bool choose_step(const Problem& pb, const CandidateSet& cs, const SelectionOptio
         step_view.structure_vars.clear();
     }
   }
+  // Where still nothing explains it, the drifts the smooth function
+  // reproduces are parts of its structure too (drift_parts_by_reproduction).
+  if (have_generic && o.drift_parts_by_reproduction && !structure.lead_explains &&
+      !structure.combination_wins) {
+    const Mat smooth_columns = term_columns(pb, g_best);
+    step_view.reproduced_by = &smooth_columns;
+    step_view.reproduced_cache.clear();
+    StructureChoice wider;
+    explain_structure(step_view, best_named, step, wider, log);
+    if (wider.lead_explains || wider.combination_wins) structure = std::move(wider);
+    step_view.reproduced_by = nullptr;
+  }
   if (structure.lead_explains || structure.combination_wins) best_named = structure.lead;
   // What the smooth function adds beside a named part of its structure:
   // where that passes none of its own floors, the part explains the

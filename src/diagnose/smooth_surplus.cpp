@@ -9,9 +9,6 @@ namespace abbe::diagnose::selection {
 namespace {
 // Named candidates tried beside the lead (by ΔRSS, above their floors).
 constexpr std::size_t kSurplusCandidates = 5;
-// Share of a candidate's fitted contribution the smooth function must
-// reproduce for the candidate to be a part of its structure.
-constexpr double kReproduced = 0.9;
 }  // namespace
 
 const Score* part_by_surplus(const Step& st, const Score* lead,
@@ -29,8 +26,7 @@ const Score* part_by_surplus(const Step& st, const Score* lead,
     if (&sc == lead || kind == TermKind::arm_offset || kind == TermKind::cyclic ||
         share_along(st.pb, sc.c->term, st.g_best.direction) < 0.5)
       continue;
-    const Vec f = st.contribution(*sc.c);
-    if (removed_by(Cs, st.Q, f) >= kReproduced * f.squaredNorm()) tried.push_back(&sc);
+    if (st.reproduces(Cs, sc)) tried.push_back(&sc);
   }
   const Score* best = nullptr;
   double best_surplus = 0.0, best_both = 0.0;

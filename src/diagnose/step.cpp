@@ -81,7 +81,7 @@ bool Step::in_structure(const Score& sc) const {
   bool within = within_variables(sc.c->term, g_best.vars);
   for (const std::vector<int>& vars : structure_vars)
     within = within || within_variables(sc.c->term, vars);
-  if (!within) return false;
+  if (!within && !reproduced_by) return false;
   // Its share along each direction, once per candidate (by label).
   const std::string key = sc.c->term.label();
   auto it = share_cache.find(key);
@@ -90,7 +90,35 @@ bool Step::in_structure(const Score& sc) const {
     for (int i = 0; i < 3; ++i) sh[static_cast<std::size_t>(i)] = share_along(pb, sc.c->term, i);
     it = share_cache.emplace(key, sh).first;
   }
-  return it->second[static_cast<std::size_t>(g_best.direction)] >= 0.5;
+  if (it->second[static_cast<std::size_t>(g_best.direction)] < 0.5) return false;
+  if (within) return true;
+  // A drift, where the structure is sought by reproduction.
+  if (sc.c->term.kind != TermKind::thermal_drift) return false;
+  const auto known = reproduced_cache.find(key);
+  if (known != reproduced_cache.end()) return known->second;
+  const bool part = !drift_nearly_static(pb, sc.c->term) && reproduces(*reproduced_by, sc);
+  reproduced_cache.emplace(key, part);
+  return part;
+}
+
+bool Step::reproduces(const Mat& smooth_columns, const Score& sc) const {
+  if (!(sc.d > 0.0)) return false;  // no fitted contribution
+  const Vec f = contribution(*sc.c);
+  return removed_by(smooth_columns, Q, f) >= kReproducedShare * f.squaredNorm();
+}
+
+bool drift_nearly_static(const Problem& pb, const Term& t) {
+  if (t.kind != TermKind::thermal_drift || !(t.tau_s > 0.0) || pb.points.empty()) return false;
+  double m = 0.0, m2 = 0.0;
+  for (const PointContext& pc : pb.points) {
+    const double g = 1.0 - std::exp(-std::max(pc.t, 0.0) / t.tau_s);
+    m += g;
+    m2 += g * g;
+  }
+  const double np = static_cast<double>(pb.points.size());
+  m /= np;
+  const double sd = std::sqrt(std::max(m2 / np - m * m, 0.0));
+  return !(sd > kNearlyStaticCourse * m);
 }
 
 bool Step::significant(const Score& sc) const {

@@ -23,6 +23,17 @@ bool within_variables(const Term& t, const std::vector<int>& vars);
 // the points) that lies along `direction`.
 double share_along(const Problem& pb, const Term& t, int direction);
 
+// A drift whose course over the measurement's points is nearly constant
+// (its standard deviation below kNearlyStaticCourse of its mean: at
+// τ = 300 s over a two-hour walk, done but for the first minutes) stands for
+// a static term.
+inline constexpr double kNearlyStaticCourse = 0.3;
+bool drift_nearly_static(const Problem& pb, const Term& t);
+
+// The share of a candidate's fitted contribution a smooth function must
+// reproduce for the candidate to be a part of its structure by reproduction.
+inline constexpr double kReproducedShare = 0.9;
+
 // A candidate at one step: what it removes from the residual (ΔRSS) and
 // the floor it must pass alone (its χ² and the practical floor, in σ̂²).
 struct Score {
@@ -62,6 +73,14 @@ struct Step {
   // The variables of every other smooth function along g_best's direction
   // that finds the structure as well (SelectionOptions::structure_near_share).
   std::vector<std::vector<int>> structure_vars;
+  // Where set (SelectionOptions::drift_parts_by_reproduction): a drift whose
+  // fitted contribution these columns, the best smooth function's, reproduce
+  // is a part of its structure too, whatever its variables (not one nearly
+  // static).
+  const Mat* reproduced_by = nullptr;
+  // Whether a drift is reproduced, by label, for the reproduced_by set
+  // (cleared where it is set).
+  mutable std::map<std::string, bool> reproduced_cache;
 
   // Parsimony: an information criterion that charges every column ln(n)
   // residual variances and a searched period or time constant
@@ -78,8 +97,11 @@ struct Step {
   // a smooth function that finds it as well: structure_vars), moving at least
   // half along its direction (not, e.g., an arm offset that moves X and Y
   // beside a structure in Z; a reversal counts, it follows the rows of a
-  // walk).
+  // walk); with reproduced_by set, also a drift those columns reproduce.
   bool in_structure(const Score& sc) const;
+  // The columns `smooth_columns` reproduce at least kReproducedShare of the
+  // candidate's fitted contribution (beside the selected span).
+  bool reproduces(const Mat& smooth_columns, const Score& sc) const;
   // Above its χ² alone (not necessarily the practical floor).
   bool significant(const Score& sc) const;
   // Parsimony: only explanations of the same structure compete on the

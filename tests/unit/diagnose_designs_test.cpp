@@ -1512,6 +1512,27 @@ TEST(DiagnoseDesigns, ANamedPartExplainsWhereTheSmoothFunctionAddsNothingAboveIt
   }
 }
 
+// A drift the smooth function reproduces is a part of its structure
+// (SelectionOptions::drift_parts_by_reproduction). On the XY ballbar every
+// position is a function of the angle and the pass: a drift ∝ x − x0 of X
+// is a uniform drift t→X and a drift x·t→X, and the best smooth function
+// was one of (y, t), whose variables do not hold x. Case 528 (1000-seed
+// sweep): t→X removes 26.2 of the 66.2 dX(y, t) removes, t→X with x·t→X
+// 55.0; case 702: 131.0 with a reversal, 166.4 of 181.3 with x·t→X. Named
+// right with the rule, `unexplained` without it.
+TEST(DiagnoseDesigns, ADriftTheSmoothFunctionReproducesIsAPartOfItsStructure) {
+  SelectionOptions by_variables;
+  by_variables.drift_parts_by_reproduction = false;
+  for (int i : {528, 702}) {
+    const auto [h, seed] = sweep_case(Design::ballbar_xy, i);
+    const Case with = run_case(Design::ballbar_xy, h, seed);
+    EXPECT_EQ(scored(with, h), Verdict::right) << "case " << i << ": " << with.found;
+    const Case off = run_case(Design::ballbar_xy, h, seed, 0.0, &by_variables);
+    EXPECT_NE(scored(off, h), Verdict::right) << "case " << i << ": " << off.found;
+    EXPECT_NE(scored(off, h), Verdict::wrong) << "case " << i << ": " << off.found;
+  }
+}
+
 // The backward check (SelectionOptions::backward_check): an effect chosen
 // early that later effects made redundant leaves the fit. Case 75 of the
 // two-effect sweep (a reversal of Y and a scale Y): a 4.2 mm cycle of Y,

@@ -153,6 +153,16 @@ struct SelectionOptions {
   // table error beside a small scale). The parts tried: smooth_surplus.hpp.
   // False: the share alone decides.
   bool smooth_surplus_test = true;
+  // Where no named part of the smooth function's variables (nor of a near
+  // one's) explains its structure, a thermal drift whose fitted contribution
+  // the smooth function reproduces (≥ 0.9 of it) is a part of it too,
+  // whatever its variables: on a circle every position is a function of the
+  // angle and the pass, so x·t→X is one of (y, t) there. Not a drift whose
+  // course is nearly done over the measurement (it stands for a static
+  // term), nor a static term (on a serpentine walk z follows t, and a
+  // squareness dX ∝ z joined a function of (x, t) by it: wrong names).
+  // False: by the variables only.
+  bool drift_parts_by_reproduction = true;
   // The flexibility of a smooth `unexplained` function that wins a step is
   // chosen by the held-out SSE among these Legendre degrees (one variable;
   // per variable of a pair); empty: the candidates' fixed degree.
