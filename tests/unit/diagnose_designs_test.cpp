@@ -37,6 +37,7 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
+#include <initializer_list>
 #include <iostream>
 #include <map>
 #include <random>
@@ -1490,6 +1491,20 @@ TEST(DiagnoseDesigns, ALeadOfACombinationHasItsRivalsToo) {
   }
 }
 
+// Cases of a design's sweep named right with the engine's rules and, with
+// `without` (one rule off), not right and not wrong either.
+void expect_right_only_with_the_rule(Design design, std::initializer_list<int> cases,
+                                     const SelectionOptions& without) {
+  for (int i : cases) {
+    const auto [h, seed] = sweep_case(design, i);
+    const Case with = run_case(design, h, seed);
+    EXPECT_EQ(scored(with, h), Verdict::right) << "case " << i << ": " << with.found;
+    const Case off = run_case(design, h, seed, 0.0, &without);
+    EXPECT_NE(scored(off, h), Verdict::right) << "case " << i << ": " << off.found;
+    EXPECT_NE(scored(off, h), Verdict::wrong) << "case " << i << ": " << off.found;
+  }
+}
+
 // The smooth function's surplus (SelectionOptions::smooth_surplus_test). On
 // the XY ballbar the model's own table error of X leaves a structure below
 // every floor; beside a small scale of X it lifts the best smooth function
@@ -1502,14 +1517,7 @@ TEST(DiagnoseDesigns, ALeadOfACombinationHasItsRivalsToo) {
 TEST(DiagnoseDesigns, ANamedPartExplainsWhereTheSmoothFunctionAddsNothingAboveItsFloor) {
   SelectionOptions share_only;
   share_only.smooth_surplus_test = false;
-  for (int i : {425, 766}) {
-    const auto [h, seed] = sweep_case(Design::ballbar_xy, i);
-    const Case with = run_case(Design::ballbar_xy, h, seed);
-    EXPECT_EQ(scored(with, h), Verdict::right) << "case " << i << ": " << with.found;
-    const Case off = run_case(Design::ballbar_xy, h, seed, 0.0, &share_only);
-    EXPECT_NE(scored(off, h), Verdict::right) << "case " << i << ": " << off.found;
-    EXPECT_NE(scored(off, h), Verdict::wrong) << "case " << i << ": " << off.found;
-  }
+  expect_right_only_with_the_rule(Design::ballbar_xy, {425, 766}, share_only);
 }
 
 // A drift the smooth function reproduces is a part of its structure
@@ -1523,14 +1531,7 @@ TEST(DiagnoseDesigns, ANamedPartExplainsWhereTheSmoothFunctionAddsNothingAboveIt
 TEST(DiagnoseDesigns, ADriftTheSmoothFunctionReproducesIsAPartOfItsStructure) {
   SelectionOptions by_variables;
   by_variables.drift_parts_by_reproduction = false;
-  for (int i : {528, 702}) {
-    const auto [h, seed] = sweep_case(Design::ballbar_xy, i);
-    const Case with = run_case(Design::ballbar_xy, h, seed);
-    EXPECT_EQ(scored(with, h), Verdict::right) << "case " << i << ": " << with.found;
-    const Case off = run_case(Design::ballbar_xy, h, seed, 0.0, &by_variables);
-    EXPECT_NE(scored(off, h), Verdict::right) << "case " << i << ": " << off.found;
-    EXPECT_NE(scored(off, h), Verdict::wrong) << "case " << i << ": " << off.found;
-  }
+  expect_right_only_with_the_rule(Design::ballbar_xy, {528, 702}, by_variables);
 }
 
 // The backward check (SelectionOptions::backward_check): an effect chosen
