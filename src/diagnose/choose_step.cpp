@@ -225,11 +225,15 @@ bool choose_step(const Problem& pb, const CandidateSet& cs, const SelectionOptio
         step_view.structure_vars.clear();
     }
   }
+  // The best smooth function's columns, where a rule below needs them.
+  Mat smooth_columns;
+  const bool unexplained_yet =
+      have_generic && !structure.lead_explains && !structure.combination_wins;
+  if (unexplained_yet && (o.drift_parts_by_reproduction || o.smooth_surplus_test))
+    smooth_columns = term_columns(pb, g_best);
   // Where still nothing explains it, the drifts the smooth function
   // reproduces are parts of its structure too (drift_parts_by_reproduction).
-  if (have_generic && o.drift_parts_by_reproduction && !structure.lead_explains &&
-      !structure.combination_wins) {
-    const Mat smooth_columns = term_columns(pb, g_best);
+  if (unexplained_yet && o.drift_parts_by_reproduction) {
     step_view.reproduced_by = &smooth_columns;
     step_view.reproduced_cache.clear();
     StructureChoice wider;
@@ -247,7 +251,8 @@ bool choose_step(const Problem& pb, const CandidateSet& cs, const SelectionOptio
     const auto smooth_floor = [&](int k, double s2) {
       return s2 * std::max(chi2_upper_quantile(k, o.alpha / ps.tests_generic), ps.practical(k, o));
     };
-    if (const Score* part = part_by_surplus(step_view, structure.lead, smooth_floor, step, log)) {
+    if (const Score* part =
+            part_by_surplus(step_view, structure.lead, smooth_columns, smooth_floor, step, log)) {
       best_named = part;
       surplus_below_floor = true;
     }

@@ -11,10 +11,9 @@ namespace {
 constexpr std::size_t kSurplusCandidates = 5;
 }  // namespace
 
-const Score* part_by_surplus(const Step& st, const Score* lead,
+const Score* part_by_surplus(const Step& st, const Score* lead, const Mat& Cs,
                              const std::function<double(int, double)>& smooth_floor, int step,
                              std::vector<std::string>& log) {
-  const Mat Cs = term_columns(st.pb, st.g_best);
   std::vector<const Score*> tried;
   if (lead && lead->d > lead->thr) tried.push_back(lead);
   std::size_t looked = 0;

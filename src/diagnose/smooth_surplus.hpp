@@ -22,9 +22,10 @@ namespace abbe::diagnose::selection {
 // the pass, so the variables alone do not tell a part); not an arm offset
 // (it carries the model's own table error) nor a cycle (its searched period
 // fits a piece of any smooth structure). The one the smooth function adds
-// least beside is tested. `smooth_floor(k, s2)`: the smooth function's
-// floors for k columns at residual variance s2.
-const Score* part_by_surplus(const Step& st, const Score* lead,
+// least beside is tested. `smooth_columns`: the best smooth function's
+// columns (st.g_best); `smooth_floor(k, s2)`: its floors for k columns at
+// residual variance s2.
+const Score* part_by_surplus(const Step& st, const Score* lead, const Mat& smooth_columns,
                              const std::function<double(int, double)>& smooth_floor, int step,
                              std::vector<std::string>& log);
 
