@@ -23,7 +23,7 @@ const Score* part_by_surplus(const Step& st, const Score* lead, const Mat& Cs,
     ++looked;
     const TermKind kind = sc.c->term.kind;
     if (&sc == lead || kind == TermKind::arm_offset || kind == TermKind::cyclic ||
-        share_along(st.pb, sc.c->term, st.g_best.direction) < 0.5)
+        st.share_along_best(sc) < 0.5)
       continue;
     if (st.reproduces(Cs, sc)) tried.push_back(&sc);
   }

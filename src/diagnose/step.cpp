@@ -82,6 +82,19 @@ bool Step::in_structure(const Score& sc) const {
   for (const std::vector<int>& vars : structure_vars)
     within = within || within_variables(sc.c->term, vars);
   if (!within && !reproduced_by) return false;
+  if (share_along_best(sc) < 0.5) return false;
+  if (within) return true;
+  // A drift, where the structure is sought by reproduction.
+  if (sc.c->term.kind != TermKind::thermal_drift) return false;
+  const std::string key = sc.c->term.label();
+  const auto known = reproduced_cache.find(key);
+  if (known != reproduced_cache.end()) return known->second;
+  const bool part = !drift_nearly_static(pb, sc.c->term) && reproduces(*reproduced_by, sc);
+  reproduced_cache.emplace(key, part);
+  return part;
+}
+
+double Step::share_along_best(const Score& sc) const {
   // Its share along each direction, once per candidate (by label).
   const std::string key = sc.c->term.label();
   auto it = share_cache.find(key);
@@ -90,15 +103,7 @@ bool Step::in_structure(const Score& sc) const {
     for (int i = 0; i < 3; ++i) sh[static_cast<std::size_t>(i)] = share_along(pb, sc.c->term, i);
     it = share_cache.emplace(key, sh).first;
   }
-  if (it->second[static_cast<std::size_t>(g_best.direction)] < 0.5) return false;
-  if (within) return true;
-  // A drift, where the structure is sought by reproduction.
-  if (sc.c->term.kind != TermKind::thermal_drift) return false;
-  const auto known = reproduced_cache.find(key);
-  if (known != reproduced_cache.end()) return known->second;
-  const bool part = !drift_nearly_static(pb, sc.c->term) && reproduces(*reproduced_by, sc);
-  reproduced_cache.emplace(key, part);
-  return part;
+  return it->second[static_cast<std::size_t>(g_best.direction)];
 }
 
 bool Step::reproduces(const Mat& smooth_columns, const Score& sc) const {
@@ -109,11 +114,16 @@ bool Step::reproduces(const Mat& smooth_columns, const Score& sc) const {
 
 bool drift_nearly_static(const Problem& pb, const Term& t) {
   if (t.kind != TermKind::thermal_drift || !(t.tau_s > 0.0) || pb.points.empty()) return false;
+  // Its course in time: the catalogue's drift without its position factor.
+  Term course = t;
+  course.with_axis = -1;
+  Eigen::Matrix<double, 3, Eigen::Dynamic> g(3, course.columns());
   double m = 0.0, m2 = 0.0;
   for (const PointContext& pc : pb.points) {
-    const double g = 1.0 - std::exp(-std::max(pc.t, 0.0) / t.tau_s);
-    m += g;
-    m2 += g * g;
+    course.basis(pc, g);
+    const double v = g(course.direction, 0);
+    m += v;
+    m2 += v * v;
   }
   const double np = static_cast<double>(pb.points.size());
   m /= np;

@@ -99,6 +99,9 @@ struct Step {
   // beside a structure in Z; a reversal counts, it follows the rows of a
   // walk); with reproduced_by set, also a drift those columns reproduce.
   bool in_structure(const Score& sc) const;
+  // The share of the candidate's deviation along the best smooth function's
+  // direction (share_along, cached by label).
+  double share_along_best(const Score& sc) const;
   // The columns `smooth_columns` reproduce at least kReproducedShare of the
   // candidate's fitted contribution (beside the selected span).
   bool reproduces(const Mat& smooth_columns, const Score& sc) const;
