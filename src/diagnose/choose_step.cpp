@@ -108,7 +108,7 @@ void PathState::advance(const Mat& Qnew, const std::vector<std::string>& chosen_
 
 bool choose_step(const Problem& pb, const CandidateSet& cs, const SelectionOptions& o,
                  PathState& ps, const Mat& Q, const Vec& r, int step, StepChoice& out,
-                 std::vector<std::string>& log, std::vector<Term>* first_alternatives) {
+                 std::vector<std::string>& log, PathSummary* first) {
   const auto n = static_cast<Eigen::Index>(pb.obs.size());
   const double rr = r.squaredNorm();
   const double dof_base = static_cast<double>(n - Q.cols());
@@ -318,8 +318,9 @@ bool choose_step(const Problem& pb, const CandidateSet& cs, const SelectionOptio
   }
 
   // The first step's near alternatives, for the revisit (revisit.hpp).
-  if (first_alternatives && out.pick.kind != TermKind::unexplained && out.partners.empty())
-    first_step_alternatives(pb, cs, o, Q, r, scores, out.pick, out.d, *first_alternatives);
+  if (first && out.pick.kind != TermKind::unexplained && out.partners.empty())
+    first_step_alternatives(pb, cs, o, Q, r, scores, out.pick, out.d, first->first_alternatives,
+                            first->first_cheaper_alternatives);
   return true;
 }
 

@@ -14,6 +14,7 @@
 #include "abbe/diagnose/candidates.hpp"
 #include "abbe/diagnose/selection.hpp"
 #include "candidate_fit.hpp"
+#include "path.hpp"
 
 namespace abbe::diagnose::selection {
 
@@ -68,10 +69,10 @@ struct StepChoice {
 };
 
 // The step's choice on the residual r (⟂ the span Q). False when no
-// candidate passes the floors (logged). first_alternatives (the first
-// step): filled with the pick's near alternatives for the revisit.
+// candidate passes the floors (logged). first (the first step): its
+// alternatives filled with the pick's near alternatives for the revisit.
 bool choose_step(const Problem& pb, const CandidateSet& cs, const SelectionOptions& o,
                  PathState& ps, const Mat& Q, const Vec& r, int step, StepChoice& out,
-                 std::vector<std::string>& log, std::vector<Term>* first_alternatives);
+                 std::vector<std::string>& log, PathSummary* first);
 
 }  // namespace abbe::diagnose::selection

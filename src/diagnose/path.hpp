@@ -22,12 +22,20 @@ struct PathSummary {
   // alone), and the pick's own family at its other time constants, largest
   // first.
   std::vector<Term> first_alternatives;
+  // Those of them (up to revisit_paths, before the cut to revisit_paths)
+  // that cost less on the criterion than a pick with a searched parameter
+  // (SelectionOptions::revisit_searched_first).
+  std::vector<Term> first_cheaper_alternatives;
 };
 
 // forced_first: the first step takes this term (no alternatives are sought).
 SelectionResult select_path(const Problem& problem, const CandidateSet& candidates,
                             const SelectionOptions& options, const Term* forced_first,
                             PathSummary& summary);
+
+// A term with a parameter found by search (a cycle's period, a drift's time
+// constant).
+bool has_searched_parameter(const Term& t);
 
 // A term's cost on the information criterion: its columns, plus
 // `searched_cost` for a parameter found by search (a period, a time constant).

@@ -14,8 +14,10 @@ namespace selection {
 
 void first_step_alternatives(const Problem& pb, const CandidateSet& cs, const SelectionOptions& o,
                              const Mat& Q, const Vec& r, const std::vector<Score>& scores,
-                             const Term& pick, double d_pick, std::vector<Term>& out) {
+                             const Term& pick, double d_pick, std::vector<Term>& out,
+                             std::vector<Term>& cheaper) {
   out.clear();
+  cheaper.clear();
   if (o.revisit_paths <= 0) return;
   std::vector<std::pair<double, Term>> near;
   const std::string pick_label = pick.label();
@@ -50,6 +52,12 @@ void first_step_alternatives(const Problem& pb, const CandidateSet& cs, const Se
     if (static_cast<int>(out.size()) >= o.revisit_paths) break;
     out.push_back(a.second);
   }
+  if (!has_searched_parameter(pick)) return;
+  const double pick_cost = criterion_cost(pick, o.searched_cost);
+  for (const auto& a : near) {
+    if (static_cast<int>(cheaper.size()) >= o.revisit_paths) break;
+    if (criterion_cost(a.second, o.searched_cost) < pick_cost) cheaper.push_back(a.second);
+  }
 }
 
 }  // namespace selection
@@ -70,6 +78,14 @@ double effects_cost(const SelectionResult& res, double searched_cost) {
   return cost;
 }
 
+// The path's effects with a parameter found by search (a drift's time
+// constant, a cycle's period).
+int searched_effects(const SelectionResult& res) {
+  return static_cast<int>(std::count_if(
+      res.terms.begin(), res.terms.end(),
+      [](const SelectedTerm& st) { return selection::has_searched_parameter(st.term); }));
+}
+
 double columns(const SelectionResult& res) {
   int k = 0;
   for (const SelectedTerm& st : res.datum) k += st.term.columns();
@@ -83,8 +99,19 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
                                const SelectionOptions& o) {
   selection::PathSummary kept;
   SelectionResult best = selection::select_path(pb, cs, o, nullptr, kept);
-  if (!ends_with_smooth_function(best) || kept.first_alternatives.empty()) return best;
-  const std::vector<Term> alternatives = kept.first_alternatives;
+  // Where the path ends with a smooth function every near alternative is
+  // tried; else, with revisit_searched_first, those that cost less than a
+  // first pick found by search (a static squareness beside a drift that
+  // grows with z: on a design whose time follows a position, the drift can
+  // take part of a second effect's structure at the first step).
+  std::vector<Term> alternatives;
+  const bool by_smooth_function = ends_with_smooth_function(best);
+  if (by_smooth_function) {
+    alternatives = kept.first_alternatives;
+  } else if (o.revisit_searched_first) {
+    alternatives = kept.first_cheaper_alternatives;
+  }
+  if (alternatives.empty()) return best;
   SelectionOptions again = o;
   again.on_step = nullptr;  // the progress of the path that counts has been shown
   const auto n = static_cast<double>(pb.obs.size());
@@ -101,12 +128,21 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     // Better by more than the rounding of two fits of the same model (a
     // path whose first pick the backward check dropped may end where the
     // kept one did).
-    const bool wins = ic_path < ic_kept - 1e-6 * std::abs(ic_kept) && res.cv_sse <= best.cv_sse;
+    const bool better = ic_path < ic_kept - 1e-6 * std::abs(ic_kept) && res.cv_sse <= best.cv_sse;
+    // A static first pick in place of a searched one is tried for parsimony:
+    // a path that ends with more searched effects than the kept one (the
+    // drift traded for drifts, each with its time constant) does not win.
+    const int searched_path = searched_effects(res), searched_kept = searched_effects(best);
+    const bool wins = better && (by_smooth_function || searched_path <= searched_kept);
     notes.push_back(fmt::format(
         "revisit: first step {} in place of {}: criterion {:.6g} against {:.6g}, held-out SSE "
         "{:.6g} against {:.6g}{}",
         alt.label(), kept.first ? kept.first->label() : std::string("nothing"), ic_path, ic_kept,
-        res.cv_sse, best.cv_sse, wins ? ": taken" : ""));
+        res.cv_sse, best.cv_sse,
+        wins     ? std::string(": taken")
+        : better ? fmt::format(": not taken, {} effects with a searched parameter against {}",
+                               searched_path, searched_kept)
+                 : std::string()));
     if (wins) {
       best = std::move(res);
       kept = path;

@@ -22,10 +22,13 @@ namespace abbe::diagnose::selection {
 // The first step's near alternatives to `pick` (PathSummary::first_alternatives):
 // the scored candidates above their floors that remove at least
 // o.revisit_share of d_pick, and a drift's own family at its other time
-// constants, largest ΔRSS first, at most o.revisit_paths. Q, r: the span and
-// residual of the step (the datum's).
+// constants, largest ΔRSS first, at most o.revisit_paths (out); and, where
+// the pick has a searched parameter, those among them (before that cut)
+// that cost less on the criterion, at most o.revisit_paths (cheaper). Q, r: the span and residual
+// of the step (the datum's).
 void first_step_alternatives(const Problem& pb, const CandidateSet& cs, const SelectionOptions& o,
                              const Mat& Q, const Vec& r, const std::vector<Score>& scores,
-                             const Term& pick, double d_pick, std::vector<Term>& out);
+                             const Term& pick, double d_pick, std::vector<Term>& out,
+                             std::vector<Term>& cheaper);
 
 }  // namespace abbe::diagnose::selection

@@ -172,7 +172,7 @@ SelectionResult selection::select_path(const Problem& pb, const CandidateSet& cs
       ch.C = term_columns(pb, ch.pick);
       ch.d = selection::removed_by(ch.C, Q, r);
     } else if (!selection::choose_step(pb, cs, o, ps, Q, r, step, ch, res.log,
-                                       step == 0 ? &summary.first_alternatives : nullptr)) {
+                                       step == 0 ? &summary : nullptr)) {
       break;
     }
     Term& pick = ch.pick;

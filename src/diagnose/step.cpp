@@ -43,9 +43,12 @@ double share_along(const Problem& pb, const Term& t, int direction) {
   return all > 0.0 ? along / all : 0.0;
 }
 
+bool has_searched_parameter(const Term& t) {
+  return t.kind == TermKind::cyclic || t.kind == TermKind::thermal_drift;
+}
+
 double criterion_cost(const Term& t, double searched_cost) {
-  const bool searched = t.kind == TermKind::cyclic || t.kind == TermKind::thermal_drift;
-  return t.columns() + (searched ? searched_cost : 0.0);
+  return t.columns() + (has_searched_parameter(t) ? searched_cost : 0.0);
 }
 
 double Step::cost(const Term& t) const { return criterion_cost(t, o.searched_cost); }

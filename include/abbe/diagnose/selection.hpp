@@ -182,6 +182,10 @@ struct SelectionOptions {
   // not worse held out (0: no revisit).
   int revisit_paths = 3;
   double revisit_share = 0.9;
+  // …and also where the path ends with named effects only, from the first
+  // step's near alternatives that cost less on the criterion than a first
+  // pick with a searched parameter (a static effect in place of a drift).
+  bool revisit_searched_first = true;
   // Optional: called at the start of each selection step (0-based), e.g. for
   // a progress bar.
   std::function<void(int step)> on_step;
