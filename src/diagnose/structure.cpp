@@ -231,7 +231,11 @@ std::vector<std::vector<Term>> member_rivals(const Step& st, const Combo& combo,
         continue;  // the same effect (another period or time constant)
       std::vector<const Score*> swapped = combo.members;
       swapped[m] = &s;
-      if (st.together(swapped) >= combo.d - swap_margin) rivals[m].push_back(s.c->term);
+      const double d_swapped = st.together(swapped);
+      if (st.o.member_rivals_by_cost && s.c->term.kind == TermKind::thermal_drift &&
+          st.cost(s.c->term) > st.cost(pt) && !(d_swapped > combo.d))
+        continue;  // a costlier drift and no better: the criterion's choice
+      if (d_swapped >= combo.d - swap_margin) rivals[m].push_back(s.c->term);
     }
   return rivals;
 }

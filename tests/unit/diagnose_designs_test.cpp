@@ -1436,6 +1436,19 @@ TEST(DiagnoseDesigns, AStaticFirstPickInPlaceOfADriftIsRevisited) {
   EXPECT_TRUE(refused) << more_drifts.c.found;
 }
 
+// A member of a combination is not `ambiguous` with a costlier drift that
+// removes less in its place (SelectionOptions::member_rivals_by_cost).
+// Case 45 of the two-effect sweep (a squareness dY ∝ z beside a drift of
+// Y, t/(t+τ) at τ 985 s): the squareness and a drift t→Y at 1 200 s explain
+// the structure, and a drift z·t→Y at τ 300 s — the squareness but for
+// the first minutes, with its time constant searched — removed nearly as
+// much in the squareness's place, so the squareness was `ambiguous`.
+TEST(DiagnoseDesigns, AMemberIsNotAmbiguousWithACostlierDriftThatRemovesLess) {
+  SelectionOptions any_rival;
+  any_rival.member_rivals_by_cost = false;
+  expect_both_named_only_with_the_rule({45}, any_rival);
+}
+
 // The swap test beside the smooth functions (RivalOptions::beside_smooth):
 // case 68 of the two-effect sweep, a scale of X beside an off-centre
 // coupling y·z→X, was named a drift x·t→X with τ = 300 s (settled within

@@ -144,6 +144,14 @@ struct SelectionOptions {
   // partner is (false: the partners only; the lead then has only the
   // rivals it has alone).
   bool lead_rivals_in_combination = true;
+  // …and not with a drift that costs more on the criterion (its time
+  // constant searched) and removes less in the member's place (a drift
+  // z·t→Y at τ 300 s, a squareness dY ∝ z but for the first minutes, in
+  // place of the squareness): the criterion chose the cheaper form, as for
+  // the rivals of a single pick. A costlier cycle stays a rival: on a
+  // levelled axis its aliases are any function of the levels, the design's
+  // ambiguity (false: any candidate within the margin).
+  bool member_rivals_by_cost = true;
   // The smooth function's surplus. Where no named part of the best smooth
   // function's structure explains `name_ratio` of its ΔRSS, alone or in a
   // combination, a part still explains the structure when what the smooth
