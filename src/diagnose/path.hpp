@@ -22,9 +22,9 @@ struct PathSummary {
   // alone), and the pick's own family at its other time constants, largest
   // first.
   std::vector<Term> first_alternatives;
-  // Those of them (up to revisit_paths, before the cut to revisit_paths)
-  // that cost less on the criterion than a pick with a searched parameter
-  // (SelectionOptions::revisit_searched_first).
+  // Where the pick has a searched parameter: the near alternatives (before
+  // the cut to revisit_paths) that cost less on the criterion, at most
+  // revisit_paths (SelectionOptions::revisit_searched_first).
   std::vector<Term> first_cheaper_alternatives;
 };
 

@@ -9,7 +9,11 @@
 // `unexplained` function, the paths from the first step's near
 // alternatives are run too; one that is better on the information
 // criterion (RSS + σ̂²·ln(n)·cost, σ̂² the smaller residual variance of the
-// two) and not worse held out replaces it.
+// two) and not worse held out replaces it. Where a path ends with named
+// effects only and its first pick has a searched parameter (a drift z·t→Y
+// that took a squareness dY ∝ z and part of a drift of Y), the paths from
+// the near alternatives that cost less are run (revisit_searched_first),
+// and one wins only where it also ends with no more searched effects.
 #include <vector>
 
 #include "abbe/diagnose/candidates.hpp"
@@ -24,8 +28,8 @@ namespace abbe::diagnose::selection {
 // o.revisit_share of d_pick, and a drift's own family at its other time
 // constants, largest ΔRSS first, at most o.revisit_paths (out); and, where
 // the pick has a searched parameter, those among them (before that cut)
-// that cost less on the criterion, at most o.revisit_paths (cheaper). Q, r: the span and residual
-// of the step (the datum's).
+// that cost less on the criterion, at most o.revisit_paths (cheaper).
+// Q, r: the span and residual of the step (the datum's).
 void first_step_alternatives(const Problem& pb, const CandidateSet& cs, const SelectionOptions& o,
                              const Mat& Q, const Vec& r, const std::vector<Score>& scores,
                              const Term& pick, double d_pick, std::vector<Term>& out,

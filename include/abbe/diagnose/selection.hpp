@@ -192,7 +192,9 @@ struct SelectionOptions {
   double revisit_share = 0.9;
   // …and also where the path ends with named effects only, from the first
   // step's near alternatives that cost less on the criterion than a first
-  // pick with a searched parameter (a static effect in place of a drift).
+  // pick with a searched parameter (a static effect in place of a drift);
+  // such a path wins only where it also ends with no more effects with a
+  // searched parameter than the kept one.
   bool revisit_searched_first = true;
   // Optional: called at the start of each selection step (0-based), e.g. for
   // a progress bar.
