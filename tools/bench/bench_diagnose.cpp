@@ -117,14 +117,16 @@ void BM_DiagnoseGrid(benchmark::State& state) {
   abbe::diagnose::DiagnoseOptions o;
   o.design.levelled_axes = state.range(1) != 0;
   o.outliers.enabled = state.range(3) != 0;
-  std::size_t effects = 0;
+  std::size_t effects = 0, revisited = 0;
   for (auto _ : state) {
     const abbe::diagnose::Diagnosis d = abbe::diagnose::diagnose(s.machine, s.data, o);
     effects = d.effects.size();
+    revisited = revisits(d);
     benchmark::DoNotOptimize(effects);
   }
   state.counters["points"] = static_cast<double>(s.data.rows.size());
   state.counters["effects"] = static_cast<double>(effects);
+  state.counters["revisited"] = static_cast<double>(revisited);
 }
 BENCHMARK(BM_DiagnoseGrid)
     ->Args({100000, 1, 0, 1})
