@@ -1373,6 +1373,9 @@ TEST(DiagnoseDesigns, TheFirstStepIsRevisited) {
   // (AStructureTwoSmoothFunctionsFindIsExplainedFromEither).
   SelectionOptions best_vars;
   best_vars.structure_near_share = 0.0;
+  // And without the drift's course floor, which names case 68's scale at
+  // the first step (ADriftWhoseCourseIsNotResolvedIsItsStaticForm).
+  best_vars.drift_course_floor = false;
   SelectionOptions without = best_vars;
   without.revisit_paths = 0;
   for (const int i : {51, 68}) {
@@ -1398,9 +1401,10 @@ TEST(DiagnoseDesigns, TheFirstStepIsRevisited) {
 // Two-effect cases that name both effects with the default rules and not
 // with `without` (a rule switched off): the rule is what names them.
 void expect_both_named_only_with_the_rule(const std::vector<int>& cases,
-                                          const SelectionOptions& without) {
+                                          const SelectionOptions& without,
+                                          const SelectionOptions* rules = nullptr) {
   for (int i : cases) {
-    const TwoEffects with = two_effects_case(i);
+    const TwoEffects with = two_effects_case(i, rules);
     EXPECT_TRUE(with.named[0] && with.named[1]) << "case " << i << ": " << with.c.found;
     EXPECT_FALSE(with.bad) << "case " << i;
     const TwoEffects off = two_effects_case(i, &without);
@@ -1422,10 +1426,15 @@ void expect_both_named_only_with_the_rule(const std::vector<int>& cases,
 // drifts for the kept path's one and names an arm offset that is part of
 // neither effect: it is not taken.
 TEST(DiagnoseDesigns, AStaticFirstPickInPlaceOfADriftIsRevisited) {
-  SelectionOptions drift_kept;
+  // Without the drift's course floor, which names case 483's scale at the
+  // first step and case 409's scale of Y
+  // (ADriftWhoseCourseIsNotResolvedIsItsStaticForm).
+  SelectionOptions rules;
+  rules.drift_course_floor = false;
+  SelectionOptions drift_kept = rules;
   drift_kept.revisit_searched_first = false;
-  expect_both_named_only_with_the_rule({249, 483}, drift_kept);
-  const TwoEffects more_drifts = two_effects_case(409);
+  expect_both_named_only_with_the_rule({249, 483}, drift_kept, &rules);
+  const TwoEffects more_drifts = two_effects_case(409, &rules);
   EXPECT_FALSE(more_drifts.bad) << more_drifts.c.found;
   bool refused = false;
   for (const std::string& line : more_drifts.c.log)
@@ -1449,6 +1458,36 @@ TEST(DiagnoseDesigns, AMemberIsNotAmbiguousWithACostlierDriftThatRemovesLess) {
   expect_both_named_only_with_the_rule({45}, any_rival);
 }
 
+// A drift that grows with a position is named only where its course in
+// time adds, beside its static form, more than the floor a name must pass
+// (SelectionOptions::drift_course_floor). Case 565 of the irregular grid
+// (a squareness dX ∝ z): a drift z·t→X at τ 300 s — the squareness but
+// for the first minutes — removed 13 096.3 against the squareness's
+// 13 090.1, and its criterion beat the squareness's; the name was wrong.
+// Case 662 of the grid without vx vy vz (a squareness dX ∝ z) the same.
+// Case 266 of the two-effect sweep (a reversal of Y and a squareness
+// dX ∝ z): the drift z·t→X at τ 600 s took the squareness's place at the
+// second step. With the floor each is named as the squareness.
+TEST(DiagnoseDesigns, ADriftWhoseCourseIsNotResolvedIsItsStaticForm) {
+  SelectionOptions course_free;
+  course_free.drift_course_floor = false;
+  for (const bool inferred : {false, true}) {
+    const Design design = inferred ? Design::grid : Design::grid_irregular;
+    const int i = inferred ? 662 : 565;
+    const auto [h, seed] = sweep_case(design, i);
+    ASSERT_EQ(h.shape, Shape::squareness);
+    const Case with = run_case(design, h, seed, 0.0, nullptr, inferred);
+    EXPECT_EQ(scored(with, h), Verdict::right) << "case " << i << ": " << with.found;
+    const Case off = run_case(design, h, seed, 0.0, &course_free, inferred);
+    EXPECT_EQ(scored(off, h), Verdict::wrong) << "case " << i << ": " << off.found;
+  }
+  const TwoEffects with = two_effects_case(266);
+  EXPECT_TRUE(with.named[0] && with.named[1]) << with.c.found;
+  EXPECT_FALSE(with.bad) << with.c.found;
+  const TwoEffects off = two_effects_case(266, &course_free);
+  EXPECT_TRUE(off.bad) << off.c.found;
+}
+
 // The swap test beside the smooth functions (RivalOptions::beside_smooth):
 // case 68 of the two-effect sweep, a scale of X beside an off-centre
 // coupling y·z→X, was named a drift x·t→X with τ = 300 s (settled within
@@ -1468,6 +1507,7 @@ TEST(DiagnoseDesigns, ARivalIsAlsoSoughtBesideTheSmoothFunction) {
   SelectionOptions first_pick_kept;
   first_pick_kept.revisit_paths = 0;
   first_pick_kept.structure_near_share = 0.0;  // else the first path names it
+  first_pick_kept.drift_course_floor = false;  // else the scale is the first pick
   const TwoEffects with = two_effects_case(68, &first_pick_kept);
   EXPECT_FALSE(with.bad) << with.c.found;
   const SelectedTerm d = drift_named(with);
@@ -1912,6 +1952,10 @@ TEST(DiagnoseDesigns, ADriftAmbiguousOnlyInItsFormIsNamed) {
 TEST(DiagnoseDesigns, ProportionalDriftsAreComparedWithTheirZeroFree) {
   RivalOptions fixed_zero;
   fixed_zero.zero_free_drifts = false;
+  // Without the drift's course floor, which names cases 338 and 362 as a
+  // scale X (ADriftWhoseCourseIsNotResolvedIsItsStaticForm).
+  SelectionOptions course_free;
+  course_free.drift_course_floor = false;
   for (int i : {14, 202, 338, 362, 734, 892}) {
     const auto [h, seed] = sweep_case(Design::diagonals, i);
     ASSERT_EQ(h.shape, Shape::drift);
@@ -1919,7 +1963,7 @@ TEST(DiagnoseDesigns, ProportionalDriftsAreComparedWithTheirZeroFree) {
     const Case with = run_case(Design::diagonals, h, seed);
     EXPECT_NE(with.verdict, Verdict::wrong) << i << with.found;
     const Case without =
-        run_case(Design::diagonals, h, seed, 0.0, nullptr, false, nullptr, &fixed_zero);
+        run_case(Design::diagonals, h, seed, 0.0, &course_free, false, nullptr, &fixed_zero);
     EXPECT_EQ(without.verdict, Verdict::wrong) << i << without.found;
   }
 }

@@ -152,6 +152,11 @@ struct SelectionOptions {
   // levelled axis its aliases are any function of the levels, the design's
   // ambiguity (false: any candidate within the margin).
   bool member_rivals_by_cost = true;
+  // A drift that grows with a position (x·t→X) is named only where its
+  // course in time adds, beside its static form (a scale or squareness),
+  // more than the floor a name must pass (its χ² and the practical
+  // floor); else the static form is the pick.
+  bool drift_course_floor = true;
   // The smooth function's surplus. Where no named part of the best smooth
   // function's structure explains `name_ratio` of its ΔRSS, alone or in a
   // combination, a part still explains the structure when what the smooth
