@@ -111,6 +111,9 @@ struct Step {
   // criterion; a cheaper candidate above its floors whose fitted
   // contribution correlates with `largest`'s above `competing_corr` and has
   // the better criterion takes its place (largest itself when none does).
+  // Then, with drift_course_floor, a drift that grows with a position gives
+  // way to its static form (a scale, a squareness) where its course in time
+  // adds less than a name's floor beside it (both under parsimony_ic).
   const Score* parsimonious(const Score* largest) const;
   // Ambiguity: the candidates of no higher cost that remove at least 0.9
   // of the target's ΔRSS, whose fitted contributions coincide with its
