@@ -154,19 +154,17 @@ const Score* Step::parsimonious(const Score* largest) const {
   // squareness) than the floor a name must pass is that static form
   // (drift_course_floor).
   const Term& bt = best->c->term;
-  if (o.drift_course_floor && bt.kind == TermKind::thermal_drift && bt.with_axis >= 0)
-    for (const Score& s : scores) {
-      const Term& t = s.c->term;
-      const TermKind static_kind =
-          bt.with_axis == bt.direction ? TermKind::scale : TermKind::squareness;
-      if (t.kind != static_kind || t.axis != bt.with_axis || t.direction != bt.direction) continue;
-      if (!(s.d > s.thr)) break;
-      const double d_both = together({best, &s});
-      const double s2 = std::max(rr - d_both, 1e-300) / std::max(dof_base - 2.0, 1.0);
-      const double floor = s2 * std::max(chi2_upper_quantile(1, o.alpha / tests_named), lambda);
-      if (!(d_both - s.d > floor)) best = &s;
-      break;
-    }
+  if (!o.drift_course_floor || bt.kind != TermKind::thermal_drift || bt.with_axis < 0) return best;
+  const Term form = position_term(bt.with_axis, bt.direction);
+  const auto s = std::find_if(scores.begin(), scores.end(), [&](const Score& sc) {
+    const Term& t = sc.c->term;
+    return t.kind == form.kind && t.axis == form.axis && t.direction == form.direction;
+  });
+  if (s == scores.end() || !(s->d > s->thr)) return best;
+  const double d_both = together({best, &*s});
+  const double s2 = std::max(rr - d_both, 1e-300) / std::max(dof_base - 2.0, 1.0);
+  const double floor = s2 * std::max(chi2_upper_quantile(1, o.alpha / tests_named), lambda);
+  if (!(d_both - s->d > floor)) best = &*s;
   return best;
 }
 
