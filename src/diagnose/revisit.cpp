@@ -86,6 +86,13 @@ int searched_effects(const SelectionResult& res) {
       [](const SelectedTerm& st) { return selection::has_searched_parameter(st.term); }));
 }
 
+// Whether the path names this effect (alone or as a combination's member).
+bool names(const SelectionResult& res, const Term& t) {
+  const std::string label = t.label();
+  return std::any_of(res.terms.begin(), res.terms.end(),
+                     [&](const SelectedTerm& st) { return st.term.label() == label; });
+}
+
 double columns(const SelectionResult& res) {
   int k = 0;
   for (const SelectedTerm& st : res.datum) k += st.term.columns();
@@ -132,8 +139,12 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     // A static first pick in place of a searched one is tried for parsimony:
     // a path that ends with more searched effects than the kept one (the
     // drift traded for drifts, each with its time constant) does not win.
+    // Nor does a path that names the kept first pick after all: its
+    // alternative did not take the pick's place but joined it (a cycle whose
+    // period aliases a scale on a levelled axis, beside that scale).
     const int searched_path = searched_effects(res), searched_kept = searched_effects(best);
-    const bool wins = better && (by_smooth_function || searched_path <= searched_kept);
+    const bool joined = o.revisit_alternative_replaces && kept.first && names(res, *kept.first);
+    const bool wins = better && ((by_smooth_function && !joined) || searched_path <= searched_kept);
     notes.push_back(fmt::format(
         "revisit: first step {} in place of {}: criterion {:.6g} against {:.6g}, held-out SSE "
         "{:.6g} against {:.6g}{}",

@@ -14,6 +14,10 @@
 // that took a squareness dY ∝ z and part of a drift of Y), the paths from
 // the near alternatives that cost less are run (revisit_searched_first),
 // and one wins only where it also ends with no more searched effects.
+// A path that names the kept first pick after all (its alternative joined
+// the pick instead of taking its place: a cycle aliasing a scale on a
+// levelled axis, the scale beside it) is held to that condition too
+// (revisit_alternative_replaces).
 #include <vector>
 
 #include "abbe/diagnose/candidates.hpp"

@@ -1445,6 +1445,30 @@ TEST(DiagnoseDesigns, AStaticFirstPickInPlaceOfADriftIsRevisited) {
   EXPECT_TRUE(refused) << more_drifts.c.found;
 }
 
+// A revisited path wins only where its alternative takes the first pick's
+// place (SelectionOptions::revisit_alternative_replaces). Case 31 of the
+// two-effect sweep (a scale of Y beside a drift ∝ z of Z): the kept path
+// names the scale first and ends with a smooth function; the path from a
+// cycle of Y at 4.18 mm (on the 8 regular levels of Y its samples are
+// nearly a line) names the scale of Y at its fourth step beside the cycle,
+// and is better on the criterion by 1.7 (1 078.5 against 1 080.2) and held
+// out; taken, both were `ambiguous` as one function of y on its levels.
+// Case 313 (a squareness dZ ∝ x beside an off-centre coupling x·z→Z): the
+// same with a cycle of X in Z at 4.51 mm beside the squareness.
+TEST(DiagnoseDesigns, ARevisitedAlternativeMustTakeThePicksPlace) {
+  SelectionOptions joined_wins;
+  joined_wins.revisit_alternative_replaces = false;
+  expect_both_named_only_with_the_rule({31, 313}, joined_wins);
+  const TwoEffects refused = two_effects_case(31);
+  bool logged = false;
+  for (const std::string& line : refused.c.log)
+    logged = logged || (line.find("first step cyclic Y→Y (4.18 mm) in place of scale Y") !=
+                            std::string::npos &&
+                        line.find("not taken, 2 effects with a searched parameter against 1") !=
+                            std::string::npos);
+  EXPECT_TRUE(logged) << refused.c.found;
+}
+
 // A member of a combination is not `ambiguous` with a costlier drift that
 // removes less in its place (SelectionOptions::member_rivals_by_cost).
 // Case 45 of the two-effect sweep (a squareness dY ∝ z beside a drift of

@@ -201,6 +201,12 @@ struct SelectionOptions {
   // such a path wins only where it also ends with no more effects with a
   // searched parameter than the kept one.
   bool revisit_searched_first = true;
+  // A revisited path wins only where its alternative takes the kept first
+  // pick's place: one that names the kept pick after all (a cycle whose
+  // period aliases a scale on a levelled axis, then the scale beside it)
+  // wins only with no more effects with a searched parameter than the kept
+  // path (false: any path better on the criterion and held out wins).
+  bool revisit_alternative_replaces = true;
   // Optional: called at the start of each selection step (0-based), e.g. for
   // a progress bar.
   std::function<void(int step)> on_step;
