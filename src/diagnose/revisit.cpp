@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -118,24 +119,43 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
   } else if (o.revisit_searched_first) {
     alternatives = kept.first_cheaper_alternatives;
   }
-  if (alternatives.empty()) return best;
+  // The path without an arm offset picked first at all: an arm offset moves
+  // the points in several directions at once, at ratios the model's angular
+  // tables fix, and can take two static effects' lines (a scale of X and a
+  // squareness dZ ∝ x) at its own ratio, leaving each a remainder.
+  std::optional<Term> arm_first;
+  if (by_smooth_function && o.revisit_paths > 0 && o.revisit_without_arm_offset && kept.first &&
+      kept.first->kind == TermKind::arm_offset)
+    arm_first = kept.first;
+  if (alternatives.empty() && !arm_first) return best;
   SelectionOptions again = o;
   again.on_step = nullptr;  // the progress of the path that counts has been shown
   const auto n = static_cast<double>(pb.obs.size());
   auto variance = [&](const selection::PathSummary& p, const SelectionResult& res) {
     return p.rss / std::max(n - columns(res), 1.0);
   };
+  // The two paths on the criterion, RSS + σ̂²·ln(n)·cost, σ̂² the smaller
+  // residual variance of the two.
+  struct Comparison {
+    double s2, ic_path, ic_kept;
+  };
+  auto compare = [&](const selection::PathSummary& path, const SelectionResult& res) {
+    const double s2 = std::min(variance(kept, best), variance(path, res));
+    return Comparison{s2, path.rss + s2 * std::log(n) * effects_cost(res, o.searched_cost),
+                      kept.rss + s2 * std::log(n) * effects_cost(best, o.searched_cost)};
+  };
+  // Better by more than the rounding of two fits of the same model (a path
+  // whose first pick the backward check dropped may end where the kept one
+  // did).
+  auto lower = [](const Comparison& c) {
+    return c.ic_path < c.ic_kept - 1e-6 * std::abs(c.ic_kept);
+  };
   std::vector<std::string> notes;
   for (const Term& alt : alternatives) {
     selection::PathSummary path;
     SelectionResult res = selection::select_path(pb, cs, again, &alt, path);
-    const double s2 = std::min(variance(kept, best), variance(path, res));
-    const double ic_kept = kept.rss + s2 * std::log(n) * effects_cost(best, o.searched_cost);
-    const double ic_path = path.rss + s2 * std::log(n) * effects_cost(res, o.searched_cost);
-    // Better by more than the rounding of two fits of the same model (a
-    // path whose first pick the backward check dropped may end where the
-    // kept one did).
-    const bool better = ic_path < ic_kept - 1e-6 * std::abs(ic_kept) && res.cv_sse <= best.cv_sse;
+    const Comparison c = compare(path, res);
+    const bool better = lower(c) && res.cv_sse <= best.cv_sse;
     // A static first pick in place of a searched one is tried for parsimony:
     // a path that ends with more searched effects than the kept one (the
     // drift traded for drifts, each with its time constant) does not win.
@@ -148,12 +168,36 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     notes.push_back(fmt::format(
         "revisit: first step {} in place of {}: criterion {:.6g} against {:.6g}, held-out SSE "
         "{:.6g} against {:.6g}{}",
-        alt.label(), kept.first ? kept.first->label() : std::string("nothing"), ic_path, ic_kept,
-        res.cv_sse, best.cv_sse,
+        alt.label(), kept.first ? kept.first->label() : std::string("nothing"), c.ic_path,
+        c.ic_kept, res.cv_sse, best.cv_sse,
         wins     ? std::string(": taken")
         : better ? fmt::format(": not taken, {} effects with a searched parameter against {}",
                                searched_path, searched_kept)
                  : std::string()));
+    if (wins) {
+      best = std::move(res);
+      kept = path;
+    }
+  }
+  if (arm_first) {
+    const std::string label = arm_first->label();
+    CandidateSet without = cs;
+    without.fixed.erase(std::remove_if(without.fixed.begin(), without.fixed.end(),
+                                       [&](const Term& t) { return t.label() == label; }),
+                        without.fixed.end());
+    selection::PathSummary path;
+    SelectionResult res = selection::select_path(pb, without, again, nullptr, path);
+    const Comparison c = compare(path, res);
+    // Not a near alternative of the same step: its fitted values differ from
+    // the kept path's by δ, and the held-out SSE of two fits that differ by
+    // δ has a standard error of about 2·σ̂·‖δ‖; held out, it must not be
+    // worse beyond that.
+    const double resolution = 2.0 * std::sqrt(c.s2) * (res.residual - best.residual).norm();
+    const bool wins = lower(c) && res.cv_sse <= best.cv_sse + resolution;
+    notes.push_back(fmt::format(
+        "revisit: without {}: criterion {:.6g} against {:.6g}, held-out SSE {:.6g} against "
+        "{:.6g} (its resolution {:.3g}){}",
+        label, c.ic_path, c.ic_kept, res.cv_sse, best.cv_sse, resolution, wins ? ": taken" : ""));
     if (wins) {
       best = std::move(res);
       kept = path;

@@ -17,7 +17,10 @@
 // A path that names the kept first pick after all (its alternative joined
 // the pick instead of taking its place: a cycle aliasing a scale on a
 // levelled axis, the scale beside it) is held to that condition too
-// (revisit_alternative_replaces).
+// (revisit_alternative_replaces). Where a path that ends with a smooth
+// function picked an arm offset first, the path without it is run too
+// (revisit_without_arm_offset; held out within the comparison's
+// resolution, 2·σ̂·‖δ‖).
 #include <vector>
 
 #include "abbe/diagnose/candidates.hpp"

@@ -1469,6 +1469,29 @@ TEST(DiagnoseDesigns, ARevisitedAlternativeMustTakeThePicksPlace) {
   EXPECT_TRUE(logged) << refused.c.found;
 }
 
+// The path without an arm offset picked first
+// (SelectionOptions::revisit_without_arm_offset). Case 333 of the
+// two-effect sweep (a scale of X and a squareness dZ ∝ x): an arm offset
+// εX×ΔY moves X and Z at once, at the ratio of the model's angular tables of
+// X, and took both lines at its ratio (ΔRSS 2 212); a 4.10 mm cycle of X and
+// a smooth dZ(x) took the remainders, all `ambiguous` as functions of x on
+// its 12 levels. Without it the path names the scale and the squareness
+// (criterion 1 008.2 against 1 039.7; held out 1 005.3 against 1 002.6,
+// within its resolution, 9.2). Case 197 (a squareness dZ ∝ x beside a drift
+// ∝ x of X): the same arm offset, then the squareness and a smooth dX(x,t);
+// without it the squareness and the drift.
+TEST(DiagnoseDesigns, ThePathWithoutAnArmOffsetPickedFirstIsRun) {
+  SelectionOptions arm_kept;
+  arm_kept.revisit_without_arm_offset = false;
+  expect_both_named_only_with_the_rule({333, 197}, arm_kept);
+  const TwoEffects with = two_effects_case(333);
+  bool logged = false;
+  for (const std::string& line : with.c.log)
+    logged = logged || (line.find("revisit: without arm_offset εX×ΔY") != std::string::npos &&
+                        line.find(": taken") != std::string::npos);
+  EXPECT_TRUE(logged) << with.c.found;
+}
+
 // A member of a combination is not `ambiguous` with a costlier drift that
 // removes less in its place (SelectionOptions::member_rivals_by_cost).
 // Case 45 of the two-effect sweep (a squareness dY ∝ z beside a drift of

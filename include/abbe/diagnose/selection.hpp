@@ -207,6 +207,11 @@ struct SelectionOptions {
   // wins only with no more effects with a searched parameter than the kept
   // path (false: any path better on the criterion and held out wins).
   bool revisit_alternative_replaces = true;
+  // Where the path ends with a smooth function and its first pick is an arm
+  // offset, the path without that arm offset is run too; it wins where it
+  // is better on the criterion and not worse held out beyond the held-out
+  // SSE's resolution (false, or revisit_paths 0: not run).
+  bool revisit_without_arm_offset = true;
   // Optional: called at the start of each selection step (0-based), e.g. for
   // a progress bar.
   std::function<void(int step)> on_step;
