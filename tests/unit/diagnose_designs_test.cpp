@@ -1359,6 +1359,13 @@ TEST(DiagnoseDesigns, GridTwoEffects) {
   EXPECT_LE(static_cast<double>(wrong) / std::max(resolvable, 1), 0.02);
 }
 
+// Whether one line of the selection log holds both texts.
+bool logged(const Case& c, const std::string& what, const std::string& verdict) {
+  return std::any_of(c.log.begin(), c.log.end(), [&](const std::string& line) {
+    return line.find(what) != std::string::npos && line.find(verdict) != std::string::npos;
+  });
+}
+
 // The revisit of the first step (SelectionOptions::revisit_paths). Case
 // 51 (a drift of X at τ 2 099 s beside an off-centre coupling y·z→X) took
 // the drift at τ 900 s first, which took a part of the coupling, and a
@@ -1382,11 +1389,7 @@ TEST(DiagnoseDesigns, TheFirstStepIsRevisited) {
     const TwoEffects with = two_effects_case(i, &best_vars);
     EXPECT_TRUE(with.named[0] && with.named[1]) << "case " << i;
     EXPECT_FALSE(with.bad) << "case " << i;
-    bool taken = false;
-    for (const std::string& line : with.c.log)
-      taken =
-          taken || (line.rfind("revisit:", 0) == 0 && line.find(": taken") != std::string::npos);
-    EXPECT_TRUE(taken) << "case " << i;
+    EXPECT_TRUE(logged(with.c, "revisit:", ": taken")) << "case " << i;
     const TwoEffects off = two_effects_case(i, &without);
     EXPECT_FALSE(off.named[0] && off.named[1]) << "case " << i;
     for (const std::string& line : off.c.log) EXPECT_NE(line.rfind("revisit:", 0), 0u) << line;
@@ -1436,13 +1439,9 @@ TEST(DiagnoseDesigns, AStaticFirstPickInPlaceOfADriftIsRevisited) {
   expect_both_named_only_with_the_rule({249, 483}, drift_kept, &rules);
   const TwoEffects more_drifts = two_effects_case(409, &rules);
   EXPECT_FALSE(more_drifts.bad) << more_drifts.c.found;
-  bool refused = false;
-  for (const std::string& line : more_drifts.c.log)
-    refused = refused || (line.find("first step scale Y in place of thermal_drift y·t→Y") !=
-                              std::string::npos &&
-                          line.find("not taken, 2 effects with a searched parameter against 1") !=
-                              std::string::npos);
-  EXPECT_TRUE(refused) << more_drifts.c.found;
+  EXPECT_TRUE(logged(more_drifts.c, "first step scale Y in place of thermal_drift y·t→Y",
+                     "not taken, 2 effects with a searched parameter against 1"))
+      << more_drifts.c.found;
 }
 
 // A revisited path wins only where its alternative takes the first pick's
@@ -1460,13 +1459,9 @@ TEST(DiagnoseDesigns, ARevisitedAlternativeMustTakeThePicksPlace) {
   joined_wins.revisit_alternative_replaces = false;
   expect_both_named_only_with_the_rule({31, 313}, joined_wins);
   const TwoEffects refused = two_effects_case(31);
-  bool logged = false;
-  for (const std::string& line : refused.c.log)
-    logged = logged || (line.find("first step cyclic Y→Y (4.18 mm) in place of scale Y") !=
-                            std::string::npos &&
-                        line.find("not taken, 2 effects with a searched parameter against 1") !=
-                            std::string::npos);
-  EXPECT_TRUE(logged) << refused.c.found;
+  EXPECT_TRUE(logged(refused.c, "first step cyclic Y→Y (4.18 mm) in place of scale Y",
+                     "not taken, 2 effects with a searched parameter against 1"))
+      << refused.c.found;
 }
 
 // The path without an arm offset picked first
@@ -1485,11 +1480,7 @@ TEST(DiagnoseDesigns, ThePathWithoutAnArmOffsetPickedFirstIsRun) {
   arm_kept.revisit_without_arm_offset = false;
   expect_both_named_only_with_the_rule({333, 197}, arm_kept);
   const TwoEffects with = two_effects_case(333);
-  bool logged = false;
-  for (const std::string& line : with.c.log)
-    logged = logged || (line.find("revisit: without arm_offset εX×ΔY") != std::string::npos &&
-                        line.find(": taken") != std::string::npos);
-  EXPECT_TRUE(logged) << with.c.found;
+  EXPECT_TRUE(logged(with.c, "revisit: without arm_offset εX×ΔY", ": taken")) << with.c.found;
 }
 
 // A member of a combination is not `ambiguous` with a costlier drift that
