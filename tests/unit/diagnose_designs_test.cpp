@@ -1415,6 +1415,13 @@ void expect_both_named_only_with_the_rule(const std::vector<int>& cases,
   }
 }
 
+// Case i of the two-effect sweep logs one line that holds both texts.
+void expect_logged(int i, const std::string& what, const std::string& verdict,
+                   const SelectionOptions* rules = nullptr) {
+  const TwoEffects t = two_effects_case(i, rules);
+  EXPECT_TRUE(logged(t.c, what, verdict)) << "case " << i << ": " << t.c.found;
+}
+
 // The revisit from a static first pick in place of a drift
 // (SelectionOptions::revisit_searched_first). Case 249 of the two-effect
 // sweep (a squareness dY ∝ z beside a drift of Y, t/(t+τ) at τ 2 797 s):
@@ -1437,11 +1444,9 @@ TEST(DiagnoseDesigns, AStaticFirstPickInPlaceOfADriftIsRevisited) {
   SelectionOptions drift_kept = rules;
   drift_kept.revisit_searched_first = false;
   expect_both_named_only_with_the_rule({249, 483}, drift_kept, &rules);
-  const TwoEffects more_drifts = two_effects_case(409, &rules);
-  EXPECT_FALSE(more_drifts.bad) << more_drifts.c.found;
-  EXPECT_TRUE(logged(more_drifts.c, "first step scale Y in place of thermal_drift y·t→Y",
-                     "not taken, 2 effects with a searched parameter against 1"))
-      << more_drifts.c.found;
+  EXPECT_FALSE(two_effects_case(409, &rules).bad);
+  expect_logged(409, "first step scale Y in place of thermal_drift y·t→Y",
+                "not taken, 2 effects with a searched parameter against 1", &rules);
 }
 
 // A revisited path wins only where its alternative takes the first pick's
@@ -1458,10 +1463,8 @@ TEST(DiagnoseDesigns, ARevisitedAlternativeMustTakeThePicksPlace) {
   SelectionOptions joined_wins;
   joined_wins.revisit_alternative_replaces = false;
   expect_both_named_only_with_the_rule({31, 313}, joined_wins);
-  const TwoEffects refused = two_effects_case(31);
-  EXPECT_TRUE(logged(refused.c, "first step cyclic Y→Y (4.18 mm) in place of scale Y",
-                     "not taken, 2 effects with a searched parameter against 1"))
-      << refused.c.found;
+  expect_logged(31, "first step cyclic Y→Y (4.18 mm) in place of scale Y",
+                "not taken, 2 effects with a searched parameter against 1");
 }
 
 // The path without an arm offset picked first
@@ -1479,8 +1482,7 @@ TEST(DiagnoseDesigns, ThePathWithoutAnArmOffsetPickedFirstIsRun) {
   SelectionOptions arm_kept;
   arm_kept.revisit_without_arm_offset = false;
   expect_both_named_only_with_the_rule({333, 197}, arm_kept);
-  const TwoEffects with = two_effects_case(333);
-  EXPECT_TRUE(logged(with.c, "revisit: without arm_offset εX×ΔY", ": taken")) << with.c.found;
+  expect_logged(333, "revisit: without arm_offset εX×ΔY", ": taken");
 }
 
 // A member of a combination is not `ambiguous` with a costlier drift that
