@@ -127,10 +127,7 @@ void best_stand_in(const Problem& pb, const SwapTest& sw,
     std::vector<Term> fresh;
     std::string label;
     for (const Term& c : group) {
-      const bool selected =
-          std::any_of(effects.begin(), effects.end(),
-                      [&](const SelectedTerm& other) { return other.term.label() == c.label(); });
-      if (selected) continue;  // already in the fit
+      if (names(effects, c)) continue;  // already in the fit
       fresh.push_back(c);
       label += (label.empty() ? "" : " + ") + c.label();
     }

@@ -87,13 +87,6 @@ int searched_effects(const SelectionResult& res) {
       [](const SelectedTerm& st) { return selection::has_searched_parameter(st.term); }));
 }
 
-// Whether the path names this effect (alone or as a combination's member).
-bool names(const SelectionResult& res, const Term& t) {
-  const std::string label = t.label();
-  return std::any_of(res.terms.begin(), res.terms.end(),
-                     [&](const SelectedTerm& st) { return st.term.label() == label; });
-}
-
 double columns(const SelectionResult& res) {
   int k = 0;
   for (const SelectedTerm& st : res.datum) k += st.term.columns();
@@ -163,7 +156,8 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     // alternative did not take the pick's place but joined it (a cycle whose
     // period aliases a scale on a levelled axis, beside that scale).
     const int searched_path = searched_effects(res), searched_kept = searched_effects(best);
-    const bool joined = o.revisit_alternative_replaces && kept.first && names(res, *kept.first);
+    const bool joined =
+        o.revisit_alternative_replaces && kept.first && names(res.terms, *kept.first);
     const bool wins = better && ((by_smooth_function && !joined) || searched_path <= searched_kept);
     notes.push_back(fmt::format(
         "revisit: first step {} in place of {}: criterion {:.6g} against {:.6g}, held-out SSE "

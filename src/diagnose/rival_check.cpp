@@ -196,10 +196,7 @@ std::vector<std::string> mark_unrejected_rivals(const Problem& pb,
       if (cand.kind == se.term.kind && cand.axis == se.term.axis &&
           cand.direction == se.term.direction && cand.with_axis == se.term.with_axis)
         continue;
-      bool selected = false;
-      for (const SelectedTerm& other : effects)
-        selected = selected || other.term.label() == cand.label();
-      if (selected) continue;
+      if (names(effects, cand)) continue;
       const Mat Cc = term_columns(pb, cand);
       if (!(Cc.squaredNorm() > 0.0)) continue;
       // Two drifts in proportion to a position are compared zero free, the

@@ -117,6 +117,12 @@ bool choose_smooth_degree(const Problem& pb, const SelectionOptions& o, const Ma
 
 }  // namespace
 
+bool names(const std::vector<SelectedTerm>& effects, const Term& term) {
+  const std::string label = term.label();
+  return std::any_of(effects.begin(), effects.end(),
+                     [&](const SelectedTerm& st) { return st.term.label() == label; });
+}
+
 SelectionResult selection::select_path(const Problem& pb, const CandidateSet& cs,
                                        const SelectionOptions& o, const Term* forced_first,
                                        selection::PathSummary& summary) {

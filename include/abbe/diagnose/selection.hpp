@@ -275,6 +275,10 @@ struct SelectionResult {
 SelectionResult select_effects(const Problem& problem, const CandidateSet& candidates,
                                const SelectionOptions& options);
 
+// Whether the effects name this term (by its label; a combination's
+// members are effects of their own).
+bool names(const std::vector<SelectedTerm>& effects, const Term& term);
+
 // Fold of every point (k-fold, shuffled by `seed`).
 std::vector<int> point_folds(std::size_t points, int folds, std::uint64_t seed);
 
