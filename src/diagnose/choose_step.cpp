@@ -12,6 +12,7 @@
 #include "smooth_surplus.hpp"
 #include "step.hpp"
 #include "structure.hpp"
+#include "time_constant.hpp"
 
 namespace abbe::diagnose::selection {
 
@@ -261,15 +262,24 @@ bool choose_step(const Problem& pb, const CandidateSet& cs, const SelectionOptio
   // that the finer period does not give a cycle an edge over the fixed
   // candidates it competed with: on a few regular levels every period is
   // an alias, and a freer one fits the noise).
-  if (o.exact_period && best_named) {
+  // A chosen drift's τ likewise (exact_tau).
+  if ((o.exact_period || o.exact_tau) && best_named) {
     auto refine = [&](const Score* s) {
-      if (s->c->term.kind != TermKind::cyclic) return;
-      // A cycle is a scanned candidate: scanned[i] of family cs.scanned[i].
-      const auto i = static_cast<std::size_t>(s->c - scanned.data());
+      const TermKind kind = s->c->term.kind;
+      if (kind != TermKind::cyclic && kind != TermKind::thermal_drift) return;
+      // A cycle or a drift is a scanned candidate: scanned[i] of family cs.scanned[i].
+      std::size_t i = 0;
+      while (i < scanned.size() && &scanned[i] != s->c) ++i;
+      if (i == scanned.size()) return;
       const std::vector<double>& grid = cs.scanned[i].grid;
       if (grid.size() < 2) return;
-      const double half_step = std::abs(1.0 / grid[1] - 1.0 / grid[0]);
       Score& sc = scores[static_cast<std::size_t>(s - scores.data())];
+      if (kind == TermKind::thermal_drift) {
+        if (o.exact_tau) sc.d = refine_tau_exactly(pb, Q, r, grid, scanned[i]);
+        return;
+      }
+      if (!o.exact_period) return;
+      const double half_step = std::abs(1.0 / grid[1] - 1.0 / grid[0]);
       sc.d = refine_period_exactly(pb, Q, r, half_step, scanned[i]);
       if (o.rivals_by_test && !ps.levelled[static_cast<std::size_t>(s->c->term.axis)])
         confirm_aliases(pb, Q, r, half_step, sc.d, step_view.rival_margin(), scanned[i]);

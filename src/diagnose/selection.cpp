@@ -14,6 +14,7 @@
 #include "final_fit.hpp"
 #include "path.hpp"
 #include "span.hpp"
+#include "time_constant.hpp"
 
 namespace abbe::diagnose {
 using selection::fit_chosen;
@@ -284,6 +285,7 @@ SelectionResult selection::select_path(const Problem& pb, const CandidateSet& cs
         std::sqrt(r.squaredNorm() / std::max<double>(static_cast<double>(n - X.cols()), 1.0));
     if (chosen.empty()) return res;
   }
+  if (o.refine_tau) selection::refine_time_constants(pb, X, y, chosen, res.log);
   fit_chosen(pb, X, y, Qd, {chosen, ambiguous, separations, n_datum}, res);
   return res;
 }

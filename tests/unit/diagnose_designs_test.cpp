@@ -1383,6 +1383,11 @@ TEST(DiagnoseDesigns, TheFirstStepIsRevisited) {
   // And without the drift's course floor, which names case 68's scale at
   // the first step (ADriftWhoseCourseIsNotResolvedIsItsStaticForm).
   best_vars.drift_course_floor = false;
+  // And with the drift at its grid's τ: with its τ refined (exact_tau)
+  // case 51's first path names both (the drift at 900 s no longer takes a
+  // part of the coupling).
+  best_vars.exact_tau = false;
+  best_vars.refine_tau = false;
   SelectionOptions without = best_vars;
   without.revisit_paths = 0;
   for (const int i : {51, 68}) {
@@ -1459,12 +1464,17 @@ TEST(DiagnoseDesigns, AStaticFirstPickInPlaceOfADriftIsRevisited) {
 // out; taken, both were `ambiguous` as one function of y on its levels.
 // Case 313 (a squareness dZ ∝ x beside an off-centre coupling x·z→Z): the
 // same with a cycle of X in Z at 4.51 mm beside the squareness.
+// (With the drifts at their grid's τ: with the τ refined, exact_tau, both
+// cases name both effects on the kept path without the rule.)
 TEST(DiagnoseDesigns, ARevisitedAlternativeMustTakeThePicksPlace) {
-  SelectionOptions joined_wins;
+  SelectionOptions rules;
+  rules.exact_tau = false;
+  rules.refine_tau = false;
+  SelectionOptions joined_wins = rules;
   joined_wins.revisit_alternative_replaces = false;
-  expect_both_named_only_with_the_rule({31, 313}, joined_wins);
+  expect_both_named_only_with_the_rule({31, 313}, joined_wins, &rules);
   expect_logged(31, "first step cyclic Y→Y (4.18 mm) in place of scale Y",
-                "not taken, 2 effects with a searched parameter against 1");
+                "not taken, 2 effects with a searched parameter against 1", &rules);
 }
 
 // The path without an arm offset picked first

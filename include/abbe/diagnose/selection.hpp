@@ -72,6 +72,14 @@ struct SelectionOptions {
   // grid step): the periodogram's peak is the raw projection's, a fraction
   // of a lobe off the least-squares period on few or irregular levels.
   bool exact_period = true;
+  // A chosen drift's τ on the exact ΔRSS between the scan grid's
+  // neighbours of its τ (Brent on ln τ, time_constant.hpp), after the
+  // choice as for a period: at the grid's τ a part of the drift is left
+  // for a scale or a smooth function to take (false: the grid's τ).
+  bool exact_tau = true;
+  // And once more in the final fit beside every other named term: the
+  // reported τ and its uncertainty are the data's best (false: as chosen).
+  bool refine_tau = true;
   // Parsimony between competing explanations of one structure: a cheaper
   // significant named candidate whose fitted contribution correlates with
   // the largest one's above `competing_corr` takes its place when its
