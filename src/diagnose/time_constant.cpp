@@ -21,9 +21,12 @@ std::pair<double, double> best_time_constant(const Problem& pb, const Mat& Q, co
     const Mat C = term_columns(pb, t);
     return -delta_rss(C, C.transpose() * C, Q.transpose() * C, r);
   };
+  // ln τ to 2⁻¹⁶ (τ to 0.002 %: far inside its uncertainty, a few % where
+  // a drift is named; each step is a column of every observation).
+  constexpr int kBits = 16;
   std::uintmax_t iterations = 60;
   const auto [u, best] =
-      boost::math::tools::brent_find_minima(lost, std::log(lo), std::log(hi), 30, iterations);
+      boost::math::tools::brent_find_minima(lost, std::log(lo), std::log(hi), kBits, iterations);
   return {std::exp(u), -best};
 }
 

@@ -41,8 +41,7 @@ Problem three_runs(double tau, double amplitude, std::uint64_t seed, double t0 =
       test::add_reading(pb, y, pc, Eigen::Vector3d::UnitX(), off + drift + noise(rng));
     }
   }
-  test::finish_problem(pb, y, "run0", {true, false, false}, {-900, -250, -200},
-                       {-100, -250, -200});
+  test::finish_problem(pb, y, "run0", {true, false, false}, {-900, -250, -200}, {-100, -250, -200});
   pb.sets = {"run0", "run1", "run2"};
   return pb;
 }

@@ -110,13 +110,16 @@ std::size_t revisits(const abbe::diagnose::Diagnosis& d) {
 // range(0): points; range(1): 1 with the checks of what the design cannot
 // tell apart (design_ambiguity.hpp), 0 without — their cost as a ratio;
 // range(2): the hidden effects (make_grid_setup); range(3): 1 with the
-// outlier flagging (outliers.hpp), 0 without.
+// outlier flagging (outliers.hpp), 0 without; range(4): 1 with a chosen
+// drift's τ refined between the scan grid's values (exact_tau and
+// refine_tau, time_constant.hpp), 0 with the grid's τ.
 void BM_DiagnoseGrid(benchmark::State& state) {
   const Setup s =
       make_grid_setup(static_cast<int>(state.range(0)), static_cast<int>(state.range(2)));
   abbe::diagnose::DiagnoseOptions o;
   o.design.levelled_axes = state.range(1) != 0;
   o.outliers.enabled = state.range(3) != 0;
+  o.selection.exact_tau = o.selection.refine_tau = state.range(4) != 0;
   std::size_t effects = 0, revisited = 0;
   for (auto _ : state) {
     const abbe::diagnose::Diagnosis d = abbe::diagnose::diagnose(s.machine, s.data, o);
@@ -129,10 +132,12 @@ void BM_DiagnoseGrid(benchmark::State& state) {
   state.counters["revisited"] = static_cast<double>(revisited);
 }
 BENCHMARK(BM_DiagnoseGrid)
-    ->Args({100000, 1, 0, 1})
-    ->Args({100000, 0, 0, 1})
-    ->Args({100000, 1, 1, 1})
-    ->Args({100000, 1, 1, 0})
+    ->Args({100000, 1, 0, 1, 1})
+    ->Args({100000, 1, 0, 1, 0})
+    ->Args({100000, 0, 0, 1, 1})
+    ->Args({100000, 1, 1, 1, 1})
+    ->Args({100000, 1, 1, 1, 0})
+    ->Args({100000, 1, 1, 0, 1})
     ->Unit(benchmark::kSecond)
     ->Iterations(1);
 
