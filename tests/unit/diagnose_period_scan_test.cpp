@@ -81,34 +81,15 @@ TEST(DiagnosePeriodScan, APeriodBetweenTheGridsFrequenciesIsRefined) {
 }
 
 TEST(DiagnosePeriodScan, ADriftsTimeConstantIsFoundWhateverEachSetsOffset) {
-  // Three sets (runs of one line along X, 20 min apart, each with an
-  // unknown offset of up to ±20 µm, the datum): dX = 4 µm·(1 − e^(−t/τ))
-  // for τ of the grid; the scan gets the residual after the datum, as the
+  // Three sets (test::drift_runs: runs of one line along X, 20 min apart,
+  // each with an unknown offset, the datum): dX = 4 µm·(1 − e^(−t/τ)) for
+  // τ of the grid; the scan gets the residual after the datum, as the
   // selection does, and must return τ (and no aliases, for a drift). With
   // the column's full norm instead of its norm without each set's mean, the
   // scan returns 300 s for all three (measured by switching that off).
   const std::vector<double> grid = CandidateOptions{}.tau_s;
   for (double tau : {600.0, 1800.0, 3600.0}) {
-    Problem pb;
-    std::mt19937_64 rng(static_cast<std::uint64_t>(tau));
-    std::normal_distribution<double> noise(0.0, 0.1);
-    std::uniform_real_distribution<double> offset(-20.0, 20.0);
-    std::vector<double> y;
-    double t = 0.0;
-    for (int set = 0; set < 3; ++set, t += 1200.0) {
-      const double off = offset(rng);
-      for (int i = 0; i <= 80; ++i, t += 10.0) {
-        PointContext pc;
-        pc.p = pc.s = Eigen::Vector3d(-900.0 + 10.0 * i, -250.0, -200.0);
-        pc.t = t;
-        pc.set = "run" + std::to_string(set);
-        test::add_reading(pb, y, pc, Eigen::Vector3d::UnitX(),
-                          off + 4.0 * (1.0 - std::exp(-t / tau)) + noise(rng));
-      }
-    }
-    test::finish_problem(pb, y, "run0", {true, false, false}, {-900, -250, -200},
-                         {-100, -250, -200});
-    pb.sets = {"run0", "run1", "run2"};
+    const Problem pb = test::drift_runs(tau, 4.0, 0.1, static_cast<std::uint64_t>(tau));
     // The residual after the datum: each set's mean removed.
     Eigen::VectorXd r = pb.y;
     for (int set = 0; set < 3; ++set) {

@@ -67,6 +67,35 @@ inline Problem sine_line(double zero, double span, int n, double period, double 
   return pb;
 }
 
+// Three runs of one laser line along X (81 targets 10 mm apart, x from
+// −900 mm, y = −250, z = −200), 20 min apart, each with an unknown offset
+// of up to ±20 µm (the datum, one set per run "run0".."run2"):
+// dX = amplitude·(1 − e^(−t/τ)) + N(0, σ²) (τ 0: no drift), t counted
+// from the first reading; the readings' time stamps start at `t0`.
+inline Problem drift_runs(double tau, double amplitude, double sigma, std::uint64_t seed,
+                          double t0 = 0.0) {
+  Problem pb;
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> noise(0.0, sigma);
+  std::uniform_real_distribution<double> offset(-20.0, 20.0);
+  std::vector<double> y;
+  double t = 0.0;
+  for (int set = 0; set < 3; ++set, t += 1200.0) {
+    const double off = offset(rng);
+    for (int i = 0; i <= 80; ++i, t += 10.0) {
+      PointContext pc;
+      pc.p = pc.s = Eigen::Vector3d(-900.0 + 10.0 * i, -250.0, -200.0);
+      pc.t = t0 + t;
+      pc.set = "run" + std::to_string(set);
+      const double drift = tau > 0.0 ? amplitude * (1.0 - std::exp(-t / tau)) : 0.0;
+      add_reading(pb, y, pc, Eigen::Vector3d::UnitX(), off + drift + noise(rng));
+    }
+  }
+  finish_problem(pb, y, "run0", {true, false, false}, {-900, -250, -200}, {-100, -250, -200});
+  pb.sets = {"run0", "run1", "run2"};
+  return pb;
+}
+
 // Two laser lines, there and back, 11 targets 40 mm apart, 5 s apart: along
 // X at y = 100 and along Y at x = 200, z = 0, one set. `line_only`: each
 // point measured along its line (d_x on the X line, d_y on the Y line); else

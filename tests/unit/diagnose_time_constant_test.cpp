@@ -10,7 +10,6 @@
 #include <cmath>
 #include <cstdint>
 #include <iostream>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -20,30 +19,9 @@
 namespace abbe::diagnose {
 namespace {
 
-// Three runs of one laser line along X, 20 min apart, each with an unknown
-// offset of up to ±20 µm (the datum): dX = amplitude·(1 − e^(−t/τ)) + noise,
-// t counted from `t0`.
+// Three runs of one laser line along X (test::drift_runs), noise 0.05 µm.
 Problem three_runs(double tau, double amplitude, std::uint64_t seed, double t0 = 0.0) {
-  Problem pb;
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> noise(0.0, 0.05);
-  std::uniform_real_distribution<double> offset(-20.0, 20.0);
-  std::vector<double> y;
-  double t = 0.0;
-  for (int set = 0; set < 3; ++set, t += 1200.0) {
-    const double off = offset(rng);
-    for (int i = 0; i <= 80; ++i, t += 10.0) {
-      PointContext pc;
-      pc.p = pc.s = Eigen::Vector3d(-900.0 + 10.0 * i, -250.0, -200.0);
-      pc.t = t0 + t;
-      pc.set = "run" + std::to_string(set);
-      const double drift = tau > 0.0 ? amplitude * (1.0 - std::exp(-t / tau)) : 0.0;
-      test::add_reading(pb, y, pc, Eigen::Vector3d::UnitX(), off + drift + noise(rng));
-    }
-  }
-  test::finish_problem(pb, y, "run0", {true, false, false}, {-900, -250, -200}, {-100, -250, -200});
-  pb.sets = {"run0", "run1", "run2"};
-  return pb;
+  return test::drift_runs(tau, amplitude, 0.05, seed, t0);
 }
 
 // The selected drift of X (none: a default Term, not a drift).
