@@ -52,37 +52,36 @@ double refine_tau_exactly(const Problem& pb, const Mat& Q, const Vec& r,
 
 void refine_time_constants(const Problem& pb, Mat& X, const Vec& y, std::vector<Term>& chosen,
                            std::vector<std::string>& log) {
-  std::vector<Eigen::Index> start(chosen.size());
+  // Each chosen term's columns, as X holds them side by side.
+  std::vector<Mat> blocks;
+  std::vector<Eigen::Index> start;
   Eigen::Index columns = 0;
-  for (std::size_t i = 0; i < chosen.size(); ++i) {
-    start[i] = columns;
-    columns += chosen[i].columns();
+  for (const Term& t : chosen) {
+    if (columns + t.columns() > X.cols()) return;  // not the chosen terms' columns: leave them
+    start.push_back(columns);
+    blocks.emplace_back(X.middleCols(columns, t.columns()));
+    columns += t.columns();
   }
-  if (columns != X.cols()) return;  // not the chosen terms' columns: leave them
+  if (columns != X.cols()) return;
+  const Mat none(X.rows(), 0);
   for (std::size_t i = 0; i < chosen.size(); ++i) {
     Term& drift = chosen[i];
     if (drift.kind != TermKind::thermal_drift || !(drift.tau_s > 0.0)) continue;
     // Everything else of the named stage, and the data beside it.
-    Eigen::Index others = 0;
+    std::vector<bool> others(chosen.size());
     for (std::size_t j = 0; j < chosen.size(); ++j)
-      if (j != i && chosen[j].kind != TermKind::unexplained) others += chosen[j].columns();
-    Mat A(X.rows(), others);
-    Eigen::Index c = 0;
-    for (std::size_t j = 0; j < chosen.size(); ++j)
-      if (j != i && chosen[j].kind != TermKind::unexplained) {
-        A.middleCols(c, chosen[j].columns()) = X.middleCols(start[j], chosen[j].columns());
-        c += chosen[j].columns();
-      }
-    const Mat Q = span::orthonormal(A);
-    const Vec r = y - Q * (Q.transpose() * y);
-    const Mat C = X.middleCols(start[i], drift.columns());
+      others[j] = j != i && chosen[j].kind != TermKind::unexplained;
+    const Mat Q = span::basis_of(none, blocks, others);
+    const Vec r = span::residual_of(Q, y);
+    const Mat& C = blocks[i];
     const double before = delta_rss(C, C.transpose() * C, Q.transpose() * C, r);
     const auto [tau_best, after] =
         best_time_constant(pb, Q, r, drift, 0.5 * drift.tau_s, 2.0 * drift.tau_s);
     if (!(after > before)) continue;
     const double tau_before = drift.tau_s;
     drift.tau_s = tau_best;
-    X.middleCols(start[i], drift.columns()) = term_columns(pb, drift);
+    blocks[i] = term_columns(pb, drift);
+    X.middleCols(start[i], drift.columns()) = blocks[i];
     log.push_back(fmt::format("final fit: {} τ {:.6g} s → {:.6g} s (ΔRSS {:.6g} → {:.6g})",
                               drift.label(), tau_before, drift.tau_s, before, after));
   }
