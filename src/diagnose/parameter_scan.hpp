@@ -34,8 +34,8 @@ Term scan_parameter(const ScanFamily& f, const ScanInput& in, PowerCache& power_
                     std::vector<double>& aliases);
 
 // A cycle's period refined on the exact ΔRSS beside span(Q) (r ⟂ Q): a
-// golden-section search in frequency within ±half_step of the scan's
-// estimate. The periodogram's peak is that of the raw projection on the
+// Brent search in frequency within ±half_step of the scan's estimate
+// (boost::math::tools::brent_find_minima, as a drift's τ). The periodogram's peak is that of the raw projection on the
 // (subsampled) residual; where sine and cosine are not orthogonal on the
 // points (few or irregular levels) or the datum's columns take a part of
 // the cycle, it lies a fraction of a lobe off the least-squares period, and

@@ -68,8 +68,8 @@ struct SelectionOptions {
   // (false: the grid's best frequency; a quarter step off over a long
   // travel the cycle beats against the data).
   bool refine_period = true;
-  // Then on the exact ΔRSS beside the fit so far (golden section within one
-  // grid step): the periodogram's peak is the raw projection's, a fraction
+  // Then on the exact ΔRSS beside the fit so far (Brent within one grid
+  // step): the periodogram's peak is the raw projection's, a fraction
   // of a lobe off the least-squares period on few or irregular levels.
   bool exact_period = true;
   // A chosen drift's τ on the exact ΔRSS between the scan grid's
