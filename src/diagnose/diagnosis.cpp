@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "abbe/io/approach_directions.hpp"
+#include "abbe/machine/travel_check.hpp"
 
 namespace abbe::diagnose {
 
@@ -186,6 +187,12 @@ Diagnosis diagnose(const machine::Machine& machine, const io::MeasuredData& give
   d.machine = machine.name();
   d.measured_file = data.file;
   d.directions_inferred = axes;
+  machine::TravelCheck travel(machine.spec().travel);
+  for (const io::MeasuredRow& row : data.rows)
+    travel.add(row.p, row.tool_length == row.tool_length ? row.tool_length : machine.tool_length(),
+               row.line);
+  d.outside_travel_points = travel.outside();
+  d.travel_text = travel.text();
   return d;
 }
 

@@ -252,6 +252,8 @@ std::string report_json(const Diagnosis& d) {
                          {"points", d.extend_check.points},
                          {"outside_domain", d.extend_check.outside},
                          {"warnings", d.extend_check.warnings}};
+  j["outside_travel_points"] = d.outside_travel_points;
+  if (!d.travel_text.empty()) j["travel_warning"] = travel_warning(d);
   j["directions_inferred"] = json::array();
   for (int a : d.directions_inferred)
     j["directions_inferred"].push_back(std::string(1, axis_name(a)));
@@ -262,9 +264,19 @@ std::string report_json(const Diagnosis& d) {
   return j.dump(2) + "\n";
 }
 
+std::string travel_warning(const Diagnosis& d) {
+  if (d.travel_text.empty()) return "";
+  return fmt::format(
+      "{}: {}: the machine cannot go there, and its tables end at the travel (the model there is "
+      "the out-of-range policy's guess); are the data in machine coordinates (not the part's) and "
+      "is this the machine they were measured on?",
+      d.measured_file, d.travel_text);
+}
+
 std::string report_text(const Diagnosis& d) {
   std::string s = fmt::format("{}: {} points ({} observations), machine \"{}\", model {}\n",
                               d.measured_file, d.n_points, d.n_observations, d.machine, d.model);
+  if (const std::string w = travel_warning(d); !w.empty()) s += "warning: " + w + "\n";
   if (!d.directions_inferred.empty()) {
     std::string axes;
     for (int a : d.directions_inferred)

@@ -144,10 +144,15 @@ SelectionResult selection::select_path(const Problem& pb, const CandidateSet& cs
   std::vector<int> step_of;              // per chosen term: its step (−1: the datum)
   for (const Term& t : cs.datum) {
     const Mat C = term_columns(pb, t);
-    // Invisible in these data: the measured directions see (almost) none of
-    // what the term moves — e.g. the rotation of a circle measured along
-    // its radius, seen only through the rounding of the file's numbers.
-    if (!(C.squaredNorm() > 1e-6 * motion_squared(pb, t))) continue;
+    // Invisible in these data beyond the datum so far: the measured
+    // directions see (almost) none of what the term moves, or only what
+    // the offsets already take — e.g. the rotation of a circle measured
+    // along its radius, whose part that the file's rounding leaves is
+    // tangential, and whose centroid lies off the centre on a partial arc
+    // or a closed one that repeats its first reading (that shift is a
+    // constant offset). A column kept at the rounding's level would make
+    // the datum's fit ill-conditioned and its offsets meaningless.
+    if (!(span::residual_of(Q, C).squaredNorm() > 1e-6 * motion_squared(pb, t))) continue;
     const Eigen::Index before = Q.cols();
     append_orthonormal(Q, C);
     if (Q.cols() == before) continue;  // already in the span of the datum

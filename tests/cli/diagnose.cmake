@@ -156,3 +156,35 @@ expect_failure("bad_bb.csv:2:19 [direction]" ${ABBE} import ballbar ${WORK}/bad_
 if(EXISTS ${WORK}/bb-x.csv)
   message(FATAL_ERROR "a failed ballbar import left its output")
 endif()
+
+# Points the machine cannot reach: a real CAM program written in the part's
+# coordinates (x 0…208, y 0…32 mm; the sample machine's X and Y travels end
+# at 0) measured on the virtual machine, then diagnosed. Both commands warn
+# (on stderr, with the count per axis and the first lines), the summary and
+# the JSON say it too, and both still exit 0.
+execute_process(COMMAND ${ABBE} simulate measure --truth ${M}/truth.yaml
+                        --program ${SRC}/tests/data/cam-corpus/led-floor-1079-light-holder.nc
+                        -o ${WORK}/part-frame.csv
+                RESULT_VARIABLE rc ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT err MATCHES "379 of 380 points outside the travel \\(points per axis: X 321, Y 244, Z 11\\), first on lines 15, ")
+  message(FATAL_ERROR "simulate measure beyond the travel: exit ${rc}, no warning:\n${err}")
+endif()
+execute_process(COMMAND ${ABBE} diagnose --machine ${M}/machine.yaml
+                        --measured ${WORK}/part-frame.csv --out ${WORK}/part-frame.json
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT err MATCHES "379 of 380 points outside the travel.*machine coordinates"
+   OR NOT out MATCHES "warning: [^\n]*379 of 380 points outside the travel")
+  message(FATAL_ERROR "diagnose beyond the travel: exit ${rc}, no warning:\n${out}\n${err}")
+endif()
+file(READ ${WORK}/part-frame.json js)
+string(JSON n GET "${js}" outside_travel_points)
+if(NOT n EQUAL 379)
+  message(FATAL_ERROR "report.json: outside_travel_points ${n}, expected 379")
+endif()
+# Within the travel (the grid above): no such warning.
+file(READ ${WORK}/report.json js)
+string(JSON n GET "${js}" outside_travel_points)
+string(FIND "${js}" "travel_warning" at)
+if(NOT n EQUAL 0 OR NOT at EQUAL -1)
+  message(FATAL_ERROR "a grid within the travel: outside_travel_points ${n}, travel_warning at ${at}")
+endif()

@@ -66,6 +66,7 @@ int run_diagnose(const DiagnoseCliOptions& o, const GlobalOptions& g) {
   const diagnose::Diagnosis d = diagnose::diagnose(machine, data, opt);
   progress.finish();
   for (const std::string& w : d.extend_check.warnings) spdlog::warn("{}", w);
+  if (const std::string w = diagnose::travel_warning(d); !w.empty()) spdlog::warn("{}", w);
   if (!o.out.empty()) io::write_file_atomically(o.out, diagnose::report_json(d));
   if (!o.overlay.empty())
     io::write_file_atomically(o.overlay, diagnose::make_overlay(d, opt.extend).to_yaml());

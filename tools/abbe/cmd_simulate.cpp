@@ -3,6 +3,7 @@
 // with injected effects (measure). See docs/virtual-machine.md.
 #include <spdlog/spdlog.h>
 
+#include <array>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -14,6 +15,7 @@
 
 #include "abbe/gcode/program.hpp"
 #include "abbe/io/input_error.hpp"
+#include "abbe/machine/travel_check.hpp"
 #include "abbe/pipeline/program_path.hpp"
 #include "abbe/sim/laser_campaign.hpp"
 #include "abbe/sim/real_conventions.hpp"
@@ -193,6 +195,7 @@ int run_measure(const MeasureOptions& o) {
   const double noise = parse_um("--noise", o.noise);
   const double tool_length = std::isnan(o.tool_length) ? truth.tool_length : o.tool_length;
   std::vector<sim::TipState> tips;
+  std::vector<std::size_t> program_lines;  // per tip, with --program: its line in the program
   if (!o.program.empty()) {
     gcode::InterpreterConfig config;
     config.tool_lengths = truth.tool_table;
@@ -213,6 +216,7 @@ int run_measure(const MeasureOptions& o) {
       tip.time = p.time;
       tip.set = set;
       tips.push_back(tip);
+      program_lines.push_back(p.line);
     });
   } else {
     sim::GridOptions go;
@@ -234,6 +238,20 @@ int run_measure(const MeasureOptions& o) {
   const auto points = sim::measure(truth, tips, noise, o.seed);
   sim::write_text_file_atomically(o.output, sim::measured_to_csv(points));
   spdlog::info("measured {} points", points.size());
+  // A real machine cannot measure beyond its travel: say so (the lines are
+  // the program's, or the output file's for a grid).
+  std::array<machine::Travel, 3> travel;
+  for (std::size_t a = 0; a < 3; ++a)
+    travel[a] = {truth.axes[a].travel_min, truth.axes[a].travel_max};
+  machine::TravelCheck check(travel);
+  for (std::size_t i = 0; i < tips.size(); ++i)
+    check.add(tips[i].p, tips[i].tool_length, program_lines.empty() ? i + 2 : program_lines[i]);
+  if (check.outside())
+    spdlog::warn("{}: {}: the machine cannot go there (the truth's errors there are extrapolated)",
+                 !program_lines.empty()                ? o.program
+                 : o.output.empty() || o.output == "-" ? "<stdout>"
+                                                       : o.output,
+                 check.text());
   return kOk;
 }
 

@@ -75,6 +75,13 @@ struct Diagnosis {
   TransferCheck extend_check;
   // The axes whose approach directions were inferred (infer_directions).
   std::vector<int> directions_inferred;
+  // Measured points whose axis positions lie outside the machine's travel
+  // (machine/travel_check.hpp): the machine cannot go there, so the data
+  // are in another frame (the part's coordinates, not the machine's) or
+  // belong to another machine; travel_text says how many and where, and
+  // travel_warning() what it means. Diagnosed all the same.
+  std::size_t outside_travel_points = 0;
+  std::string travel_text;
   // What the design cannot test at all (blind_spots.hpp).
   std::vector<BlindSpot> blind_spots;
   std::vector<std::string> log;
@@ -84,6 +91,10 @@ Diagnosis diagnose(const machine::Machine& machine, const io::MeasuredData& data
                    const DiagnoseOptions& options);
 // The same on an already built residual problem.
 Diagnosis diagnose_problem(const Problem& problem, const DiagnoseOptions& options);
+
+// The warning for measured points outside the travel ("" when none are):
+// travel_text and what it means for the diagnosis.
+std::string travel_warning(const Diagnosis& d);
 
 // DESIGN.md §4 report (stable keys, plus a few extra informative ones).
 std::string report_json(const Diagnosis& d);
