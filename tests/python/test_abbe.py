@@ -140,6 +140,21 @@ def test_diagnose_returns_report_dict(machine):
     assert {"htm", "ae-arm", "dual"} <= {m["model"] for m in d["models"]}
 
 
+def test_diagnose_says_which_points_lie_outside_the_travel(machine, tmp_path):
+    # The plug plates' drilling coordinates (±330 mm) on the sample machine,
+    # whose X and Y travels end at 0: the points the machine cannot reach
+    # are counted, and the warning asks for machine coordinates.
+    plates = ROOT / "tests/data/plugplate"
+    cli_text("import", "plugplate", plates / "D8131_1", "-o", tmp_path / "8131.csv")
+    d = abbe.diagnose(machine, tmp_path / "8131.csv", folds=3)
+    assert 0 < d["outside_travel_points"] <= d["n_points"]
+    assert "points outside the travel" in d["travel_warning"]
+    assert "machine coordinates" in d["travel_warning"]
+    inside = abbe.diagnose(abbe.Machine(plates / "machine.yaml"), tmp_path / "8131.csv", folds=3)
+    assert inside["outside_travel_points"] == 0
+    assert "travel_warning" not in inside
+
+
 def test_diagnose_with_an_earlier_overlay(tmp_path):
     # Plate 8131's extended model on plate 8132 (same batch): the report says
     # what it does there after 8132's own datum, as `abbe diagnose --extend`.
