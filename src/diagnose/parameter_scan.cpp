@@ -136,15 +136,32 @@ double refine_period_exactly(const Problem& pb, const Mat& Q, const Vec& r, doub
     const Mat QtC = Q.transpose() * C;
     return delta_rss(C, CtC, QtC, r);
   };
-  // Brent on [f − h, f + h] (the frequency stays positive), to the
-  // precision a double allows (2⁻²⁵ of f: over a 1 m travel a period
-  // of 16 mm is placed to a few 10⁻⁶ of a cycle).
+  // On [f − h, f + h] (the frequency stays positive). On few or irregular
+  // levels what a cycle removes can have more than one local maximum
+  // within one grid step, so the interval is first sampled at 9
+  // frequencies; then Brent between the best sample's neighbours, to the
+  // precision a double allows (2⁻²⁵ of f: over a 1 m travel a period of
+  // 16 mm is placed to a few 10⁻⁶ of a cycle).
+  constexpr int kSamples = 9;
+  const double lo = std::max(f_scan - half_step, 0.5 * f_scan), hi = f_scan + half_step;
+  const double step = (hi - lo) / (kSamples - 1);
+  int k_best = 0;
+  double g_sampled = -1.0;
+  for (int k = 0; k < kSamples; ++k) {
+    const double g = removes(lo + k * step);
+    if (g > g_sampled) {
+      g_sampled = g;
+      k_best = k;
+    }
+  }
   constexpr int kBits = std::numeric_limits<double>::digits / 2;
   std::uintmax_t iterations = 60;
-  const auto [f_best, lost] = boost::math::tools::brent_find_minima(
-      [&](double f) { return -removes(f); }, std::max(f_scan - half_step, 0.5 * f_scan),
-      f_scan + half_step, kBits, iterations);
-  const double g_best = -lost;
+  const auto [f_brent, lost] = boost::math::tools::brent_find_minima(
+      [&](double f) { return -removes(f); }, lo + std::max(k_best - 1, 0) * step,
+      lo + std::min(k_best + 1, kSamples - 1) * step, kBits, iterations);
+  const bool brent_better = -lost >= g_sampled;
+  const double f_best = brent_better ? f_brent : lo + k_best * step;
+  const double g_best = brent_better ? -lost : g_sampled;
   if (!(g_best > d_scan)) return d_scan;
   c.term.period_mm = 1.0 / f_best;
   c.C = term_columns(pb, c.term);

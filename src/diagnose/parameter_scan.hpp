@@ -33,10 +33,11 @@ using PowerCache = std::array<std::vector<double>, 3>;
 Term scan_parameter(const ScanFamily& f, const ScanInput& in, PowerCache& power_cache,
                     std::vector<double>& aliases);
 
-// A cycle's period refined on the exact ΔRSS beside span(Q) (r ⟂ Q): a
-// Brent search in frequency within ±half_step of the scan's estimate
-// (boost::math::tools::brent_find_minima, as a drift's τ). The periodogram's peak is that of the raw projection on the
-// (subsampled) residual; where sine and cosine are not orthogonal on the
+// A cycle's period refined on the exact ΔRSS beside span(Q) (r ⟂ Q):
+// within ±half_step of the scan's estimate in frequency, 9 samples, then
+// a Brent search (boost::math::tools::brent_find_minima, as a drift's τ)
+// between the best sample's neighbours. The periodogram's peak is that of the raw projection on the (subsampled)
+// residual; where sine and cosine are not orthogonal on the
 // points (few or irregular levels) or the datum's columns take a part of
 // the cycle, it lies a fraction of a lobe off the least-squares period, and
 // over a long travel that fraction beats against the data: a second cycle

@@ -1734,6 +1734,20 @@ TEST(DiagnoseDesigns, AChosenCyclesPeriodIsRefinedOnTheFit) {
   }
 }
 
+// What a cycle removes can have two maxima within one grid step of the
+// scan on irregular levels: the refinement samples the step before its
+// Brent search. Case 400 of the irregular grid (a pitch error of X, 30.1 mm
+// with a harmonic) is named by its kind with the 8.94 mm cycle (ΔRSS 1247);
+// Brent over the whole step settled on 8.92 mm (ΔRSS 1199), the second and
+// third cycles then changed and the pitch error was missed.
+TEST(DiagnoseDesigns, AChosenCyclesPeriodIsTheBestMaximumWithinItsStep) {
+  const auto [h, seed] = sweep_case(Design::grid_irregular, 400);
+  ASSERT_EQ(h.shape, Shape::pitch);
+  const Case c = run_case(Design::grid_irregular, h, seed);
+  EXPECT_EQ(c.verdict, Verdict::right) << c.found;
+  EXPECT_TRUE(c.by_period) << c.found;
+}
+
 // The cycle period test's margin is one column's χ² times the noise of a
 // function of the levels (DesignAmbiguityOptions::level_noise_margin): the
 // model's own error at each target repeats in every run, so what the
