@@ -2,6 +2,9 @@
 
 #include <Eigen/Cholesky>
 #include <algorithm>
+#include <utility>
+
+#include "abbe/diagnose/selection.hpp"
 
 namespace abbe::diagnose::selection {
 
@@ -15,6 +18,18 @@ double delta_rss(const Mat& C, const Mat& CtC, const Mat& QtC, const Vec& r, Vec
   const Vec x = ldlt.solve(b);
   if (beta) *beta = x;
   return b.dot(x);
+}
+
+Cached cached(const Problem& pb, const Term& t, const Mat& Q, std::vector<double> aliases) {
+  Cached c{t, term_columns(pb, t), Mat(), Mat(), std::move(aliases)};
+  c.CtC = c.C.transpose() * c.C;
+  c.QtC = Q.transpose() * c.C;
+  return c;
+}
+
+double removes(const Problem& pb, const Term& t, const Mat& Q, const Vec& r) {
+  const Mat C = term_columns(pb, t);
+  return delta_rss(C, C.transpose() * C, Q.transpose() * C, r);
 }
 
 void point_sums(const Problem& pb, const Vec& r, Mat& R, Mat& W) {

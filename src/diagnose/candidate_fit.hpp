@@ -40,6 +40,11 @@ struct Alternatives {
 // when C lies in span(Q) (nothing new to fit); beta: the coefficients.
 double delta_rss(const Mat& C, const Mat& CtC, const Mat& QtC, const Vec& r, Vec* beta = nullptr);
 
+// Term t with its columns and their products beside span(Q).
+Cached cached(const Problem& pb, const Term& t, const Mat& Q, std::vector<double> aliases = {});
+// What term t removes of r beside span(Q) (r ⟂ Q): delta_rss of its columns.
+double removes(const Problem& pb, const Term& t, const Mat& Q, const Vec& r);
+
 // Point-level sums of the residual: R(p,·) = Σ_o u_o r_o; W(p,i) = Σ_o u_o,i².
 void point_sums(const Problem& pb, const Vec& r, Mat& R, Mat& W);
 

@@ -35,9 +35,7 @@ void add_rivals_in_combination(const Term& member, const std::vector<Term>& swap
 PathState::PathState(const Problem& pb, const CandidateSet& cs, const SelectionOptions& o,
                      const Mat& Q) {
   for (const Term& t : cs.fixed) {
-    Cached c{t, term_columns(pb, t), Mat(), Mat(), {}};
-    c.QtC = Q.transpose() * c.C;
-    c.CtC = c.C.transpose() * c.C;
+    Cached c = cached(pb, t, Q);
     if (c.CtC.diagonal().maxCoeff() <= 0.0) continue;  // invisible in these data
     named.push_back(std::move(c));
   }
@@ -125,10 +123,7 @@ bool choose_step(const Problem& pb, const CandidateSet& cs, const SelectionOptio
   for (const ScanFamily& f : cs.scanned) {
     std::vector<double> aliases;
     const Term t = scan_parameter(f, scan_in, power_cache, aliases);
-    Cached c{t, term_columns(pb, t), Mat(), Mat(), std::move(aliases)};
-    c.CtC = c.C.transpose() * c.C;
-    c.QtC = Q.transpose() * c.C;
-    scanned.push_back(std::move(c));
+    scanned.push_back(cached(pb, t, Q, std::move(aliases)));
   }
 
   // Best named candidate.

@@ -189,8 +189,7 @@ Diagnosis diagnose(const machine::Machine& machine, const io::MeasuredData& give
   d.directions_inferred = axes;
   machine::TravelCheck travel(machine.spec().travel);
   for (const io::MeasuredRow& row : data.rows)
-    travel.add(row.p, row.tool_length == row.tool_length ? row.tool_length : machine.tool_length(),
-               row.line);
+    travel.add(row.p, row.tool_length_or(machine.tool_length()), row.line);
   d.outside_travel_points = travel.outside();
   d.travel_text = travel.text();
   return d;

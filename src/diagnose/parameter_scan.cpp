@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <utility>
 
 #include "abbe/diagnose/selection.hpp"
 #include "abbe/io/units.hpp"
@@ -122,19 +123,24 @@ Term scan_parameter(const ScanFamily& f, const ScanInput& in, PowerCache& power_
   return t;
 }
 
+std::pair<double, double> brent_maximum(const std::function<double(double)>& f, double lo,
+                                        double hi, int bits) {
+  std::uintmax_t iterations = 60;
+  const auto [x, lost] = boost::math::tools::brent_find_minima([&](double v) { return -f(v); }, lo,
+                                                               hi, bits, iterations);
+  return {x, -lost};
+}
+
 double refine_period_exactly(const Problem& pb, const Mat& Q, const Vec& r, double half_step,
                              Cached& c) {
   const double d_scan = delta_rss(c.C, c.CtC, c.QtC, r);
   if (c.term.kind != TermKind::cyclic || !(c.term.period_mm > 0.0) || !(half_step > 0.0))
     return d_scan;
   const double f_scan = 1.0 / c.term.period_mm;
-  auto removes = [&](double f) {
+  auto removes_at = [&](double f) {
     Term t = c.term;
     t.period_mm = 1.0 / f;
-    const Mat C = term_columns(pb, t);
-    const Mat CtC = C.transpose() * C;
-    const Mat QtC = Q.transpose() * C;
-    return delta_rss(C, CtC, QtC, r);
+    return removes(pb, t, Q, r);
   };
   // On [f − h, f + h] (the frequency stays positive). On few or irregular
   // levels what a cycle removes can have more than one local maximum
@@ -148,25 +154,21 @@ double refine_period_exactly(const Problem& pb, const Mat& Q, const Vec& r, doub
   int k_best = 0;
   double g_sampled = -1.0;
   for (int k = 0; k < kSamples; ++k) {
-    const double g = removes(lo + k * step);
+    const double g = removes_at(lo + k * step);
     if (g > g_sampled) {
       g_sampled = g;
       k_best = k;
     }
   }
-  constexpr int kBits = std::numeric_limits<double>::digits / 2;
-  std::uintmax_t iterations = 60;
-  const auto [f_brent, lost] = boost::math::tools::brent_find_minima(
-      [&](double f) { return -removes(f); }, lo + std::max(k_best - 1, 0) * step,
-      lo + std::min(k_best + 1, kSamples - 1) * step, kBits, iterations);
-  const bool brent_better = -lost >= g_sampled;
+  const auto [f_brent, g_brent] = brent_maximum(removes_at, lo + std::max(k_best - 1, 0) * step,
+                                                lo + std::min(k_best + 1, kSamples - 1) * step,
+                                                std::numeric_limits<double>::digits / 2);
+  const bool brent_better = g_brent >= g_sampled;
   const double f_best = brent_better ? f_brent : lo + k_best * step;
-  const double g_best = brent_better ? -lost : g_sampled;
+  const double g_best = brent_better ? g_brent : g_sampled;
   if (!(g_best > d_scan)) return d_scan;
   c.term.period_mm = 1.0 / f_best;
-  c.C = term_columns(pb, c.term);
-  c.CtC = c.C.transpose() * c.C;
-  c.QtC = Q.transpose() * c.C;
+  c = cached(pb, c.term, Q, std::move(c.aliases));
   return g_best;
 }
 
@@ -175,11 +177,9 @@ void confirm_aliases(const Problem& pb, const Mat& Q, const Vec& r, double half_
   if (c.term.kind != TermKind::cyclic) return;
   std::vector<double> kept;
   for (double period : c.aliases) {
-    Cached a{c.term, Mat(), Mat(), Mat(), {}};
-    a.term.period_mm = period;
-    a.C = term_columns(pb, a.term);
-    a.CtC = a.C.transpose() * a.C;
-    a.QtC = Q.transpose() * a.C;
+    Term t = c.term;
+    t.period_mm = period;
+    Cached a = cached(pb, t, Q);
     const double d = refine_period_exactly(pb, Q, r, half_step, a);
     if (d_pick - d < margin) kept.push_back(a.term.period_mm);
   }

@@ -7,6 +7,8 @@
 // normalised projection).
 #include <array>
 #include <cstddef>
+#include <functional>
+#include <utility>
 #include <vector>
 
 #include "abbe/diagnose/candidates.hpp"
@@ -33,14 +35,19 @@ using PowerCache = std::array<std::vector<double>, 3>;
 Term scan_parameter(const ScanFamily& f, const ScanInput& in, PowerCache& power_cache,
                     std::vector<double>& aliases);
 
+// The x in [lo, hi] where f is largest, by Brent's method
+// (boost::math::tools::brent_find_minima, at most 60 evaluations) to `bits`
+// bits of x: {x, f(x)}. Used for a cycle's frequency and a drift's ln τ.
+std::pair<double, double> brent_maximum(const std::function<double(double)>& f, double lo,
+                                        double hi, int bits);
+
 // A cycle's period refined on the exact ΔRSS beside span(Q) (r ⟂ Q):
 // within ±half_step of the scan's estimate in frequency, 9 samples, then
 // a Brent search (boost::math::tools::brent_find_minima, as a drift's τ)
-// between the best sample's neighbours. The periodogram's peak is that of the raw projection on the (subsampled)
-// residual; where sine and cosine are not orthogonal on the
-// points (few or irregular levels) or the datum's columns take a part of
-// the cycle, it lies a fraction of a lobe off the least-squares period, and
-// over a long travel that fraction beats against the data: a second cycle
+// between the best sample's neighbours. The periodogram's peak is that of the raw projection on the
+// (subsampled) residual; where sine and cosine are not orthogonal on the points (few or irregular
+// levels) or the datum's columns take a part of the cycle, it lies a fraction of a lobe off the
+// least-squares period, and over a long travel that fraction beats against the data: a second cycle
 // at a neighbouring period is then needed for what the first left. c's
 // term, columns and products are replaced when the refined period removes
 // more (c's QtC must be Qᵀ·C). Returns what c removes then.

@@ -42,7 +42,7 @@ Problem build_problem(const machine::Machine& machine, const io::MeasuredData& d
   for (const io::MeasuredRow& row : data.rows) {
     model::EvalPoint ep;
     ep.p = row.p;
-    ep.tool_length = row.tool_length == row.tool_length ? row.tool_length : machine.tool_length();
+    ep.tool_length = row.tool_length_or(machine.tool_length());
     ep.dir = row.v;
     ep.time = row.t;
     Eigen::Vector3d pred;

@@ -43,10 +43,7 @@ std::vector<const Score*> partner_pool(const Step& st, std::size_t shortlist,
         if (tau == sc.c->term.tau_s) continue;
         Term t = sc.c->term;
         t.tau_s = tau;
-        Cached c{t, term_columns(st.pb, t), Mat(), Mat(), {}};
-        c.CtC = c.C.transpose() * c.C;
-        c.QtC = st.Q.transpose() * c.C;
-        out.rescanned.push_back(std::move(c));
+        out.rescanned.push_back(cached(st.pb, t, st.Q));
         const Cached& rc = out.rescanned.back();
         out.rescanned_scores.push_back(Score{&rc, delta_rss(rc.C, rc.CtC, rc.QtC, st.r), 0.0});
         pool.push_back(&out.rescanned_scores.back());

@@ -3,31 +3,27 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <boost/math/tools/minima.hpp>
 #include <cmath>
-#include <cstdint>
 
 #include "abbe/diagnose/selection.hpp"
+#include "parameter_scan.hpp"
 #include "span.hpp"
 
 namespace abbe::diagnose::selection {
 
 std::pair<double, double> best_time_constant(const Problem& pb, const Mat& Q, const Vec& r,
                                              const Term& drift, double lo, double hi) {
-  // What the drift at τ = e^u removes (−: Brent minimises).
-  auto lost = [&](double u) {
+  // What the drift at τ = e^u removes.
+  auto removes_at = [&](double u) {
     Term t = drift;
     t.tau_s = std::exp(u);
-    const Mat C = term_columns(pb, t);
-    return -delta_rss(C, C.transpose() * C, Q.transpose() * C, r);
+    return removes(pb, t, Q, r);
   };
   // ln τ to 2⁻¹⁶ (τ to 0.002 %: far inside its uncertainty, a few % where
   // a drift is named; each step is a column of every observation).
   constexpr int kBits = 16;
-  std::uintmax_t iterations = 60;
-  const auto [u, best] =
-      boost::math::tools::brent_find_minima(lost, std::log(lo), std::log(hi), kBits, iterations);
-  return {std::exp(u), -best};
+  const auto [u, best] = brent_maximum(removes_at, std::log(lo), std::log(hi), kBits);
+  return {std::exp(u), best};
 }
 
 double refine_tau_exactly(const Problem& pb, const Mat& Q, const Vec& r,
@@ -44,9 +40,7 @@ double refine_tau_exactly(const Problem& pb, const Mat& Q, const Vec& r,
   const auto [tau_best, d_best] = best_time_constant(pb, Q, r, c.term, lo, hi);
   if (!(d_best > d_scan)) return d_scan;
   c.term.tau_s = tau_best;
-  c.C = term_columns(pb, c.term);
-  c.CtC = c.C.transpose() * c.C;
-  c.QtC = Q.transpose() * c.C;
+  c = cached(pb, c.term, Q, std::move(c.aliases));
   return d_best;
 }
 

@@ -26,6 +26,10 @@ struct MeasuredRow {
 
   bool has(int k) const { return d[static_cast<std::size_t>(k)] == d[static_cast<std::size_t>(k)]; }
   bool has_dn() const { return dn == dn; }
+  // The row's tool length, or `machine_default` where the file gives none.
+  double tool_length_or(double machine_default) const {
+    return tool_length == tool_length ? tool_length : machine_default;
+  }
 };
 
 struct MeasuredData {
