@@ -173,10 +173,17 @@ Diagnosis diagnose(const machine::Machine& machine, const io::MeasuredData& give
   const io::MeasuredData& data = o.infer_directions ? inferred : given;
   const Problem pb = build_problem(machine, data, o.model, o.extend);
   Diagnosis d = diagnose_problem(pb, o);
+  std::vector<std::uint32_t> drop;
+  for (const Outlier& out : d.outliers) drop.push_back(out.point);
+  std::sort(drop.begin(), drop.end());
+  if (o.tables.draws > 0) {
+    d.tables =
+        add_table_uncertainty(machine, data, o.model, o.extend, drop, o.tables, d.datum, d.effects);
+    // A value whose u, the tables' part with it, is not below it is no name.
+    for (SelectedTerm& st : d.effects) st.significant = value_significant(st.term);
+    d.isotropic = isotropic_scale(d.effects);
+  }
   if (o.extend) {
-    std::vector<std::uint32_t> drop;
-    for (const Outlier& out : d.outliers) drop.push_back(out.point);
-    std::sort(drop.begin(), drop.end());
     const Problem with = without_points(pb, drop);
     d.extend_check =
         check_transfer(without_points(build_problem(machine, data, o.model, nullptr), drop), with,

@@ -1,6 +1,7 @@
 // The diagnosis report: JSON with the DESIGN.md §4 keys and the human summary.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
@@ -26,6 +27,21 @@ const char* unit_of(const std::string& param) {
   return "";
 }
 
+// The data's and the tables' parts of a term's parameter uncertainties
+// (param_stderr of the term with each part alone); empty when the tables'
+// uncertainty was not propagated.
+using ParamValues = std::vector<std::pair<std::string, double>>;
+std::pair<ParamValues, ParamValues> stderr_parts(const SelectedTerm& st) {
+  if (st.stderr_tables.empty()) return {};
+  Term data = st.term, tables = st.term;
+  data.stderr_ = st.stderr_data;
+  tables.stderr_ = st.stderr_tables;
+  data.searched_stderr =
+      st.searched_stderr_data >= 0.0 ? st.searched_stderr_data : st.term.searched_stderr;
+  tables.searched_stderr = std::max(st.searched_stderr_tables, 0.0);
+  return {data.param_stderr(), tables.param_stderr()};
+}
+
 std::string status_of(const SelectedTerm& st) {
   if (!st.ambiguous_with.empty()) return "ambiguous";
   return st.significant ? "named" : "not_significant";
@@ -45,6 +61,24 @@ bool value_significant(const Term& t) {
   const auto e = t.param_stderr();
   if (p.empty() || e.empty() || e[0].first != p[0].first) return true;
   return std::abs(p[0].second) > e[0].second;
+}
+
+std::string uncertainty_parts_text(const SelectedTerm& st) {
+  const auto [data, tables] = stderr_parts(st);
+  if (data.empty() || data.size() != tables.size()) return "";
+  std::string parts;
+  for (std::size_t i = 0; i < data.size(); ++i) {
+    const std::string& name = data[i].first;
+    // The value (first parameter) and a searched period or time constant.
+    if (i > 0 && name != "period_mm" && name != "tau_s") continue;
+    const char* unit = name == "tau_s" ? " s" : name == "period_mm" ? " mm" : unit_of(name);
+    parts += fmt::format("{}{} {:.2g} and {:.2g}{}", parts.empty() ? "" : "; ",
+                         i == 0            ? std::string("value")
+                         : name == "tau_s" ? "τ"
+                                           : "period",
+                         data[i].second, tables[i].second, unit);
+  }
+  return "u from the data and from the tables: " + parts;
 }
 
 std::string period_unresolved_text(const SelectedTerm& st) {
@@ -168,6 +202,13 @@ std::string report_json(const Diagnosis& d) {
     }
     e["params"] = params;
     e["stderr"] = err;
+    if (const auto [data, tables] = stderr_parts(st); !data.empty()) {
+      json ed = json::object(), et = json::object();
+      for (const auto& [k, v] : data) ed[k] = v;
+      for (const auto& [k, v] : tables) et[k] = v;
+      e["stderr_data"] = ed;
+      e["stderr_tables"] = et;
+    }
     if (!st.linear_parts.empty()) {
       json parts = json::array();
       for (const Term& lp : st.linear_parts) {
@@ -207,6 +248,10 @@ std::string report_json(const Diagnosis& d) {
     e["label"] = t.label();
     e["value"] = t.coef.empty() ? 0.0 : t.coef[0];
     e["stderr"] = t.stderr_.empty() ? 0.0 : t.stderr_[0];
+    if (!st.stderr_tables.empty()) {
+      e["stderr_data"] = st.stderr_data.empty() ? 0.0 : st.stderr_data[0];
+      e["stderr_tables"] = st.stderr_tables[0];
+    }
     e["explained_fraction"] = st.explained_fraction;
     j["datum"].push_back(e);
   }
@@ -229,6 +274,9 @@ std::string report_json(const Diagnosis& d) {
   for (const DynamicFinding& f : d.dynamic)
     j["dynamic"].push_back(
         {{"kind", f.kind}, {"set", f.set}, {"amplitude_um", f.amplitude_um}, {"z", f.z}});
+  if (d.tables.draws > 0)
+    j["table_uncertainty"] = {
+        {"draws", d.tables.draws}, {"seed", d.tables.seed}, {"sources", d.tables.sources}};
   j["noise_um"] = d.noise_um;
   j["noise_independent_um"] = d.noise_independent_um;
   j["noise_method"] = d.noise_method;
@@ -305,6 +353,11 @@ std::string report_text(const Diagnosis& d) {
   } else {
     s += fmt::format("effects ({}; together {:.1f} % of the residual after the datum):\n",
                      d.effects.size(), 100.0 * d.explained_together);
+    if (d.tables.draws > 0)
+      s += fmt::format(
+          "  every u holds the data's and the tables' uncertainty, √(data² + tables²) ({} draws of "
+          "the campaign: {})\n",
+          d.tables.draws, d.tables.sources);
     s += fmt::format("  {:<14} {:<4} {:<4} {:>24} {:>9} {:>7} {:>7}  {}\n", "kind", "axis", "dir",
                      "value ± u", "explained", "unique", "shared", "description");
     for (const SelectedTerm& st : d.effects) {
@@ -315,6 +368,8 @@ std::string report_text(const Diagnosis& d) {
                        100.0 * st.shared_fraction, t.description());
       if (const std::string lp = linear_part_text(st); !lp.empty())
         s += fmt::format("  {:<14} {}\n", "", lp);
+      if (const std::string up = uncertainty_parts_text(st); !up.empty())
+        s += fmt::format("  {:<14} {}\n", "", up);
       if (!st.significant)
         s += fmt::format(
             "  {:<14} NOT SIGNIFICANT (not a name: its standard uncertainty exceeds its value)\n",

@@ -8,6 +8,11 @@
 
 namespace abbe::diagnose::selection {
 
+// ∂(C(θ)β)/∂θ per observation (central difference) of a fitted term with a
+// searched parameter (a cycle's period, a drift's τ); empty for a term
+// without one.
+Vec searched_derivative(const Problem& pb, const Term& fitted);
+
 // u(θ) = σ̂ / ‖(I − X (XᵀX)⁻¹ Xᵀ) ∂(C(θ)β)/∂θ‖: the derivative of the
 // fitted term's contribution in θ (central difference), less what the
 // fit's other columns X (the term's own among them) take of it, gives θ's

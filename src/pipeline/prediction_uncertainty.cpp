@@ -6,34 +6,15 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <random>
 
 #include "abbe/io/input_error.hpp"
-#include "abbe/io/units.hpp"
 #include "abbe/machine/campaign_uncertainty.hpp"
+#include "abbe/machine/normal_stream.hpp"
 #include "abbe/pipeline/model_set.hpp"
 #include "abbe/pipeline/stored_prediction.hpp"
 
 namespace abbe::pipeline {
 namespace {
-
-// The seeded N(0, 1) deviates of the draws: std::mt19937_64 (its sequence is
-// fixed by the standard) with the transform done here (Box–Muller, two
-// uniforms per deviate), so a seed gives the same draws with every standard
-// library.
-class NormalStream {
- public:
-  explicit NormalStream(std::uint64_t seed) : engine_(seed) {}
-  double operator()() {
-    const double u1 = 1.0 - uniform();  // (0, 1]: the log is finite
-    const double u2 = uniform();
-    return std::sqrt(-2.0 * std::log(u1)) * std::cos(units::kTwoPi * u2);
-  }
-
- private:
-  double uniform() { return static_cast<double>(engine_() >> 11) * 0x1.0p-53; }
-  std::mt19937_64 engine_;
-};
 
 // Σδ and Σδ² of a point's deviation over the draws (δ about the plain
 // prediction: no cancellation), and its standard deviation.
@@ -173,7 +154,7 @@ UncertainPrediction predict_with_uncertainty(
       fig_aligned(n_models);
   std::vector<std::vector<Eigen::Vector3d>> drawn_e(
       aligned ? n_models : 0, std::vector<Eigen::Vector3d>(n_points, Eigen::Vector3d::Zero()));
-  NormalStream normal(uncertainty.seed);
+  machine::NormalStream normal(uncertainty.seed);
   const std::function<double()> deviate = [&normal] { return normal(); };
   for (std::size_t d = 0; d < uncertainty.draws; ++d) {
     const machine::Machine drawn = machine::draw_campaign(machine, deviate);

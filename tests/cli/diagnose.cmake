@@ -188,3 +188,31 @@ string(FIND "${js}" "travel_warning" at)
 if(NOT n EQUAL 0 OR NOT at EQUAL -1)
   message(FATAL_ERROR "a grid within the travel: outside_travel_points ${n}, travel_warning at ${at}")
 endif()
+
+# --table-uncertainty N: the tables' uncertainty (the machine file's
+# `uncertainty`) in every effect's u. The walk-through's grid against the
+# sample machine with its campaign's uncertainty: the summary says so and
+# splits the drift's u into the data's and the tables' parts, and the JSON
+# gives both; a machine without any uncertainty is refused by name.
+execute_process(COMMAND ${ABBE} diagnose --machine ${M}/machine-uncertainty.yaml
+                        --measured ${M}/measured-grid.csv --table-uncertainty 20
+                        --out ${WORK}/tables.json
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT out MATCHES "every u holds the data's and the tables' uncertainty[^\n]*20 draws"
+   OR NOT out MATCHES "u from the data and from the tables: value [0-9.e+-]+ and [0-9.e+-]+ µm; τ ")
+  message(FATAL_ERROR "diagnose --table-uncertainty: exit ${rc}:\n${out}\n${err}")
+endif()
+file(READ ${WORK}/tables.json js)
+string(JSON draws GET "${js}" table_uncertainty draws)
+string(JSON u_data GET "${js}" effects 0 stderr_data um)
+string(JSON u_tables GET "${js}" effects 0 stderr_tables um)
+string(JSON u GET "${js}" effects 0 stderr um)
+if(NOT draws EQUAL 20 OR NOT u_tables GREATER 0 OR NOT u GREATER u_data)
+  message(FATAL_ERROR "tables.json: draws ${draws}, u ${u} (data ${u_data}, tables ${u_tables})")
+endif()
+execute_process(COMMAND ${ABBE} diagnose --machine ${M}/machine.yaml
+                        --measured ${M}/measured-grid.csv --table-uncertainty 20
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 1 OR NOT err MATCHES "machine.yaml \\[uncertainty\\]: error: --table-uncertainty: nothing to propagate")
+  message(FATAL_ERROR "--table-uncertainty without an uncertainty: exit ${rc}:\n${err}")
+endif()

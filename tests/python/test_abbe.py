@@ -155,6 +155,27 @@ def test_diagnose_says_which_points_lie_outside_the_travel(machine, tmp_path):
     assert "travel_warning" not in inside
 
 
+def test_diagnose_adds_the_tables_uncertainty(machine):
+    # The walk-through's grid against the sample machine with its campaign's
+    # uncertainty: every named value's u holds the data's part and the
+    # tables' part, √(data² + tables²); without an uncertainty in the
+    # machine file the call is refused, naming the file and the key.
+    sample = ROOT / "machines/sample"
+    grid = sample / "measured-grid.csv"
+    d = abbe.diagnose(abbe.Machine(sample / "machine-uncertainty.yaml"), grid,
+                      table_uncertainty=20)
+    assert d["table_uncertainty"]["draws"] == 20
+    drift = d["effects"][0]
+    assert drift["kind"] == "thermal_drift"
+    data, tables, u = drift["stderr_data"], drift["stderr_tables"], drift["stderr"]
+    assert tables["um"] > 0
+    assert u["um"] == pytest.approx((data["um"] ** 2 + tables["um"] ** 2) ** 0.5)
+    assert u["tau_s"] == pytest.approx((data["tau_s"] ** 2 + tables["tau_s"] ** 2) ** 0.5)
+    assert "table_uncertainty" not in abbe.diagnose(machine, grid)
+    with pytest.raises(Exception, match=r"machine\.yaml.*uncertainty.*nothing to propagate"):
+        abbe.diagnose(machine, grid, table_uncertainty=20)
+
+
 def test_diagnose_with_an_earlier_overlay(tmp_path):
     # Plate 8131's extended model on plate 8132 (same batch): the report says
     # what it does there after 8132's own datum, as `abbe diagnose --extend`.

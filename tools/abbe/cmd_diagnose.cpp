@@ -32,6 +32,7 @@ struct DiagnoseCliOptions {
   std::uint64_t seed = 1;
   double max_period = 100.0;
   bool infer_directions = false;
+  std::size_t table_draws = 0;
 };
 
 int run_diagnose(const DiagnoseCliOptions& o, const GlobalOptions& g) {
@@ -54,6 +55,8 @@ int run_diagnose(const DiagnoseCliOptions& o, const GlobalOptions& g) {
   opt.selection.seed = o.seed;
   opt.candidates.max_period_mm = o.max_period;
   opt.infer_directions = o.infer_directions;
+  opt.tables.draws = o.table_draws;
+  opt.tables.seed = o.seed;
   std::optional<diagnose::Overlay> extend;
   if (!o.extend.empty()) {
     extend = diagnose::Overlay::load(o.extend);
@@ -105,7 +108,15 @@ const CommandRegistrar registrar(
       sub.add_option("--folds", o->folds, "Folds of the held-out check")
           ->check(CLI::Range(2, 50))
           ->capture_default_str();
-      sub.add_option("--seed", o->seed, "Seed of the fold assignment")->capture_default_str();
+      sub.add_option("--seed", o->seed,
+                     "Seed of the fold assignment (and of the draws of --table-uncertainty)")
+          ->capture_default_str();
+      sub.add_option("--table-uncertainty", o->table_draws,
+                     "Add the tables' uncertainty (machine file `uncertainty`, table column "
+                     "`uncertainty`) to every effect's u by Monte Carlo with N draws of the "
+                     "campaign: the residual built again and the effects refitted in each; the "
+                     "report gives the data's and the tables' parts (docs/diagnosis.md)")
+          ->check(CLI::Range(2, 100000));
       sub.add_option("--max-period", o->max_period, "Longest cyclic period searched, mm")
           ->check(CLI::Range(8.0, 10000.0))
           ->capture_default_str();

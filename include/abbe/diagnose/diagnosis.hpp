@@ -17,6 +17,7 @@
 #include "abbe/diagnose/residuals.hpp"
 #include "abbe/diagnose/rival_check.hpp"
 #include "abbe/diagnose/selection.hpp"
+#include "abbe/diagnose/table_uncertainty.hpp"
 #include "abbe/diagnose/transfer.hpp"
 #include "abbe/io/measured_data.hpp"
 #include "abbe/machine/machine.hpp"
@@ -35,6 +36,9 @@ struct DiagnoseOptions {
   // Axes without approach directions in the data get them from the order
   // of the points (io/approach_directions.hpp); off by default.
   bool infer_directions = false;
+  // The tables' uncertainty added to every named value's u by Monte Carlo
+  // (table_uncertainty.hpp; diagnose() only); draws 0: the data's u alone.
+  TableUncertaintyOptions tables;
 };
 
 struct Diagnosis {
@@ -82,6 +86,8 @@ struct Diagnosis {
   // travel_warning() what it means. Diagnosed all the same.
   std::size_t outside_travel_points = 0;
   std::string travel_text;
+  // The tables' uncertainty propagated into the u (draws 0: not).
+  TableUncertainty tables;
   // What the design cannot test at all (blind_spots.hpp).
   std::vector<BlindSpot> blind_spots;
   std::vector<std::string> log;
@@ -110,6 +116,9 @@ bool value_significant(const Term& t);
 // value exceeds its uncertainty; "" when none does or they hold less than
 // kLinearPartMinShare of the function (SelectedTerm::linear_parts).
 std::string linear_part_text(const SelectedTerm& st);
+// With the tables' uncertainty propagated: "u from the data and from the
+// tables: value 0.084 and 0.31 µm; τ 70 and 3.4e+02 s"; "" otherwise.
+std::string uncertainty_parts_text(const SelectedTerm& st);
 // A cycle named with its period unresolved (SelectedTerm::other_periods_mm):
 // "period not resolved: 7.52 mm fits as well"; "" otherwise.
 std::string period_unresolved_text(const SelectedTerm& st);

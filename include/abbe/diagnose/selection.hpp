@@ -253,6 +253,12 @@ struct SelectedTerm {
   // the function's sum of squares they hold. Not names (linear_part.hpp).
   std::vector<Term> linear_parts;
   double linear_share = 0.0;
+  // With the tables' uncertainty propagated (table_uncertainty.hpp): each
+  // coefficient's standard uncertainty from the data alone and from the
+  // tables (term.stderr_ then holds both combined), and the same for the
+  // searched parameter (τ, period; −1: none). Empty: not propagated.
+  std::vector<double> stderr_data, stderr_tables;
+  double searched_stderr_data = -1.0, searched_stderr_tables = -1.0;
 };
 
 // Below this share of its function a linear part is neither shown nor used

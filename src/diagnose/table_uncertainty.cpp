@@ -1,0 +1,126 @@
+#include "abbe/diagnose/table_uncertainty.hpp"
+
+#include <Eigen/Cholesky>
+#include <cmath>
+#include <functional>
+#include <stdexcept>
+
+#include "abbe/diagnose/outliers.hpp"
+#include "abbe/diagnose/residuals.hpp"
+#include "abbe/io/input_error.hpp"
+#include "abbe/machine/campaign_uncertainty.hpp"
+#include "abbe/machine/normal_stream.hpp"
+#include "searched_uncertainty.hpp"
+
+namespace abbe::diagnose {
+namespace {
+
+// One refitted term: where its coefficients and (searched_col ≥ 0) the
+// derivative in its searched parameter sit among the columns.
+using Mat = Eigen::MatrixXd;
+using Vec = Eigen::VectorXd;
+
+struct Refitted {
+  SelectedTerm* st = nullptr;
+  Eigen::Index first = 0, k = 0;
+  Eigen::Index searched_col = -1;
+};
+
+}  // namespace
+
+TableUncertainty add_table_uncertainty(const machine::Machine& machine,
+                                       const io::MeasuredData& data, model::ModelKind model,
+                                       const Overlay* extend,
+                                       const std::vector<std::uint32_t>& dropped,
+                                       const TableUncertaintyOptions& options,
+                                       std::vector<SelectedTerm>& datum,
+                                       std::vector<SelectedTerm>& effects) {
+  if (!machine::has_campaign_uncertainty(machine)) {
+    SourceLocation where;
+    where.file = machine.spec().file;
+    where.field = "uncertainty";
+    throw InputError(where,
+                     "--table-uncertainty: nothing to propagate: the machine file gives no "
+                     "uncertainty of its campaign (no `uncertainty` key, and the component table "
+                     "has no `uncertainty` column; docs/formats.md)");
+  }
+  if (options.draws < 2) throw std::invalid_argument("--table-uncertainty needs at least 2 draws");
+  TableUncertainty out;
+  out.draws = options.draws;
+  out.seed = options.seed;
+  out.sources = machine::campaign_uncertainty_text(machine);
+
+  const Problem nominal = without_points(build_problem(machine, data, model, extend), dropped);
+  const Eigen::Index n = nominal.y.size();
+
+  // The columns of the final fit's first stage (datum and named effects),
+  // each searched parameter's derivative beside them: the joint
+  // linearisation of the fit in every parameter.
+  std::vector<Refitted> refit;
+  std::vector<Mat> blocks;
+  Eigen::Index P = 0;
+  for (auto* list : {&datum, &effects})
+    for (SelectedTerm& st : *list) {
+      if (st.term.kind == TermKind::unexplained || st.term.coef.empty()) continue;
+      Refitted r;
+      r.st = &st;
+      blocks.push_back(term_columns(nominal, st.term));
+      r.first = P;
+      r.k = blocks.back().cols();
+      P += r.k;
+      refit.push_back(r);
+    }
+  for (Refitted& r : refit) {
+    if (!std::isfinite(r.st->term.searched_stderr)) continue;  // nothing fixes θ
+    Vec d = selection::searched_derivative(nominal, r.st->term);
+    if (d.size() == 0) continue;
+    blocks.emplace_back(d);
+    r.searched_col = P++;
+  }
+  if (P == 0) return out;
+  Mat A(n, P);
+  {
+    Eigen::Index c = 0;
+    for (const Mat& b : blocks) {
+      A.middleCols(c, b.cols()) = b;
+      c += b.cols();
+    }
+  }
+  Mat AtA = A.transpose() * A;
+  AtA.diagonal().array() += 1e-12 * AtA.trace() / static_cast<double>(P);
+  const Eigen::LDLT<Mat> ldlt(AtA);
+
+  // Σδ and Σδ² of every parameter's shift over the draws.
+  Vec sum = Vec::Zero(P), sum2 = Vec::Zero(P);
+  machine::NormalStream normal(options.seed);
+  const std::function<double()> deviate = [&normal] { return normal(); };
+  for (std::size_t k = 0; k < options.draws; ++k) {
+    const machine::Machine drawn = machine::draw_campaign(machine, deviate);
+    const Problem again = without_points(build_problem(drawn, data, model, extend), dropped);
+    const Vec shift = ldlt.solve(A.transpose() * (again.y - nominal.y));
+    sum += shift;
+    sum2 += shift.cwiseAbs2();
+  }
+  const auto N = static_cast<double>(options.draws);
+  const Vec u = ((sum2 - sum.cwiseAbs2() / N) / (N - 1.0)).cwiseMax(0.0).cwiseSqrt();
+
+  for (const Refitted& r : refit) {
+    SelectedTerm& st = *r.st;
+    st.stderr_data = st.term.stderr_;
+    st.stderr_tables.assign(static_cast<std::size_t>(r.k), 0.0);
+    for (Eigen::Index c = 0; c < r.k; ++c) {
+      const auto i = static_cast<std::size_t>(c);
+      st.stderr_tables[i] = u[r.first + c];
+      if (i < st.term.stderr_.size())
+        st.term.stderr_[i] = std::hypot(st.stderr_data[i], st.stderr_tables[i]);
+    }
+    if (r.searched_col >= 0) {
+      st.searched_stderr_data = st.term.searched_stderr;
+      st.searched_stderr_tables = u[r.searched_col];
+      st.term.searched_stderr = std::hypot(st.searched_stderr_data, st.searched_stderr_tables);
+    }
+  }
+  return out;
+}
+
+}  // namespace abbe::diagnose
