@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "abbe/io/approach_directions.hpp"
+#include "abbe/machine/campaign_uncertainty.hpp"
 #include "abbe/machine/travel_check.hpp"
 
 namespace abbe::diagnose {
@@ -183,6 +184,7 @@ Diagnosis diagnose(const machine::Machine& machine, const io::MeasuredData& give
     for (SelectedTerm& st : d.effects) st.significant = value_significant(st.term);
     d.isotropic = isotropic_scale(d.effects);
   }
+  d.tables.available = machine::has_campaign_uncertainty(machine);
   if (o.extend) {
     const Problem with = without_points(pb, drop);
     d.extend_check =

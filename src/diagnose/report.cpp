@@ -274,6 +274,7 @@ std::string report_json(const Diagnosis& d) {
   for (const DynamicFinding& f : d.dynamic)
     j["dynamic"].push_back(
         {{"kind", f.kind}, {"set", f.set}, {"amplitude_um", f.amplitude_um}, {"z", f.z}});
+  j["table_uncertainty_available"] = d.tables.available;
   if (d.tables.draws > 0)
     j["table_uncertainty"] = {
         {"draws", d.tables.draws}, {"seed", d.tables.seed}, {"sources", d.tables.sources}};
@@ -353,6 +354,9 @@ std::string report_text(const Diagnosis& d) {
   } else {
     s += fmt::format("effects ({}; together {:.1f} % of the residual after the datum):\n",
                      d.effects.size(), 100.0 * d.explained_together);
+    if (d.tables.available && d.tables.draws == 0)
+      s += "  every u is the data's alone: the machine file gives its tables' uncertainty, and "
+           "--table-uncertainty N adds it\n";
     if (d.tables.draws > 0)
       s += fmt::format(
           "  every u holds the data's and the tables' uncertainty, √(data² + tables²) ({} draws of "

@@ -46,6 +46,7 @@ TableUncertainty add_table_uncertainty(const machine::Machine& machine,
   }
   if (options.draws < 2) throw std::invalid_argument("--table-uncertainty needs at least 2 draws");
   TableUncertainty out;
+  out.available = true;
   out.draws = options.draws;
   out.seed = options.seed;
   out.sources = machine::campaign_uncertainty_text(machine);

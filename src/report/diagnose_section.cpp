@@ -35,10 +35,10 @@ DiagnosisForReport diagnose_for_report(const machine::Machine& machine,
                                        const io::MeasuredData& data,
                                        const diagnose::DiagnoseOptions& options) {
   DiagnosisForReport r;
+  // The diagnosis as `abbe diagnose` makes it (the travel check, the
+  // tables' uncertainty where asked), then its residual before and after.
+  r.diagnosis = diagnose::diagnose(machine, data, options);
   r.before = diagnose::build_problem(machine, data, options.model, options.extend);
-  r.diagnosis = diagnose::diagnose_problem(r.before, options);
-  r.diagnosis.machine = machine.name();
-  r.diagnosis.measured_file = data.file;
   const diagnose::Overlay overlay = diagnose::make_overlay(r.diagnosis, options.extend);
   r.after = diagnose::build_problem(machine, data, options.model, &overlay);
   // The datum (offsets, plate rotations) is fitted with the effects but is
@@ -71,6 +71,7 @@ void render_diagnose_report(HtmlPage& page, const DiagnosisForReport& r) {
   t.rows.push_back({d.model + " + effects", fmt::format("{:.3f}", d.extended.rms_um),
                     fmt::format("{:.3f}", d.extended.max_um)});
   page.add_table(t);
+  if (const std::string w = diagnose::travel_warning(d); !w.empty()) page.add_note(w);
   page.add_paragraph(fmt::format(
       "Held-out check ({} folds): rms {:.3f} µm without the effects, {:.3f} µm with them, a gain "
       "of {:.1f} %. Noise estimate after the fit: {:.3f} µm per observation.",
@@ -112,10 +113,17 @@ void render_diagnose_report(HtmlPage& page, const DiagnosisForReport& r) {
                       term.description() + [&] {
                         const std::string lp = diagnose::linear_part_text(d.effects[i]);
                         const std::string pu = diagnose::period_unresolved_text(d.effects[i]);
-                        return (lp.empty() ? lp : "; " + lp) + (pu.empty() ? pu : "; " + pu);
+                        const std::string up = diagnose::uncertainty_parts_text(d.effects[i]);
+                        return (lp.empty() ? lp : "; " + lp) + (pu.empty() ? pu : "; " + pu) +
+                               (up.empty() ? up : "; " + up);
                       }()});
   }
   page.add_table(e);
+  if (d.tables.draws > 0)
+    page.add_paragraph(fmt::format(
+        "Every u holds the data's and the tables' uncertainty, √(data² + tables²): {} draws of "
+        "the campaign ({}).",
+        d.tables.draws, d.tables.sources));
   if (d.effects.empty()) page.add_note("No effect stands out of the noise.");
   if (d.isotropic.found) page.add_paragraph(diagnose::isotropic_text(d));
   if (!d.blind_spots.empty()) {

@@ -210,6 +210,14 @@ string(JSON u GET "${js}" effects 0 stderr um)
 if(NOT draws EQUAL 20 OR NOT u_tables GREATER 0 OR NOT u GREATER u_data)
   message(FATAL_ERROR "tables.json: draws ${draws}, u ${u} (data ${u_data}, tables ${u_tables})")
 endif()
+# Without the option on that machine: the summary says the u are the data's
+# alone and how to add the tables'.
+execute_process(COMMAND ${ABBE} diagnose --machine ${M}/machine-uncertainty.yaml
+                        --measured ${M}/measured-grid.csv
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT out MATCHES "every u is the data's alone: the machine file gives its tables' uncertainty, and --table-uncertainty N adds it")
+  message(FATAL_ERROR "diagnose on a machine with an uncertainty, no hint: exit ${rc}:\n${out}")
+endif()
 execute_process(COMMAND ${ABBE} diagnose --machine ${M}/machine.yaml
                         --measured ${M}/measured-grid.csv --table-uncertainty 20
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)

@@ -143,6 +143,23 @@ run_ok("report diagnose" report diagnose --measured ${SRC}/machines/sample/measu
 expect_in(${WORK}/diagnosis.html "report diagnose"
   "id=\"diagnose-models\"" "id=\"diagnose-effects\"" "id=\"residual-x\"" "id=\"residual-t\""
   ">s_x (mm)</text>" ">t (s)</text>" ">residual (µm)</text>" "<td>ae-arm + effects</td>")
+# With the tables' uncertainty (the machine file's `uncertainty`): the page
+# says every u holds it and gives each effect's two parts.
+run_ok("report diagnose --table-uncertainty" report diagnose
+       --measured ${SRC}/machines/sample/measured-grid.csv
+       --machine ${SRC}/machines/sample/machine-uncertainty.yaml --table-uncertainty 10
+       -o ${WORK}/diagnosis-tables.html)
+expect_in(${WORK}/diagnosis-tables.html "report diagnose --table-uncertainty"
+  "the tables&#39; uncertainty, √(data² + tables²): 10 draws of the campaign"
+  "u from the data and from the tables: value ")
+# The plug plate in its own coordinates against the sample machine: the
+# page warns that the points lie outside the travel.
+execute_process(COMMAND ${ABBE} import plugplate ${SRC}/tests/data/plugplate/D8131_1
+                        -o ${WORK}/plate-8131.csv RESULT_VARIABLE rc)
+run_ok("report diagnose beyond the travel" report diagnose --measured ${WORK}/plate-8131.csv
+       --machine ${SRC}/machines/sample/machine.yaml -o ${WORK}/diagnosis-travel.html)
+expect_in(${WORK}/diagnosis-travel.html "report diagnose beyond the travel"
+  "points outside the travel" "machine coordinates")
 
 # ISO 230-2 report of the sample machine's runs: a chart per component.
 run_ok("report iso230" report iso230 ${SRC}/machines/sample/runs.csv -o ${WORK}/iso230.html)

@@ -165,13 +165,16 @@ def test_diagnose_adds_the_tables_uncertainty(machine):
     d = abbe.diagnose(abbe.Machine(sample / "machine-uncertainty.yaml"), grid,
                       table_uncertainty=20)
     assert d["table_uncertainty"]["draws"] == 20
+    assert d["table_uncertainty_available"] is True
     drift = d["effects"][0]
     assert drift["kind"] == "thermal_drift"
     data, tables, u = drift["stderr_data"], drift["stderr_tables"], drift["stderr"]
     assert tables["um"] > 0
     assert u["um"] == pytest.approx((data["um"] ** 2 + tables["um"] ** 2) ** 0.5)
     assert u["tau_s"] == pytest.approx((data["tau_s"] ** 2 + tables["tau_s"] ** 2) ** 0.5)
-    assert "table_uncertainty" not in abbe.diagnose(machine, grid)
+    plain = abbe.diagnose(machine, grid)
+    assert "table_uncertainty" not in plain
+    assert plain["table_uncertainty_available"] is False
     with pytest.raises(Exception, match=r"machine\.yaml.*uncertainty.*nothing to propagate"):
         abbe.diagnose(machine, grid, table_uncertainty=20)
 

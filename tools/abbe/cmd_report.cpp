@@ -50,7 +50,7 @@ struct ReportOptions {
   double tool_length = -1.0;
   std::size_t max_points = 5000;
   gcode::DialectOptions dialect;
-  std::size_t uncertainty = 0;  // report predict: Monte Carlo draws (0: none)
+  std::size_t uncertainty = 0;  // report predict, diagnose: Monte Carlo draws (0: none)
   std::uint64_t seed = 1;
   AlignCliOptions align;  // report predict: the part's set-up
 };
@@ -189,6 +189,8 @@ int run_report_diagnose(const ReportOptions& o) {
     throw InputError({"<command line>", 0, 0, "--model", ""},
                      "report diagnose takes one model (" + model::model_names_text(false) + ")");
   dopt.model = kinds.front();
+  dopt.tables.draws = o.uncertainty;
+  dopt.tables.seed = o.seed;
   const report::DiagnosisForReport d = report::diagnose_for_report(machine, data, dopt);
   report::HtmlPage page(fmt::format("abbe: diagnosis of {}", o.input));
   report::render_diagnose_report(page, d);
@@ -307,6 +309,12 @@ const CommandRegistrar registrar(
       diag->add_option("--model", o->model, model::model_names_text(false))
           ->check(CLI::IsMember(model::model_names(false)))
           ->default_str("ae-arm");
+      diag->add_option("--table-uncertainty", o->uncertainty,
+                       "Add the tables' uncertainty to every effect's u by Monte Carlo with N "
+                       "draws of the campaign (as `abbe diagnose --table-uncertainty`)")
+          ->check(CLI::Range(std::size_t{2}, std::size_t{100000}));
+      diag->add_option("--seed", o->seed, "--table-uncertainty: seed of the draws")
+          ->capture_default_str();
       diag->add_option("-o,--output", o->output, "HTML file (written atomically), - for stdout")
           ->required();
       diag->footer(

@@ -35,7 +35,8 @@ struct TableUncertaintyOptions {
 };
 
 struct TableUncertainty {
-  std::size_t draws = 0;  // 0: not propagated
+  bool available = false;  // the machine file gives an uncertainty (diagnose() sets it)
+  std::size_t draws = 0;   // 0: not propagated
   std::uint64_t seed = 1;
   std::string sources;  // machine::campaign_uncertainty_text
 };
