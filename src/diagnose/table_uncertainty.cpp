@@ -10,6 +10,7 @@
 #include "abbe/io/input_error.hpp"
 #include "abbe/machine/campaign_uncertainty.hpp"
 #include "abbe/machine/normal_stream.hpp"
+#include "abbe/model/error_model.hpp"
 #include "searched_uncertainty.hpp"
 
 namespace abbe::diagnose {
@@ -91,14 +92,48 @@ TableUncertainty add_table_uncertainty(const machine::Machine& machine,
   AtA.diagonal().array() += 1e-12 * AtA.trace() / static_cast<double>(P);
   const Eigen::LDLT<Mat> ldlt(AtA);
 
-  // Σδ and Σδ² of every parameter's shift over the draws.
+  // The fitted points (one per row of the data, less the dropped ones, in
+  // order) as the model evaluates them.
+  std::vector<model::EvalPoint> points;
+  points.reserve(nominal.points.size());
+  for (std::size_t row = 0, next = 0; row < data.rows.size(); ++row) {
+    if (next < dropped.size() && dropped[next] == row) {
+      ++next;
+      continue;
+    }
+    const io::MeasuredRow& r = data.rows[row];
+    model::EvalPoint ep;
+    ep.p = r.p;
+    ep.tool_length = r.tool_length_or(machine.tool_length());
+    ep.dir = r.v;
+    ep.time = r.t;
+    points.push_back(ep);
+  }
+  // The base model's prediction at every point with the tables of `m`.
+  auto predicted = [&](const machine::Machine& m) {
+    const model::ErrorModel em(m, model);
+    model::ModelData md;
+    std::vector<Eigen::Vector3d> e(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) e[i] = em.evaluate(points[i], md).e_um;
+    return e;
+  };
+  const std::vector<Eigen::Vector3d> e0 = predicted(machine);
+
+  // Σδ and Σδ² of every parameter's shift over the draws. A draw moves the
+  // residual by −u·(its prediction − the nominal one) per observation (an
+  // overlay given with --extend is left as fitted: its terms' dependence on
+  // the model's angles is of second order).
   Vec sum = Vec::Zero(P), sum2 = Vec::Zero(P);
+  Vec dy(n);
   machine::NormalStream normal(options.seed);
   const std::function<double()> deviate = [&normal] { return normal(); };
   for (std::size_t k = 0; k < options.draws; ++k) {
-    const machine::Machine drawn = machine::draw_campaign(machine, deviate);
-    const Problem again = without_points(build_problem(drawn, data, model, extend), dropped);
-    const Vec shift = ldlt.solve(A.transpose() * (again.y - nominal.y));
+    const std::vector<Eigen::Vector3d> e = predicted(machine::draw_campaign(machine, deviate));
+    for (Eigen::Index o = 0; o < n; ++o) {
+      const Observation& ob = nominal.obs[static_cast<std::size_t>(o)];
+      dy[o] = -ob.u.dot(e[ob.point] - e0[ob.point]);
+    }
+    const Vec shift = ldlt.solve(A.transpose() * dy);
     sum += shift;
     sum2 += shift.cwiseAbs2();
   }
