@@ -241,7 +241,7 @@ py::dict py_predict(const std::shared_ptr<machine::Machine>& machine, const py::
 py::object py_diagnose(const std::shared_ptr<machine::Machine>& machine, const py::object& measured,
                        const std::string& model_name, int folds, std::uint64_t seed,
                        const py::object& extend, bool infer_directions,
-                       std::size_t table_uncertainty) {
+                       const py::object& table_uncertainty) {
   auto path_of = [](const py::object& p) {
     return py::str(py::module_::import("os").attr("fspath")(p)).cast<std::string>();
   };
@@ -258,7 +258,7 @@ py::object py_diagnose(const std::shared_ptr<machine::Machine>& machine, const p
   opt.selection.folds = folds;
   opt.selection.seed = seed;
   opt.infer_directions = infer_directions;
-  opt.tables.draws = table_uncertainty;
+  if (!table_uncertainty.is_none()) opt.tables.draws = table_uncertainty.cast<std::size_t>();
   opt.tables.seed = seed;
   std::string report;
   {
@@ -453,14 +453,15 @@ PYBIND11_MODULE(abbe, m) {
   m.def("diagnose", &py_diagnose, py::arg("machine"), py::arg("measured"), py::kw_only(),
         py::arg("model") = "ae-arm", py::arg("folds") = 5, py::arg("seed") = 1,
         py::arg("extend") = py::none(), py::arg("infer_directions") = false,
-        py::arg("table_uncertainty") = 0,
+        py::arg("table_uncertainty") = py::none(),
         "Diagnosis of measured data (CSV) against the machine's model: the JSON report of "
         "`abbe diagnose` as a dict. extend: an earlier overlay (YAML path) added to the model "
         "first; the report's extend_check says what it does on these data. "
         "infer_directions: approach directions from the order of the points where the data "
         "have none (as --infer-directions). table_uncertainty: N Monte Carlo draws of the "
-        "campaign's uncertainty added to every effect's u (as --table-uncertainty; seed "
-        "draws them too; each effect's stderr_data and stderr_tables give the parts).");
+        "campaign's uncertainty in every effect's u (as --table-uncertainty; None: 50 where the "
+        "machine file gives an uncertainty, 0: the data's u alone; seed draws them too; each "
+        "effect's stderr_data and stderr_tables give the parts).");
   m.def("compensate", &py_compensate, py::arg("machine"), py::arg("program") = py::none(),
         py::kw_only(), py::arg("code") = py::none(), py::arg("model") = "ae-arm",
         py::arg("tol_um") = 1.0, py::arg("step") = 5.0, py::arg("dialect") = "linuxcnc",

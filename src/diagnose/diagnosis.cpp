@@ -177,14 +177,16 @@ Diagnosis diagnose(const machine::Machine& machine, const io::MeasuredData& give
   std::vector<std::uint32_t> drop;
   for (const Outlier& out : d.outliers) drop.push_back(out.point);
   std::sort(drop.begin(), drop.end());
-  if (o.tables.draws > 0) {
-    d.tables =
-        add_table_uncertainty(machine, data, o.model, o.extend, drop, o.tables, d.datum, d.effects);
+  const bool u_given = machine::has_campaign_uncertainty(machine);
+  if (const std::size_t draws = o.tables.draws.value_or(u_given ? kDefaultTableDraws : 0);
+      draws > 0) {
+    d.tables = add_table_uncertainty(machine, data, o.model, o.extend, drop, draws, o.tables.seed,
+                                     d.datum, d.effects);
     // A value whose u, the tables' part with it, is not below it is no name.
     for (SelectedTerm& st : d.effects) st.significant = value_significant(st.term);
     d.isotropic = isotropic_scale(d.effects);
   }
-  d.tables.available = machine::has_campaign_uncertainty(machine);
+  d.tables.available = u_given;
   if (o.extend) {
     const Problem with = without_points(pb, drop);
     d.extend_check =

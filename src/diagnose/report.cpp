@@ -355,12 +355,12 @@ std::string report_text(const Diagnosis& d) {
     s += fmt::format("effects ({}; together {:.1f} % of the residual after the datum):\n",
                      d.effects.size(), 100.0 * d.explained_together);
     if (d.tables.available && d.tables.draws == 0)
-      s += "  every u is the data's alone: the machine file gives its tables' uncertainty, and "
-           "--table-uncertainty N adds it\n";
+      s += "  every u is the data's alone (--table-uncertainty 0): the machine file gives its "
+           "tables' uncertainty, and --table-uncertainty N adds it\n";
     if (d.tables.draws > 0)
       s += fmt::format(
           "  every u holds the data's and the tables' uncertainty, √(data² + tables²) ({} draws of "
-          "the campaign: {})\n",
+          "the campaign: {}; --table-uncertainty 0: the data's alone)\n",
           d.tables.draws, d.tables.sources);
     s += fmt::format("  {:<14} {:<4} {:<4} {:>24} {:>9} {:>7} {:>7}  {}\n", "kind", "axis", "dir",
                      "value ± u", "explained", "unique", "shared", "description");

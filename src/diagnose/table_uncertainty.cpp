@@ -32,9 +32,8 @@ struct Refitted {
 TableUncertainty add_table_uncertainty(const machine::Machine& machine,
                                        const io::MeasuredData& data, model::ModelKind model,
                                        const Overlay* extend,
-                                       const std::vector<std::uint32_t>& dropped,
-                                       const TableUncertaintyOptions& options,
-                                       std::vector<SelectedTerm>& datum,
+                                       const std::vector<std::uint32_t>& dropped, std::size_t draws,
+                                       std::uint64_t seed, std::vector<SelectedTerm>& datum,
                                        std::vector<SelectedTerm>& effects) {
   if (!machine::has_campaign_uncertainty(machine)) {
     SourceLocation where;
@@ -45,11 +44,11 @@ TableUncertainty add_table_uncertainty(const machine::Machine& machine,
                      "uncertainty of its campaign (no `uncertainty` key, and the component table "
                      "has no `uncertainty` column; docs/formats.md)");
   }
-  if (options.draws < 2) throw std::invalid_argument("--table-uncertainty needs at least 2 draws");
+  if (draws < 2) throw std::invalid_argument("--table-uncertainty needs at least 2 draws");
   TableUncertainty out;
   out.available = true;
-  out.draws = options.draws;
-  out.seed = options.seed;
+  out.draws = draws;
+  out.seed = seed;
   out.sources = machine::campaign_uncertainty_text(machine);
 
   const Problem nominal = without_points(build_problem(machine, data, model, extend), dropped);
@@ -125,9 +124,9 @@ TableUncertainty add_table_uncertainty(const machine::Machine& machine,
   // the model's angles is of second order).
   Vec sum = Vec::Zero(P), sum2 = Vec::Zero(P);
   Vec dy(n);
-  machine::NormalStream normal(options.seed);
+  machine::NormalStream normal(seed);
   const std::function<double()> deviate = [&normal] { return normal(); };
-  for (std::size_t k = 0; k < options.draws; ++k) {
+  for (std::size_t k = 0; k < draws; ++k) {
     const std::vector<Eigen::Vector3d> e = predicted(machine::draw_campaign(machine, deviate));
     for (Eigen::Index o = 0; o < n; ++o) {
       const Observation& ob = nominal.obs[static_cast<std::size_t>(o)];
@@ -137,7 +136,7 @@ TableUncertainty add_table_uncertainty(const machine::Machine& machine,
     sum += shift;
     sum2 += shift.cwiseAbs2();
   }
-  const auto N = static_cast<double>(options.draws);
+  const auto N = static_cast<double>(draws);
   const Vec u = ((sum2 - sum.cwiseAbs2() / N) / (N - 1.0)).cwiseMax(0.0).cwiseSqrt();
 
   for (const Refitted& r : refit) {

@@ -210,13 +210,27 @@ string(JSON u GET "${js}" effects 0 stderr um)
 if(NOT draws EQUAL 20 OR NOT u_tables GREATER 0 OR NOT u GREATER u_data)
   message(FATAL_ERROR "tables.json: draws ${draws}, u ${u} (data ${u_data}, tables ${u_tables})")
 endif()
-# Without the option on that machine: the summary says the u are the data's
-# alone and how to add the tables'.
+# Without the option on that machine: 50 draws by default; with 0 the
+# summary says the u are the data's alone and how to add the tables'; 1
+# draw is refused.
 execute_process(COMMAND ${ABBE} diagnose --machine ${M}/machine-uncertainty.yaml
                         --measured ${M}/measured-grid.csv
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(NOT rc EQUAL 0 OR NOT out MATCHES "every u is the data's alone: the machine file gives its tables' uncertainty, and --table-uncertainty N adds it")
-  message(FATAL_ERROR "diagnose on a machine with an uncertainty, no hint: exit ${rc}:\n${out}")
+if(NOT rc EQUAL 0 OR NOT out MATCHES "every u holds the data's and the tables' uncertainty[^\n]*50 draws")
+  message(FATAL_ERROR "diagnose on a machine with an uncertainty, not propagated: exit ${rc}:\n${out}")
+endif()
+execute_process(COMMAND ${ABBE} diagnose --machine ${M}/machine-uncertainty.yaml
+                        --measured ${M}/measured-grid.csv --table-uncertainty 0
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT out MATCHES "every u is the data's alone \\(--table-uncertainty 0\\): the machine file gives its tables' uncertainty, and --table-uncertainty N adds it"
+   OR out MATCHES "u from the data and from the tables")
+  message(FATAL_ERROR "diagnose --table-uncertainty 0, no hint: exit ${rc}:\n${out}")
+endif()
+execute_process(COMMAND ${ABBE} diagnose --machine ${M}/machine-uncertainty.yaml
+                        --measured ${M}/measured-grid.csv --table-uncertainty 1
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 1 OR NOT err MATCHES "--table-uncertainty\\]: error: --table-uncertainty needs at least 2 draws")
+  message(FATAL_ERROR "diagnose --table-uncertainty 1: exit ${rc}:\n${err}")
 endif()
 execute_process(COMMAND ${ABBE} diagnose --machine ${M}/machine.yaml
                         --measured ${M}/measured-grid.csv --table-uncertainty 20

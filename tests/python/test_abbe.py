@@ -175,6 +175,11 @@ def test_diagnose_adds_the_tables_uncertainty(machine):
     plain = abbe.diagnose(machine, grid)
     assert "table_uncertainty" not in plain
     assert plain["table_uncertainty_available"] is False
+    # By default 50 draws where the machine gives an uncertainty; 0: none.
+    mu = abbe.Machine(sample / "machine-uncertainty.yaml")
+    assert abbe.diagnose(mu, grid)["table_uncertainty"]["draws"] == 50
+    off = abbe.diagnose(mu, grid, table_uncertainty=0)
+    assert "table_uncertainty" not in off and "stderr_tables" not in off["effects"][0]
     with pytest.raises(Exception, match=r"machine\.yaml.*uncertainty.*nothing to propagate"):
         abbe.diagnose(machine, grid, table_uncertainty=20)
 

@@ -136,6 +136,28 @@ TEST(DiagnoseTableUncertainty, TheDriftsTrueValueLiesWithinTheCombinedUncertaint
   EXPECT_NE(json.find("\"table_uncertainty\""), std::string::npos);
 }
 
+TEST(DiagnoseTableUncertainty, PropagatedByDefaultWhereTheMachineGivesOne) {
+  const io::MeasuredData data = measure_grid("thermal_drift:Y:5um:tau=2500", 4);
+  const Diagnosis by_default = diagnose(sample_with_campaign_u(1.0), data, DiagnoseOptions{});
+  EXPECT_TRUE(by_default.tables.available);
+  EXPECT_EQ(by_default.tables.draws, kDefaultTableDraws);
+  const SelectedTerm* drift = drift_of(by_default, 1);
+  ASSERT_NE(drift, nullptr);
+  EXPECT_FALSE(drift->stderr_tables.empty());
+  const Diagnosis off = diagnose(sample_with_campaign_u(1.0), data, with_draws(0));
+  EXPECT_TRUE(off.tables.available);
+  EXPECT_EQ(off.tables.draws, 0u);
+  ASSERT_NE(drift_of(off, 1), nullptr);
+  EXPECT_TRUE(drift_of(off, 1)->stderr_tables.empty());
+  EXPECT_NE(report_text(off).find("every u is the data's alone"), std::string::npos);
+  // A machine without one: nothing propagated, nothing said.
+  const Diagnosis plain =
+      diagnose(machine::Machine::load(kDir + "machine.yaml"), data, DiagnoseOptions{});
+  EXPECT_FALSE(plain.tables.available);
+  EXPECT_EQ(plain.tables.draws, 0u);
+  EXPECT_EQ(report_text(plain).find("every u"), std::string::npos);
+}
+
 TEST(DiagnoseTableUncertainty, RefusedWithoutAnUncertaintyToPropagate) {
   const io::MeasuredData data = measure_grid("scale:X:10ppm", 1);
   const machine::Machine plain = machine::Machine::load(kDir + "machine.yaml");

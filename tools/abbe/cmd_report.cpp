@@ -50,7 +50,8 @@ struct ReportOptions {
   double tool_length = -1.0;
   std::size_t max_points = 5000;
   gcode::DialectOptions dialect;
-  std::size_t uncertainty = 0;  // report predict, diagnose: Monte Carlo draws (0: none)
+  std::size_t uncertainty = 0;  // report predict: Monte Carlo draws (0: none)
+  long table_draws = -1;        // report diagnose: -1 the library's default
   std::uint64_t seed = 1;
   AlignCliOptions align;  // report predict: the part's set-up
 };
@@ -189,7 +190,10 @@ int run_report_diagnose(const ReportOptions& o) {
     throw InputError({"<command line>", 0, 0, "--model", ""},
                      "report diagnose takes one model (" + model::model_names_text(false) + ")");
   dopt.model = kinds.front();
-  dopt.tables.draws = o.uncertainty;
+  if (o.table_draws == 1)
+    throw InputError({"<command line>", 0, 0, "--table-uncertainty", ""},
+                     "--table-uncertainty needs at least 2 draws (0: the data's u alone)");
+  if (o.table_draws >= 0) dopt.tables.draws = static_cast<std::size_t>(o.table_draws);
   dopt.tables.seed = o.seed;
   const report::DiagnosisForReport d = report::diagnose_for_report(machine, data, dopt);
   report::HtmlPage page(fmt::format("abbe: diagnosis of {}", o.input));
@@ -309,10 +313,11 @@ const CommandRegistrar registrar(
       diag->add_option("--model", o->model, model::model_names_text(false))
           ->check(CLI::IsMember(model::model_names(false)))
           ->default_str("ae-arm");
-      diag->add_option("--table-uncertainty", o->uncertainty,
-                       "Add the tables' uncertainty to every effect's u by Monte Carlo with N "
-                       "draws of the campaign (as `abbe diagnose --table-uncertainty`)")
-          ->check(CLI::Range(std::size_t{2}, std::size_t{100000}));
+      diag->add_option("--table-uncertainty", o->table_draws,
+                       "The tables' uncertainty in every effect's u by Monte Carlo with N draws "
+                       "of the campaign (as `abbe diagnose --table-uncertainty`; default 50 where "
+                       "the machine file gives an uncertainty, 0: the data's u alone)")
+          ->check(CLI::Range(0L, 100000L));
       diag->add_option("--seed", o->seed, "--table-uncertainty: seed of the draws")
           ->capture_default_str();
       diag->add_option("-o,--output", o->output, "HTML file (written atomically), - for stdout")

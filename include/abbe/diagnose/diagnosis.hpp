@@ -37,7 +37,8 @@ struct DiagnoseOptions {
   // of the points (io/approach_directions.hpp); off by default.
   bool infer_directions = false;
   // The tables' uncertainty added to every named value's u by Monte Carlo
-  // (table_uncertainty.hpp; diagnose() only); draws 0: the data's u alone.
+  // (table_uncertainty.hpp; diagnose() only): by default where the machine
+  // file gives one; draws 0: the data's u alone.
   TableUncertaintyOptions tables;
 };
 

@@ -17,6 +17,7 @@
 // uncertainty exceeds its value is not named" counts both.
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,8 +30,13 @@ namespace abbe::diagnose {
 
 class Overlay;
 
+// Draws where the machine file gives an uncertainty and none were asked for.
+inline constexpr std::size_t kDefaultTableDraws = 50;
+
 struct TableUncertaintyOptions {
-  std::size_t draws = 0;  // Monte Carlo draws (0: not propagated; else at least 2)
+  // Monte Carlo draws: 0 not propagated, else at least 2; unset:
+  // kDefaultTableDraws where the machine file gives an uncertainty, else 0.
+  std::optional<std::size_t> draws;
   std::uint64_t seed = 1;
 };
 
@@ -52,9 +58,8 @@ struct TableUncertainty {
 TableUncertainty add_table_uncertainty(const machine::Machine& machine,
                                        const io::MeasuredData& data, model::ModelKind model,
                                        const Overlay* extend,
-                                       const std::vector<std::uint32_t>& dropped,
-                                       const TableUncertaintyOptions& options,
-                                       std::vector<SelectedTerm>& datum,
+                                       const std::vector<std::uint32_t>& dropped, std::size_t draws,
+                                       std::uint64_t seed, std::vector<SelectedTerm>& datum,
                                        std::vector<SelectedTerm>& effects);
 
 }  // namespace abbe::diagnose
