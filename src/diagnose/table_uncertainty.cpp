@@ -7,7 +7,6 @@
 
 #include "abbe/diagnose/outliers.hpp"
 #include "abbe/diagnose/residuals.hpp"
-#include "abbe/io/input_error.hpp"
 #include "abbe/machine/campaign_uncertainty.hpp"
 #include "abbe/machine/normal_stream.hpp"
 #include "abbe/model/error_model.hpp"
@@ -16,11 +15,11 @@
 namespace abbe::diagnose {
 namespace {
 
-// One refitted term: where its coefficients and (searched_col ≥ 0) the
-// derivative in its searched parameter sit among the columns.
 using Mat = Eigen::MatrixXd;
 using Vec = Eigen::VectorXd;
 
+// One refitted term: where its coefficients and (searched_col ≥ 0) the
+// derivative in its searched parameter sit among the columns.
 struct Refitted {
   SelectedTerm* st = nullptr;
   Eigen::Index first = 0, k = 0;
@@ -35,15 +34,7 @@ TableUncertainty add_table_uncertainty(const machine::Machine& machine,
                                        const std::vector<std::uint32_t>& dropped, std::size_t draws,
                                        std::uint64_t seed, std::vector<SelectedTerm>& datum,
                                        std::vector<SelectedTerm>& effects) {
-  if (!machine::has_campaign_uncertainty(machine)) {
-    SourceLocation where;
-    where.file = machine.spec().file;
-    where.field = "uncertainty";
-    throw InputError(where,
-                     "--table-uncertainty: nothing to propagate: the machine file gives no "
-                     "uncertainty of its campaign (no `uncertainty` key, and the component table "
-                     "has no `uncertainty` column; docs/formats.md)");
-  }
+  machine::require_campaign_uncertainty(machine, "--table-uncertainty");
   if (draws < 2) throw std::invalid_argument("--table-uncertainty needs at least 2 draws");
   TableUncertainty out;
   out.available = true;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "abbe/io/input_error.hpp"
 #include "abbe/machine/machine.hpp"
 
 namespace abbe::machine {
@@ -23,6 +24,17 @@ bool positioning(ComponentId id) { return id.d == index(id.axis); }
 
 bool has_campaign_uncertainty(const Machine& machine) {
   return machine.uncertainty().given || machine.table().has_uncertainty();
+}
+
+void require_campaign_uncertainty(const Machine& machine, const std::string& option) {
+  if (has_campaign_uncertainty(machine)) return;
+  SourceLocation where;
+  where.file = machine.spec().file;
+  where.field = "uncertainty";
+  throw InputError(where, option +
+                              ": nothing to propagate: the machine file gives no uncertainty of "
+                              "its campaign (no `uncertainty` key, and the component table has no "
+                              "`uncertainty` column; docs/formats.md)");
 }
 
 std::string campaign_uncertainty_text(const Machine& machine) {

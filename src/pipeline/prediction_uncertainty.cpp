@@ -7,7 +7,6 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
-#include "abbe/io/input_error.hpp"
 #include "abbe/machine/campaign_uncertainty.hpp"
 #include "abbe/machine/normal_stream.hpp"
 #include "abbe/pipeline/model_set.hpp"
@@ -110,15 +109,7 @@ UncertainPrediction predict_with_uncertainty(
     const PredictOptions& options, const UncertaintyOptions& uncertainty, const AlignOptions& align,
     const PredictionSink& progress, const AlignedUncertainSink& sink,
     const std::function<void(std::size_t)>& draw_done) {
-  if (!machine::has_campaign_uncertainty(machine)) {
-    SourceLocation where;
-    where.file = machine.spec().file;
-    where.field = "uncertainty";
-    throw InputError(where,
-                     "--uncertainty: nothing to propagate: the machine file gives no uncertainty "
-                     "of its campaign (no `uncertainty` key, and the component table has no "
-                     "`uncertainty` column; docs/formats.md)");
-  }
+  machine::require_campaign_uncertainty(machine, "--uncertainty");
   if (uncertainty.draws < 2) throw std::invalid_argument("--uncertainty needs at least 2 draws");
 
   // The plain prediction, walked once; the points are kept for the draws.

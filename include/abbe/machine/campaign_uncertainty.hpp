@@ -36,6 +36,11 @@ struct CampaignUncertainty {
 // the table's `uncertainty` column); false: nothing to propagate.
 bool has_campaign_uncertainty(const Machine& machine);
 
+// Throws abbe::InputError (the machine file, field `uncertainty`) unless
+// has_campaign_uncertainty(machine): `option` (e.g. "--uncertainty") has
+// nothing to propagate.
+void require_campaign_uncertainty(const Machine& machine, const std::string& option);
+
 // What is propagated, in words ("table values (per-target u, 480 values);
 // laser 0.1 µm + 0.5 ppm; reflector points 1 mm"), for the summaries.
 std::string campaign_uncertainty_text(const Machine& machine);
