@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <utility>
 
 #include "abbe/io/approach_directions.hpp"
@@ -178,9 +179,13 @@ Diagnosis diagnose(const machine::Machine& machine, const io::MeasuredData& give
   for (const Outlier& out : d.outliers) drop.push_back(out.point);
   std::sort(drop.begin(), drop.end());
   const bool u_given = machine::has_campaign_uncertainty(machine);
-  if (const std::size_t draws = o.tables.draws.value_or(u_given ? kDefaultTableDraws : 0);
-      draws > 0) {
-    d.tables = add_table_uncertainty(machine, data, o.model, o.extend, drop, draws, o.tables.seed,
+  const std::size_t draws = o.tables.draws.value_or(u_given ? kDefaultTableDraws : 0);
+  // The fitted points (without the outliers), for the steps below that need them.
+  std::optional<Problem> without_outliers;
+  if (!drop.empty() && (draws > 0 || o.extend)) without_outliers = without_points(pb, drop);
+  const Problem& fitted = without_outliers ? *without_outliers : pb;
+  if (draws > 0) {
+    d.tables = add_table_uncertainty(machine, data, o.model, fitted, drop, draws, o.tables.seed,
                                      d.datum, d.effects);
     // A value whose u, the tables' part with it, is not below it is no name.
     for (SelectedTerm& st : d.effects) st.significant = value_significant(st.term);
@@ -188,11 +193,10 @@ Diagnosis diagnose(const machine::Machine& machine, const io::MeasuredData& give
   }
   d.tables.available = u_given;
   if (o.extend) {
-    const Problem with = without_points(pb, drop);
     d.extend_check =
-        check_transfer(without_points(build_problem(machine, data, o.model, nullptr), drop), with,
+        check_transfer(without_points(build_problem(machine, data, o.model, nullptr), drop), fitted,
                        o.extend->terms.size());
-    add_overlay_warnings(*o.extend, machine.name(), model::to_string(o.model), with,
+    add_overlay_warnings(*o.extend, machine.name(), model::to_string(o.model), fitted,
                          d.extend_check);
   }
   d.machine = machine.name();

@@ -5,8 +5,6 @@
 #include <functional>
 #include <stdexcept>
 
-#include "abbe/diagnose/outliers.hpp"
-#include "abbe/diagnose/residuals.hpp"
 #include "abbe/machine/campaign_uncertainty.hpp"
 #include "abbe/machine/normal_stream.hpp"
 #include "abbe/model/error_model.hpp"
@@ -30,20 +28,18 @@ struct Refitted {
 
 TableUncertainty add_table_uncertainty(const machine::Machine& machine,
                                        const io::MeasuredData& data, model::ModelKind model,
-                                       const Overlay* extend,
+                                       const Problem& fitted,
                                        const std::vector<std::uint32_t>& dropped, std::size_t draws,
                                        std::uint64_t seed, std::vector<SelectedTerm>& datum,
                                        std::vector<SelectedTerm>& effects) {
   machine::require_campaign_uncertainty(machine, "--table-uncertainty");
   if (draws < 2) throw std::invalid_argument("--table-uncertainty needs at least 2 draws");
   TableUncertainty out;
-  out.available = true;
+  out.available = true;  // require_campaign_uncertainty passed
   out.draws = draws;
   out.seed = seed;
   out.sources = machine::campaign_uncertainty_text(machine);
-
-  const Problem nominal = without_points(build_problem(machine, data, model, extend), dropped);
-  const Eigen::Index n = nominal.y.size();
+  const Eigen::Index n = fitted.y.size();
 
   // The columns of the final fit's first stage (datum and named effects),
   // each searched parameter's derivative beside them: the joint
@@ -56,7 +52,7 @@ TableUncertainty add_table_uncertainty(const machine::Machine& machine,
       if (st.term.kind == TermKind::unexplained || st.term.coef.empty()) continue;
       Refitted r;
       r.st = &st;
-      blocks.push_back(term_columns(nominal, st.term));
+      blocks.push_back(term_columns(fitted, st.term));
       r.first = P;
       r.k = blocks.back().cols();
       P += r.k;
@@ -64,7 +60,7 @@ TableUncertainty add_table_uncertainty(const machine::Machine& machine,
     }
   for (Refitted& r : refit) {
     if (!std::isfinite(r.st->term.searched_stderr)) continue;  // nothing fixes θ
-    Vec d = selection::searched_derivative(nominal, r.st->term);
+    Vec d = selection::searched_derivative(fitted, r.st->term);
     if (d.size() == 0) continue;
     blocks.emplace_back(d);
     r.searched_col = P++;
@@ -85,7 +81,7 @@ TableUncertainty add_table_uncertainty(const machine::Machine& machine,
   // The fitted points (one per row of the data, less the dropped ones, in
   // order) as the model evaluates them.
   std::vector<model::EvalPoint> points;
-  points.reserve(nominal.points.size());
+  points.reserve(fitted.points.size());
   for (std::size_t row = 0, next = 0; row < data.rows.size(); ++row) {
     if (next < dropped.size() && dropped[next] == row) {
       ++next;
@@ -120,7 +116,7 @@ TableUncertainty add_table_uncertainty(const machine::Machine& machine,
   for (std::size_t k = 0; k < draws; ++k) {
     const std::vector<Eigen::Vector3d> e = predicted(machine::draw_campaign(machine, deviate));
     for (Eigen::Index o = 0; o < n; ++o) {
-      const Observation& ob = nominal.obs[static_cast<std::size_t>(o)];
+      const Observation& ob = fitted.obs[static_cast<std::size_t>(o)];
       dy[o] = -ob.u.dot(e[ob.point] - e0[ob.point]);
     }
     const Vec shift = ldlt.solve(A.transpose() * dy);

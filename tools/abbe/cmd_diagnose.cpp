@@ -17,6 +17,7 @@
 #include "command.hpp"
 #include "output_options.hpp"
 #include "progress.hpp"
+#include "table_uncertainty_option.hpp"
 
 namespace abbe::cli {
 namespace {
@@ -32,7 +33,7 @@ struct DiagnoseCliOptions {
   std::uint64_t seed = 1;
   double max_period = 100.0;
   bool infer_directions = false;
-  long table_draws = -1;  // -1: the library's default
+  long table_draws = -1;  // --table-uncertainty; -1: not given
 };
 
 int run_diagnose(const DiagnoseCliOptions& o, const GlobalOptions& g) {
@@ -55,11 +56,7 @@ int run_diagnose(const DiagnoseCliOptions& o, const GlobalOptions& g) {
   opt.selection.seed = o.seed;
   opt.candidates.max_period_mm = o.max_period;
   opt.infer_directions = o.infer_directions;
-  if (o.table_draws == 1)
-    throw InputError({"<command line>", 0, 0, "--table-uncertainty", ""},
-                     "--table-uncertainty needs at least 2 draws (0: the data's u alone)");
-  if (o.table_draws >= 0) opt.tables.draws = static_cast<std::size_t>(o.table_draws);
-  opt.tables.seed = o.seed;
+  opt.tables = table_uncertainty_options(o.table_draws, o.seed);
   std::optional<diagnose::Overlay> extend;
   if (!o.extend.empty()) {
     extend = diagnose::Overlay::load(o.extend);
@@ -114,13 +111,7 @@ const CommandRegistrar registrar(
       sub.add_option("--seed", o->seed,
                      "Seed of the fold assignment (and of the draws of --table-uncertainty)")
           ->capture_default_str();
-      sub.add_option("--table-uncertainty", o->table_draws,
-                     "The tables' uncertainty (machine file `uncertainty`, table column "
-                     "`uncertainty`) in every effect's u by Monte Carlo with N draws of the "
-                     "campaign, the effects refitted in each; the report gives the data's and the "
-                     "tables' parts (docs/diagnosis.md). Default: 50 draws where the machine file "
-                     "gives an uncertainty; 0: the data's u alone")
-          ->check(CLI::Range(0L, 100000L));
+      add_table_uncertainty_option(sub, o->table_draws);
       sub.add_option("--max-period", o->max_period, "Longest cyclic period searched, mm")
           ->check(CLI::Range(8.0, 10000.0))
           ->capture_default_str();

@@ -33,6 +33,7 @@
 #include "dialect_option.hpp"
 #include "input_stream.hpp"
 #include "progress.hpp"
+#include "table_uncertainty_option.hpp"
 
 namespace abbe::cli {
 namespace {
@@ -51,7 +52,7 @@ struct ReportOptions {
   std::size_t max_points = 5000;
   gcode::DialectOptions dialect;
   std::size_t uncertainty = 0;  // report predict: Monte Carlo draws (0: none)
-  long table_draws = -1;        // report diagnose: -1 the library's default
+  long table_draws = -1;        // report diagnose --table-uncertainty; -1: not given
   std::uint64_t seed = 1;
   AlignCliOptions align;  // report predict: the part's set-up
 };
@@ -190,11 +191,7 @@ int run_report_diagnose(const ReportOptions& o) {
     throw InputError({"<command line>", 0, 0, "--model", ""},
                      "report diagnose takes one model (" + model::model_names_text(false) + ")");
   dopt.model = kinds.front();
-  if (o.table_draws == 1)
-    throw InputError({"<command line>", 0, 0, "--table-uncertainty", ""},
-                     "--table-uncertainty needs at least 2 draws (0: the data's u alone)");
-  if (o.table_draws >= 0) dopt.tables.draws = static_cast<std::size_t>(o.table_draws);
-  dopt.tables.seed = o.seed;
+  dopt.tables = table_uncertainty_options(o.table_draws, o.seed);
   const report::DiagnosisForReport d = report::diagnose_for_report(machine, data, dopt);
   report::HtmlPage page(fmt::format("abbe: diagnosis of {}", o.input));
   report::render_diagnose_report(page, d);
@@ -313,11 +310,7 @@ const CommandRegistrar registrar(
       diag->add_option("--model", o->model, model::model_names_text(false))
           ->check(CLI::IsMember(model::model_names(false)))
           ->default_str("ae-arm");
-      diag->add_option("--table-uncertainty", o->table_draws,
-                       "The tables' uncertainty in every effect's u by Monte Carlo with N draws "
-                       "of the campaign (as `abbe diagnose --table-uncertainty`; default 50 where "
-                       "the machine file gives an uncertainty, 0: the data's u alone)")
-          ->check(CLI::Range(0L, 100000L));
+      add_table_uncertainty_option(*diag, o->table_draws);
       diag->add_option("--seed", o->seed, "--table-uncertainty: seed of the draws")
           ->capture_default_str();
       diag->add_option("-o,--output", o->output, "HTML file (written atomically), - for stdout")

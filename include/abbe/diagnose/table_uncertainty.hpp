@@ -21,14 +21,13 @@
 #include <string>
 #include <vector>
 
+#include "abbe/diagnose/residuals.hpp"
 #include "abbe/diagnose/selection.hpp"
 #include "abbe/io/measured_data.hpp"
 #include "abbe/machine/machine.hpp"
 #include "abbe/model/model_kind.hpp"
 
 namespace abbe::diagnose {
-
-class Overlay;
 
 // Draws where the machine file gives an uncertainty and none were asked for.
 inline constexpr std::size_t kDefaultTableDraws = 50;
@@ -41,15 +40,16 @@ struct TableUncertaintyOptions {
 };
 
 struct TableUncertainty {
-  bool available = false;  // the machine file gives an uncertainty (diagnose() sets it)
+  bool available = false;  // the machine file gives an uncertainty
   std::size_t draws = 0;   // 0: not propagated
   std::uint64_t seed = 1;
   std::string sources;  // machine::campaign_uncertainty_text
 };
 
-// Adds the tables' part to the uncertainties of `datum` and `effects` (the
-// diagnosis of `data` against `machine` with `model` and `extend`, fitted
-// without the points `dropped`, sorted): SelectedTerm::stderr_data,
+// Adds the tables' part to the uncertainties of `datum` and `effects`, the
+// diagnosis of `data` against `machine` with `model`: `fitted` is its
+// residual problem without the points `dropped` (sorted), those left out
+// of the fit (without_points). SelectedTerm::stderr_data,
 // stderr_tables, searched_stderr_data and searched_stderr_tables are set and
 // the terms' stderr_ and searched_stderr combined. Smooth (`unexplained`)
 // functions are not refitted (they are no names). Throws abbe::InputError
@@ -57,7 +57,7 @@ struct TableUncertainty {
 // uncertainty, std::invalid_argument for fewer than 2 draws.
 TableUncertainty add_table_uncertainty(const machine::Machine& machine,
                                        const io::MeasuredData& data, model::ModelKind model,
-                                       const Overlay* extend,
+                                       const Problem& fitted,
                                        const std::vector<std::uint32_t>& dropped, std::size_t draws,
                                        std::uint64_t seed, std::vector<SelectedTerm>& datum,
                                        std::vector<SelectedTerm>& effects);
