@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <set>
 
 #include "abbe/diagnose/statistics.hpp"
 #include "span.hpp"
@@ -36,7 +37,14 @@ std::vector<const Score*> partner_pool(const Step& st, std::size_t shortlist,
   for (std::size_t i = 0; i < shortlist; ++i) {
     const Score& sc = st.scores[i];
     pool.push_back(&sc);
-    if (sc.c->term.kind != TermKind::thermal_drift || !st.in_structure(sc)) continue;
+    // Where the structure is sought by reproduction (drift_parts_by_reproduction)
+    // a drift not a part at its own time constant may be one at another: at
+    // a short one its course is nearly done and it stands for a static term,
+    // at a long one the smooth function may reproduce it. Each time constant
+    // is judged as a partner (may_join).
+    if (sc.c->term.kind != TermKind::thermal_drift) continue;
+    const bool part = st.in_structure(sc);
+    if (!part && !(st.reproduced_by && st.o.drift_parts_at_other_tau)) continue;
     for (const ScanFamily& f : st.cs.scanned) {
       if (!same_drift_family(f.base, sc.c->term)) continue;
       for (double tau : f.grid) {
@@ -47,6 +55,7 @@ std::vector<const Score*> partner_pool(const Step& st, std::size_t shortlist,
         const Cached& rc = out.rescanned.back();
         out.rescanned_scores.push_back(Score{&rc, delta_rss(rc.C, rc.CtC, rc.QtC, st.r), 0.0});
         pool.push_back(&out.rescanned_scores.back());
+        if (!part) out.at_other_tau.insert(pool.back());
       }
     }
   }
@@ -177,10 +186,29 @@ Combo grow(const Step& st, const Score* lead, const std::vector<const Score*>& p
 }
 
 // It explains the structure: at least `name_ratio` of the smooth function's
-// ΔRSS with a criterion at least as good.
-bool explains(const Step& st, const Combo& cb) {
-  return cb.members.size() > 1 && cb.d >= st.o.name_ratio * st.g_best_d &&
-         st.ic_gain(cb.d, cb.cost) >= st.ic_gain(st.g_best_d, st.g_best.columns());
+// ΔRSS with a criterion at least as good. With a drift that joined at
+// another time constant than its own (`other_tau`, drift_parts_at_other_tau)
+// its lead too must add, beside its partners, what a partner must: a lead
+// chosen below the floors alone (lead_below_floor) that adds little beside
+// such a drift would be named for a part of the drift.
+bool explains(const Step& st, const Combo& cb, const std::set<const Score*>& other_tau) {
+  if (!(cb.members.size() > 1 && cb.d >= st.o.name_ratio * st.g_best_d &&
+        st.ic_gain(cb.d, cb.cost) >= st.ic_gain(st.g_best_d, st.g_best.columns())))
+    return false;
+  const std::vector<const Score*> partners(cb.members.begin() + 1, cb.members.end());
+  if (std::none_of(partners.begin(), partners.end(),
+                   [&](const Score* p) { return other_tau.count(p) > 0; }))
+    return true;
+  const Term& lead = cb.members.front()->c->term;
+  Eigen::Index k = 0;
+  for (const Score* m : cb.members) k += m->c->C.cols();
+  const double s2 =
+      std::max(st.rr - cb.d, 1e-300) / std::max(st.dof_base - static_cast<double>(k), 1.0);
+  const double thr =
+      s2 * std::max(chi2_upper_quantile(lead.columns(), st.o.alpha / st.tests_named),
+                    partner_floor_share(st.o, lead, linear_part_of_coupling(lead, partners)) *
+                        st.lambda);
+  return cb.d - st.together(partners) > thr;
 }
 
 // The combination from the lead; where it does not explain the structure,
@@ -188,10 +216,11 @@ bool explains(const Step& st, const Combo& cb) {
 // offset: it carries the model's own table error): the best on the
 // criterion of those that explain the structure.
 Combo best_combination(const Step& st, const Score* lead, std::size_t shortlist,
-                       const std::vector<const Score*>& pool) {
+                       const std::vector<const Score*>& pool,
+                       const std::set<const Score*>& other_tau) {
   SmoothSpan smooth(st);
   Combo best = grow(st, lead, pool, smooth);
-  if (explains(st, best)) return best;
+  if (explains(st, best, other_tau)) return best;
   std::vector<const Score*> others;
   for (std::size_t i = 0; i < shortlist; ++i) {
     const Score& sc = st.scores[i];
@@ -203,8 +232,8 @@ Combo best_combination(const Step& st, const Score* lead, std::size_t shortlist,
   }
   for (const Score* other : others) {
     Combo cb = grow(st, other, pool, smooth);
-    if (explains(st, cb) &&
-        (!explains(st, best) || st.ic_gain(cb.d, cb.cost) > st.ic_gain(best.d, best.cost)))
+    if (explains(st, cb, other_tau) && (!explains(st, best, other_tau) ||
+                                        st.ic_gain(cb.d, cb.cost) > st.ic_gain(best.d, best.cost)))
       best = std::move(cb);
   }
   return best;
@@ -273,8 +302,8 @@ void explain_structure(const Step& st, const Score* best_named, int step, Struct
   // partner floor in what it adds.
   const std::size_t shortlist = std::min(st.scores.size(), kShortlist);
   const std::vector<const Score*> pool = partner_pool(st, shortlist, out);
-  const Combo best = best_combination(st, out.lead, shortlist, pool);
-  if (!explains(st, best)) {
+  const Combo best = best_combination(st, out.lead, shortlist, pool, out.at_other_tau);
+  if (!explains(st, best, out.at_other_tau)) {
     std::string names;
     for (const Score* c : best.members) names += (names.empty() ? "" : " + ") + c->c->term.label();
     log.push_back(

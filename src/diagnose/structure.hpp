@@ -3,6 +3,7 @@
 // (docs/diagnosis.md, step 3): the named part of it that leads and a
 // combination of catalogue effects that explains it whole at a lower cost.
 #include <deque>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,9 @@ struct StructureChoice {
   // partner may point to one): kept for the step.
   std::deque<Cached> rescanned;
   std::deque<Score> rescanned_scores;
+  // Of those, the drifts not a part of the structure at their own time
+  // constant (drift_parts_at_other_tau).
+  std::set<const Score*> at_other_tau;
 };
 
 // Where the smooth function explains more than the best named candidate

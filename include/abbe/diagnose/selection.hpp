@@ -184,6 +184,14 @@ struct SelectionOptions {
   // squareness dX ∝ z joined a function of (x, t) by it: wrong names).
   // False: by the variables only.
   bool drift_parts_by_reproduction = true;
+  // …at any time constant of its grid, not only the one its scan chose
+  // against the residual alone (there a drift ∝ z whose course the scan
+  // found nearly done at 300 s stands for a scale; at 3600 s, beside a
+  // uniform drift, it is the drift ∝ z − z0 a smooth function of (x, t)
+  // found). A combination with such a drift holds its lead to a partner's
+  // floor too (structure.cpp, explains()). False: at its scanned time
+  // constant only.
+  bool drift_parts_at_other_tau = true;
   // The flexibility of a smooth `unexplained` function that wins a step is
   // chosen by the held-out SSE among these Legendre degrees (one variable;
   // per variable of a pair); empty: the candidates' fixed degree.
