@@ -29,16 +29,17 @@ bool same_drift_family(const Term& a, const Term& b) {
 
 // The pool of partners: the shortlist, and a drift of the structure at every
 // time constant of its grid (its scan chose the time constant that fits the
-// residual alone; beside the others another may fit). The re-scanned drifts
-// are kept in `out`.
+// residual alone; beside the others another may fit) — where the structure
+// is sought by reproduction, every drift of the shortlist, a part or not at
+// its own time constant (`out.at_other_tau` then). The re-scanned drifts are
+// kept in `out`.
 std::vector<const Score*> partner_pool(const Step& st, std::size_t shortlist,
                                        StructureChoice& out) {
   std::vector<const Score*> pool;
   for (std::size_t i = 0; i < shortlist; ++i) {
     const Score& sc = st.scores[i];
     pool.push_back(&sc);
-    // Where the structure is sought by reproduction (drift_parts_by_reproduction)
-    // a drift not a part at its own time constant may be one at another: at
+    // A drift not a part at its own time constant may be one at another: at
     // a short one its course is nearly done and it stands for a static term,
     // at a long one the smooth function may reproduce it. Each time constant
     // is judged as a partner (may_join).
