@@ -118,6 +118,18 @@ double partner_floor_share(const SelectionOptions& o, const Term& t, bool coupli
   return o.partner_floor_share;
 }
 
+// What a member `t` must add beside the others of a combination that removes
+// `d` with `k` columns: its χ² and partner_floor_share() of the practical
+// floor, in units of the residual variance the combination leaves (not
+// what the member alone leaves: that still holds the structure the others
+// explain).
+double partner_floor(const Step& st, const Term& t, bool coupling_part, double d, Eigen::Index k) {
+  const double s2 =
+      std::max(st.rr - d, 1e-300) / std::max(st.dof_base - static_cast<double>(k), 1.0);
+  return s2 * std::max(chi2_upper_quantile(t.columns(), st.o.alpha / st.tests_named),
+                       partner_floor_share(st.o, t, coupling_part) * st.lambda);
+}
+
 // A combination: its members (the lead first), what they remove together
 // and their cost on the criterion.
 struct Combo {
@@ -146,17 +158,10 @@ Combo grow(const Step& st, const Score* lead, const std::vector<const Score*>& p
       std::vector<const Score*> with = cb.members;
       with.push_back(&s);
       const double dj = st.together(with);
-      // What it adds must pass its χ² and `partner_floor_share` of the
-      // practical floor, in units of the residual variance the combination
-      // leaves (not what the candidate alone leaves: that still holds the
-      // structure the others explain).
+      // What it adds must pass its floor as a partner.
       const Eigen::Index kj = k_combo + s.c->C.cols();
-      const double s2j =
-          std::max(st.rr - dj, 1e-300) / std::max(st.dof_base - static_cast<double>(kj), 1.0);
       const bool part = linear_part_of_coupling(s.c->term, cb.members);
-      const double thr_added =
-          s2j * std::max(chi2_upper_quantile(s.c->term.columns(), st.o.alpha / st.tests_named),
-                         partner_floor_share(st.o, s.c->term, part) * st.lambda);
+      const double thr_added = partner_floor(st, s.c->term, part, dj, kj);
       // The partner that adds most on the criterion (a searched cycle that
       // fits a line as well as a one-column squareness costs more).
       const double ic = st.ic_gain(dj - cb.d, st.cost(s.c->term));
@@ -203,13 +208,8 @@ bool explains(const Step& st, const Combo& cb, const std::set<const Score*>& oth
   const Term& lead = cb.members.front()->c->term;
   Eigen::Index k = 0;
   for (const Score* m : cb.members) k += m->c->C.cols();
-  const double s2 =
-      std::max(st.rr - cb.d, 1e-300) / std::max(st.dof_base - static_cast<double>(k), 1.0);
-  const double thr =
-      s2 * std::max(chi2_upper_quantile(lead.columns(), st.o.alpha / st.tests_named),
-                    partner_floor_share(st.o, lead, linear_part_of_coupling(lead, partners)) *
-                        st.lambda);
-  return cb.d - st.together(partners) > thr;
+  return cb.d - st.together(partners) >
+         partner_floor(st, lead, linear_part_of_coupling(lead, partners), cb.d, k);
 }
 
 // The combination from the lead; where it does not explain the structure,
@@ -221,7 +221,8 @@ Combo best_combination(const Step& st, const Score* lead, std::size_t shortlist,
                        const std::set<const Score*>& other_tau) {
   SmoothSpan smooth(st);
   Combo best = grow(st, lead, pool, smooth);
-  if (explains(st, best, other_tau)) return best;
+  bool best_explains = explains(st, best, other_tau);
+  if (best_explains) return best;
   std::vector<const Score*> others;
   for (std::size_t i = 0; i < shortlist; ++i) {
     const Score& sc = st.scores[i];
@@ -233,9 +234,11 @@ Combo best_combination(const Step& st, const Score* lead, std::size_t shortlist,
   }
   for (const Score* other : others) {
     Combo cb = grow(st, other, pool, smooth);
-    if (explains(st, cb, other_tau) && (!explains(st, best, other_tau) ||
-                                        st.ic_gain(cb.d, cb.cost) > st.ic_gain(best.d, best.cost)))
+    if (explains(st, cb, other_tau) &&
+        (!best_explains || st.ic_gain(cb.d, cb.cost) > st.ic_gain(best.d, best.cost))) {
       best = std::move(cb);
+      best_explains = true;
+    }
   }
   return best;
 }
