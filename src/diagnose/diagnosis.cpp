@@ -135,8 +135,9 @@ Diagnosis diagnose_problem(const Problem& full, const DiagnoseOptions& o) {
   for (std::string& line :
        mark_design_ambiguities(pb, d.datum, d.effects, design, o.candidates.min_period_mm))
     d.log.push_back(std::move(line));
-  for (std::string& line : mark_unrejected_rivals(pb, d.datum, d.effects, fit.candidates,
-                                                  o.selection.searched_cost, o.rivals))
+  for (std::string& line :
+       mark_unrejected_rivals(pb, d.datum, d.effects, fit.candidates, o.selection.searched_cost,
+                              o.rivals, o.selection.min_effect_rms))
     d.log.push_back(std::move(line));
   d.isotropic = isotropic_scale(d.effects);
   d.blind_spots = blind_spots(pb, design, o.candidates.min_period_mm, o.candidates.max_period_mm);

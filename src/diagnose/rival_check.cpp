@@ -133,7 +133,7 @@ std::vector<std::string> mark_unrejected_rivals(const Problem& pb,
                                                 const std::vector<SelectedTerm>& datum,
                                                 std::vector<SelectedTerm>& effects,
                                                 const CandidateSet& catalogue, double searched_cost,
-                                                const RivalOptions& o) {
+                                                const RivalOptions& o, double min_effect_rms) {
   auto cost = [&](const Term& t) {
     const bool searched = t.kind == TermKind::cyclic || t.kind == TermKind::thermal_drift;
     return t.columns() + (searched ? searched_cost : 0.0);
@@ -187,6 +187,17 @@ std::vector<std::string> mark_unrejected_rivals(const Problem& pb,
       d_zero_free[0] = named_only->removes(CU);
       if (with_smooth) d_zero_free[1] = with_smooth->removes(CU);
     }
+    // The margin by which a rival may remove less: one column's χ², and
+    // for an arm offset the share of the practical floor
+    // (RivalOptions::arm_offset_floor_share); t.margin is σ̂²·χ²₁(α).
+    const double floor_sigmas = se.term.kind == TermKind::arm_offset
+                                    ? o.arm_offset_floor_share *
+                                          static_cast<double>(pb.obs.size()) * min_effect_rms *
+                                          min_effect_rms
+                                    : 0.0;
+    auto margin_of = [&](const SwapTest& t) {
+      return std::max(t.margin, t.margin / chi2_upper_quantile(1, o.alpha) * floor_sigmas);
+    };
     std::vector<Term> rivals;
     for (const Term& cand : stand_ins(catalogue, se.term)) {
       // Parsimony: an alternative that costs more (columns, plus a
@@ -218,14 +229,14 @@ std::vector<std::string> mark_unrejected_rivals(const Problem& pb,
         const SwapTest& t = **test;
         const double d_c = t.removes(Cs);
         const double d_e = both_proportional ? d_zero_free[test == &named_only ? 0 : 1] : t.d_e;
-        if (d_c < d_e - t.margin) continue;
+        if (d_c < d_e - margin_of(t)) continue;
         rivals.push_back(cand);
         log.push_back(fmt::format(
             "data: {} (ΔRSS {:.6g}) is not preferred over {} in its place{}{} (ΔRSS {:.6g}, "
             "margin {:.3g})",
             se.term.label(), d_e, cand.label(),
             test == &with_smooth ? " beside the smooth functions" : "",
-            both_proportional ? ", each with its zero free" : "", d_c, t.margin));
+            both_proportional ? ", each with its zero free" : "", d_c, margin_of(t)));
         break;
       }
     }

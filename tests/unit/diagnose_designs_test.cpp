@@ -44,6 +44,7 @@
 #include <set>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 #include <tuple>
 
 #include "abbe/diagnose/design_ambiguity.hpp"
@@ -65,12 +66,50 @@ constexpr double kNoise = 0.5;  // µm, per measured component
 // The virtual machine with its laser campaign's noise ON (the model does not
 // match the truth exactly: that mismatch is part of every data set), waves
 // shorter than two table intervals removed (else every data set holds the
-// generator's 10 mm screw cycle, itself a hidden effect).
-const testing::VirtualMachine& noisy_vm() {
-  static const testing::VirtualMachine vm =
-      testing::build_virtual_machine(true, "abbe_designs_vm", sim::GeneratorOptions{}.noise_scale);
+// generator's 10 mm screw cycle, itself a hidden effect): the generator's
+// "mazak" machine (seed 7), or another truth machine for a sweep by
+// ABBE_DESIGNS_VM_SEED, ABBE_DESIGNS_VM_PROFILE (mazak, generic) and
+// ABBE_DESIGNS_VM_CHAIN (e.g. "w b X Y Z t").
+const testing::VirtualMachine& default_vm() {
+  static const testing::VirtualMachine vm = [] {
+    const char* seed = std::getenv("ABBE_DESIGNS_VM_SEED");
+    const char* profile = std::getenv("ABBE_DESIGNS_VM_PROFILE");
+    const char* chain = std::getenv("ABBE_DESIGNS_VM_CHAIN");
+    return testing::build_virtual_machine(true, "abbe_designs_vm",
+                                          sim::GeneratorOptions{}.noise_scale,
+                                          seed ? std::strtoull(seed, nullptr, 10) : 7,
+                                          profile ? profile : "mazak", chain ? chain : "");
+  }();
   return vm;
 }
+
+// A machine the engine was not tuned on: the generator's generic profile
+// (seed 11) with a gantry's chain, X and Y both on the tool side. Its
+// angular tables' noise is larger, so an arm offset (those tables times an
+// arm) fits more of the model's own table error.
+const testing::VirtualMachine& gantry_vm() {
+  static const testing::VirtualMachine vm = testing::build_virtual_machine(
+      true, "abbe_designs_gantry", sim::GeneratorOptions{}.noise_scale, 11, "generic",
+      "w b X Y Z t");
+  return vm;
+}
+
+// The machine the sweeps measure on (OnMachine switches it for one test).
+const testing::VirtualMachine* current_vm = nullptr;
+std::string current_vm_label;  // printed with the design's name
+const testing::VirtualMachine& noisy_vm() { return current_vm ? *current_vm : default_vm(); }
+struct OnMachine {
+  OnMachine(const testing::VirtualMachine& vm, std::string label) {
+    current_vm = &vm;
+    current_vm_label = std::move(label);
+  }
+  ~OnMachine() {
+    current_vm = nullptr;
+    current_vm_label.clear();
+  }
+  OnMachine(const OnMachine&) = delete;
+  OnMachine& operator=(const OnMachine&) = delete;
+};
 
 // ---------------------------------------------------------------- designs
 enum class Design {
@@ -1058,8 +1097,9 @@ std::pair<Hidden, std::uint64_t> sweep_case(Design design, int i) {
 }
 
 Rates sweep(Design design, bool no_directions = false) {
-  const std::string label =
-      std::string(design_name(design)) + (no_directions ? ", no vx vy vz (inferred)" : "");
+  const std::string label = std::string(design_name(design)) +
+                            (no_directions ? ", no vx vy vz (inferred)" : "") +
+                            (current_vm_label.empty() ? "" : ", " + current_vm_label);
   const int n = seeds();
   Rates r;
   const int only = only_case();
@@ -1255,6 +1295,42 @@ TEST(DiagnoseDesigns, GridIrregular) {
 TEST(DiagnoseDesigns, BallbarXY) { check(sweep(Design::ballbar_xy), {0.9, 0.02, 0.02, 0.95, 0.9}); }
 TEST(DiagnoseDesigns, AxisLines) {
   check(sweep(Design::axis_lines), {0.93, 0.04, 0.02, 0.95, 0.95});
+}
+
+// The same designs on a machine the engine was not tuned on (gantry_vm():
+// another profile, seed and chain). The rates there (docs/diagnosis.md,
+// "On another machine"), less a margin of about one case in ten; the
+// ceilings on wrong names are the issue's 2 % where the cases allow it.
+Rates sweep_on_gantry(Design design) {
+  const OnMachine on(gantry_vm(), "gantry (generic, seed 11)");
+  return sweep(design);
+}
+TEST(DiagnoseDesigns, GantryGrid) {
+  check(sweep_on_gantry(Design::grid), {0.94, 0.02, 0.06, 0.95, 0.95});
+}
+TEST(DiagnoseDesigns, GantryPlane) {
+  check(sweep_on_gantry(Design::plane), {0.9, 0.02, 0.02, 0.8, 0.9});
+}
+TEST(DiagnoseDesigns, GantryToolpath) {
+  check(sweep_on_gantry(Design::toolpath), {0.92, 0.06, 0.05, 0.95, 0.95});
+}
+TEST(DiagnoseDesigns, GantryBallbar) {
+  check(sweep_on_gantry(Design::ballbar), {0.85, 0.05, 0.05, 0.95, 0.9});
+}
+TEST(DiagnoseDesigns, GantryDiagonals) {
+  check(sweep_on_gantry(Design::diagonals), {0.5, 0.02, 0.05, 0.95, 0.5});
+}
+TEST(DiagnoseDesigns, GantryAxisLines) {
+  check(sweep_on_gantry(Design::axis_lines), {0.9, 0.02, 0.05, 0.95, 0.95});
+}
+TEST(DiagnoseDesigns, GantryGridOnePass) {
+  check(sweep_on_gantry(Design::grid_one_pass), {0.85, 0.05, 0.05, 0.95, 0.85});
+}
+TEST(DiagnoseDesigns, GantryBallbarXY) {
+  check(sweep_on_gantry(Design::ballbar_xy), {0.85, 0.02, 0.02, 0.95, 0.9});
+}
+TEST(DiagnoseDesigns, GantryGridIrregular) {
+  check(sweep_on_gantry(Design::grid_irregular), {0.85, 0.05, 0.05, 0.95, 0.95});
 }
 
 // Two effects together on the grid (issue 16: "both named"): two

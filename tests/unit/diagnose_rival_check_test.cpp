@@ -312,5 +312,75 @@ TEST(DiagnoseRivalCheck, ProportionalDriftsAreComparedWithTheirZeroFree) {
   EXPECT_GT(fixed_off_hand, 0);
 }
 
+namespace arm {
+
+// Four laser lines along X (y = 0, 100, 200, 300; a set each), 201 readings
+// each, read along X, noise 0.3 µm. The model's pitch of X about Y, εY(x),
+// is a slope of 20 µrad over the half travel plus `wave_urad`·sin(2πx/97):
+// the wave is the model's own table error. An arm offset εX×ΔZ of Δ mm
+// reads dx = 1e-3·Δ·εY(x). The truth: that arm offset at 200 mm scaled by
+// `share` in its wave (share 1: the arm offset exactly; 0: a scale of X).
+Problem lines(double wave_urad, double share, std::uint64_t seed) {
+  Problem pb;
+  std::vector<double> y;
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> noise(0.0, 0.3);
+  std::vector<std::string> sets;
+  for (int line = 0; line < 4; ++line) {
+    sets.push_back("x" + std::to_string(line));
+    for (int i = 0; i <= 200; ++i) {
+      const double x = 2.0 * i;
+      PointContext pc;
+      pc.p = pc.s = Eigen::Vector3d(x, 100.0 * line, 0.0);
+      pc.set = sets.back();
+      pc.t = 5.0 * static_cast<double>(pb.points.size());
+      const double slope = 20.0 * (x - 200.0) / 200.0;
+      const double wave = wave_urad * std::sin(2.0 * M_PI * x / 97.0);
+      pc.eps_urad[0] = Eigen::Vector3d(0.0, slope + wave, 0.0);
+      const double truth = 1e-3 * 200.0 * (slope + share * wave);
+      test::add_reading(pb, y, pc, Eigen::Vector3d::UnitX(), truth + noise(rng));
+    }
+  }
+  test::finish_problem(pb, y, sets.front(), {true, true, false}, Eigen::Vector3d(0.0, 0.0, 0.0),
+                       Eigen::Vector3d(400.0, 300.0, 0.0));
+  pb.sets = sets;
+  return pb;
+}
+
+Term arm_offset_x_z() {
+  Term t = test::make_term(TermKind::arm_offset, 0, 2);
+  return t;
+}
+
+}  // namespace arm
+
+// The arm offset removes more than the scale only by the model's own table
+// error it fits (a wave of 0.35 µrad × 200 mm = 0.07 µm, about 22 σ̂² on
+// 804 readings): more than one column's χ² (6.6 σ̂²), less than half the
+// practical floor (0.5 · 804 · 0.3² = 36 σ̂²). The scale is its rival; with
+// arm_offset_floor_share 0 (one column's χ², as any other effect) it is not.
+// A real arm offset whose wave the data show well above the floor (3 µrad:
+// 0.6 µm) stays a name.
+TEST(DiagnoseRivalCheck, AnArmOffsetIsPreferredOverAScaleOnlyBeyondTheTablesError) {
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    const Problem pb = arm::lines(0.35, 1.0, seed);
+    const CandidateSet cs = build_candidates(pb, CandidateOptions{});
+    std::vector<SelectedTerm> eff = fit(pb, cs, arm::arm_offset_x_z());
+    mark_unrejected_rivals(pb, datum_of(cs), eff, cs, 2.0, {}, 0.3);
+    EXPECT_TRUE(has(eff[0].ambiguous_with, "scale X")) << seed;
+    RivalOptions chi2_only;
+    chi2_only.arm_offset_floor_share = 0.0;
+    std::vector<SelectedTerm> by_chi2 = fit(pb, cs, arm::arm_offset_x_z());
+    mark_unrejected_rivals(pb, datum_of(cs), by_chi2, cs, 2.0, chi2_only, 0.3);
+    EXPECT_FALSE(has(by_chi2[0].ambiguous_with, "scale X")) << seed;
+
+    const Problem real = arm::lines(3.0, 1.0, seed);
+    const CandidateSet cr = build_candidates(real, CandidateOptions{});
+    std::vector<SelectedTerm> named = fit(real, cr, arm::arm_offset_x_z());
+    mark_unrejected_rivals(real, datum_of(cr), named, cr, 2.0, {}, 0.3);
+    EXPECT_TRUE(named[0].ambiguous_with.empty()) << seed << ": " << named[0].ambiguous_with.front();
+  }
+}
+
 }  // namespace
 }  // namespace abbe::diagnose

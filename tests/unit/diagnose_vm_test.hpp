@@ -31,11 +31,15 @@ struct VirtualMachine {
 // The generator's "mazak" machine (seed 7) with its laser campaign's tables;
 // campaign_noise_scale 0 makes the campaign noise-free.
 inline VirtualMachine build_virtual_machine(bool strip_short_waves, const std::string& name,
-                                            double campaign_noise_scale = 0.0) {
+                                            double campaign_noise_scale = 0.0,
+                                            std::uint64_t seed = 7,
+                                            const std::string& profile = "mazak",
+                                            const std::string& chain = "") {
   {
     sim::GeneratorOptions go;
-    go.seed = 7;
-    go.profile = "mazak";
+    go.seed = seed;
+    go.profile = profile;
+    if (!chain.empty()) go.chain = chain;
     go.noise_scale = campaign_noise_scale;
     sim::GeneratedMachine g = sim::generate_machine(go);
     // The generator gives every positioning component a 10 mm ballscrew cycle

@@ -49,6 +49,15 @@ struct RivalOptions {
   // y·t→Y about the zero fits a drift ∝ (x − x0)·t in X better than x·t→X
   // about the zero does.
   bool zero_free_drifts = true;
+  // An arm offset (the model's own angular tables times an unknown arm)
+  // carries those tables' error, which every residual holds too (the real
+  // arms times the same error): on top of what it shares with a rival it
+  // fits part of that error, by more than one column's χ² on a large data
+  // set. It is preferred over a rival only where it removes more by this
+  // share of the practical floor's sum of squares (n·min_effect_rms²·σ̂², as
+  // a combination's partner must add: SelectionOptions::partner_floor_share);
+  // 0: by one column's χ² as every other effect.
+  double arm_offset_floor_share = 0.5;
 };
 
 // Marks the effects (fitted, with coef) the data do not prefer over another
@@ -56,11 +65,13 @@ struct RivalOptions {
 // costs more than the effect (columns, plus `searched_cost` for a period or
 // time constant found by search: SelectionOptions::searched_cost) is not a
 // rival, as in the selection's parsimony rule. Returns one log line per
-// rival found.
+// rival found. `min_effect_rms`: the practical floor
+// (SelectionOptions::min_effect_rms; 0: none) for arm_offset_floor_share.
 std::vector<std::string> mark_unrejected_rivals(const Problem& problem,
                                                 const std::vector<SelectedTerm>& datum,
                                                 std::vector<SelectedTerm>& effects,
                                                 const CandidateSet& catalogue, double searched_cost,
-                                                const RivalOptions& options);
+                                                const RivalOptions& options,
+                                                double min_effect_rms = 0.0);
 
 }  // namespace abbe::diagnose
