@@ -8,6 +8,7 @@
 #include <string>
 #include <utility>
 
+#include "abbe/diagnose/statistics.hpp"
 #include "path.hpp"
 
 namespace abbe::diagnose {
@@ -158,16 +159,30 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     const int searched_path = searched_effects(res), searched_kept = searched_effects(best);
     const bool joined =
         o.revisit_alternative_replaces && kept.first && names(res.terms, *kept.first);
-    const bool wins = better && ((by_smooth_function && !joined) || searched_path <= searched_kept);
+    // A drift that grows with a position in place of its own static form
+    // (the kept first pick: drift_course_floor made it so, or it removed
+    // more) must gain by its course what it must add beside that form at
+    // the step: the χ² of one column and the practical floor — unless its
+    // path names the structure the kept path left to a smooth function
+    // (revisit_course_floor).
+    const bool course_short =
+        o.revisit_course_floor && kept.first && alt.kind == TermKind::thermal_drift &&
+        (!by_smooth_function || ends_with_smooth_function(res)) && alt.with_axis >= 0 &&
+        kept.first->label() == position_term(alt.with_axis, alt.direction).label() &&
+        !(kept.rss - path.rss > c.s2 * std::max(chi2_upper_quantile(1, o.alpha),
+                                                n * o.min_effect_rms * o.min_effect_rms));
+    const bool wins = better && !course_short &&
+                      ((by_smooth_function && !joined) || searched_path <= searched_kept);
     notes.push_back(fmt::format(
         "revisit: first step {} in place of {}: criterion {:.6g} against {:.6g}, held-out SSE "
         "{:.6g} against {:.6g}{}",
         alt.label(), kept.first ? kept.first->label() : std::string("nothing"), c.ic_path,
         c.ic_kept, res.cv_sse, best.cv_sse,
-        wins     ? std::string(": taken")
-        : better ? fmt::format(": not taken, {} effects with a searched parameter against {}",
-                               searched_path, searched_kept)
-                 : std::string()));
+        wins           ? std::string(": taken")
+        : course_short ? std::string(": not taken, its course adds less than the floor")
+        : better       ? fmt::format(": not taken, {} effects with a searched parameter against {}",
+                                     searched_path, searched_kept)
+                       : std::string()));
     if (wins) {
       best = std::move(res);
       kept = path;

@@ -1530,6 +1530,27 @@ TEST(DiagnoseDesigns, AStaticFirstPickInPlaceOfADriftIsRevisited) {
                 "not taken, 2 effects with a searched parameter against 1", &rules);
 }
 
+// A revisited drift that grows with a position wins in place of its own
+// static form only by a course above the floor
+// (SelectionOptions::revisit_course_floor). Irregular grid case 124 on the
+// gantry (a scale of Z, −3.0 µm): the kept path names the scale of Z and
+// ends with a smooth dX(z, t); the path from a drift z·t→Z at τ 600 s (a
+// scale of Z but for the first minutes of the walk) ends with the same
+// smooth function and was better on the criterion by 1.9 and held out, by
+// the model's own error in those minutes: taken, a wrong name.
+TEST(DiagnoseDesigns, ARevisitedDriftMustGainItsCourseBesideItsStaticForm) {
+  const OnMachine on(gantry_vm(), "gantry (generic, seed 11)");
+  const auto [h, seed] = sweep_case(Design::grid_irregular, 124);
+  const Case c = run_case(Design::grid_irregular, h, seed);
+  EXPECT_EQ(c.verdict, Verdict::right) << c.found;
+  EXPECT_TRUE(logged(c, "first step thermal_drift z·t→Z (τ 600 s) in place of scale Z",
+                     "not taken, its course adds less than the floor"));
+  SelectionOptions without;
+  without.revisit_course_floor = false;
+  const Case w = run_case(Design::grid_irregular, h, seed, 0.0, &without);
+  EXPECT_EQ(w.verdict, Verdict::wrong) << w.found;
+}
+
 // A revisited path wins only where its alternative takes the first pick's
 // place (SelectionOptions::revisit_alternative_replaces). Case 31 of the
 // two-effect sweep (a scale of Y beside a drift ∝ z of Z): the kept path

@@ -217,6 +217,16 @@ struct SelectionOptions {
   // such a path wins only where it also ends with no more effects with a
   // searched parameter than the kept one.
   bool revisit_searched_first = true;
+  // A revisited path whose first pick is a drift that grows with a position
+  // in place of its own static form (the kept first pick) wins only where
+  // it removes more than the kept path by what the drift's course must add
+  // beside that form at a step (drift_course_floor: one column's χ² and the
+  // practical floor), unless the kept path ends with a smooth function and
+  // the revisited one names that structure (false: the criterion and the
+  // held-out SSE alone; on a serpentine walk z follows t, and a drift z·t→Z
+  // at τ 600 s, a scale of Z but for the first minutes, took a scale's
+  // place by the model's own error there).
+  bool revisit_course_floor = true;
   // A revisited path wins only where its alternative takes the kept first
   // pick's place: one that names the kept pick after all (a cycle whose
   // period aliases a scale on a levelled axis, then the scale beside it)
