@@ -84,9 +84,10 @@ const testing::VirtualMachine& default_vm() {
 }
 
 // A machine the engine was not tuned on: the generator's generic profile
-// (seed 11) with a gantry's chain, X and Y both on the tool side. Its
-// angular tables' noise is larger, so an arm offset (those tables times an
-// arm) fits more of the model's own table error.
+// (seed 11) with the chain `w b X Y Z t` (every axis on the tool side, as on
+// a gantry). There an arm offset (the model's angular tables times an arm)
+// fitted the model's own table error in place of scales and drifts
+// (docs/diagnosis.md, "On machines it was not tuned on").
 const testing::VirtualMachine& gantry_vm() {
   static const testing::VirtualMachine vm = testing::build_virtual_machine(
       true, "abbe_designs_gantry", sim::GeneratorOptions{}.noise_scale, 11, "generic",

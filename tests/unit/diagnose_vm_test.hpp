@@ -28,7 +28,8 @@ struct VirtualMachine {
   machine::Machine machine;
 };
 
-// The generator's "mazak" machine (seed 7) with its laser campaign's tables;
+// The generator's "mazak" machine (seed 7) with its laser campaign's tables,
+// or another seed, profile or chain (empty: the generator's default chain);
 // campaign_noise_scale 0 makes the campaign noise-free.
 inline VirtualMachine build_virtual_machine(bool strip_short_waves, const std::string& name,
                                             double campaign_noise_scale = 0.0,
