@@ -356,8 +356,8 @@ Term arm_offset_x_z() {
 
 // The arm offset removes more than the scale only by the model's own table
 // error it fits (a wave of 0.35 µrad × 200 mm = 0.07 µm, about 22 σ̂² on
-// 804 readings): more than one column's χ² (6.6 σ̂²), less than half the
-// practical floor (0.5 · 804 · 0.3² = 36 σ̂²). The scale is its rival; with
+// 804 readings): more than one column's χ² (6.6 σ̂²), less than the
+// practical floor (804 · 0.3² = 72 σ̂²). The scale is its rival; with
 // arm_offset_floor_share 0 (one column's χ², as any other effect) it is not.
 // A real arm offset whose wave the data show well above the floor (3 µrad:
 // 0.6 µm) stays a name.

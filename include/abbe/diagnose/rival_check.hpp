@@ -54,10 +54,11 @@ struct RivalOptions {
   // arms times the same error): on top of what it shares with a rival it
   // fits part of that error, by more than one column's χ² on a large data
   // set. It is preferred over a rival only where it removes more by this
-  // share of the practical floor's sum of squares (n·min_effect_rms²·σ̂², as
-  // a combination's partner must add: SelectionOptions::partner_floor_share);
-  // 0: by one column's χ² as every other effect.
-  double arm_offset_floor_share = 0.5;
+  // share of the practical floor's sum of squares (n·min_effect_rms²·σ̂²,
+  // what an effect must remove to be named at all; half of it was not
+  // enough on a machine whose model error is twice the noise); 0: by one
+  // column's χ² as every other effect.
+  double arm_offset_floor_share = 1.0;
 };
 
 // Marks the effects (fitted, with coef) the data do not prefer over another
