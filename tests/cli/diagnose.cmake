@@ -15,9 +15,7 @@ if(NOT CMAKE_SCRIPT_MODE_FILE)
   # The honest harness on real measurement designs, 200 seeds per design,
   # in three parts of about equal time (the toolpath alone is a third) so
   # that `ctest --parallel` spreads them over the cores; COST makes ctest
-  # start them first on a fresh build, where it has no timings yet. The
-  # same designs on another machine (DiagnoseDesigns.Gantry*) run with the
-  # unit tests at 40 seeds only (their 300-seed rates: docs/diagnosis.md).
+  # start them first on a fresh build, where it has no timings yet.
   set(grids "DiagnoseDesigns.Grid:DiagnoseDesigns.GridIrregular:DiagnoseDesigns.GridWithoutDirectionsInferred")
   foreach(part toolpath grids others)
     if(part STREQUAL "toolpath")
@@ -25,7 +23,7 @@ if(NOT CMAKE_SCRIPT_MODE_FILE)
     elseif(part STREQUAL "grids")
       set(filter ${grids})
     else()
-      set(filter "DiagnoseDesigns.*-DiagnoseDesigns.Toolpath:${grids}:DiagnoseDesigns.Gantry*")
+      set(filter "DiagnoseDesigns.*-DiagnoseDesigns.Toolpath:${grids}")
     endif()
     add_test(NAME diagnose_designs_sweep_${part}
              COMMAND $<TARGET_FILE:abbe_tests> --gtest_filter=${filter})
