@@ -36,6 +36,7 @@
 #include <Eigen/Dense>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <initializer_list>
 #include <iostream>
@@ -187,6 +188,18 @@ void set_dirs(std::vector<Sample>& v, Eigen::Vector3d prev) {
   }
 }
 
+// A grid's levels per axis: 12 × 8 × 5 walked both ways, 9 × 7 × 3 once;
+// ABBE_DESIGNS_GRID=NXxNYxNZ: other level counts, for a sweep on a grid the
+// engine was not tuned on.
+std::array<int, 3> grid_levels(Design d) {
+  std::array<int, 3> n = d == Design::grid_one_pass ? std::array<int, 3>{9, 7, 3}
+                                                    : std::array<int, 3>{12, 8, 5};
+  if (const char* g = std::getenv("ABBE_DESIGNS_GRID"))
+    if (std::sscanf(g, "%dx%dx%d", &n[0], &n[1], &n[2]) != 3 || n[0] < 2 || n[1] < 2 || n[2] < 2)
+      throw std::invalid_argument(fmt::format("ABBE_DESIGNS_GRID={}: want NXxNYxNZ", g));
+  return n;
+}
+
 std::vector<Sample> make_design(Design d) {
   const Box b = box();
   const double L = noisy_vm().generated.truth.tool_length;
@@ -210,7 +223,8 @@ std::vector<Sample> make_design(Design d) {
       // spacing: "sample at irregular spacing"); or 9 × 7 × 3 regular levels
       // walked once (time then follows the Z levels).
       const bool both_ways = d != Design::grid_one_pass;
-      const int nx = both_ways ? 12 : 9, ny = both_ways ? 8 : 7, nz = both_ways ? 5 : 3;
+      const std::array<int, 3> n_levels = grid_levels(d);
+      const int nx = n_levels[0], ny = n_levels[1], nz = n_levels[2];
       std::mt19937_64 levels_rng(77);
       std::uniform_real_distribution<double> jitter(-0.3, 0.3);
       std::array<std::vector<double>, 3> level;  // per axis: each level's position in steps
@@ -348,9 +362,12 @@ std::vector<Sample> make_design(Design d) {
                     : d == Design::ballbar || d == Design::ballbar_xy ? 8.0
                     : d == Design::toolpath                           ? 2.0
                                                                       : 5.0;
+  // ABBE_DESIGNS_DT_SCALE: every design's time between readings scaled.
+  const char* dt_scale = std::getenv("ABBE_DESIGNS_DT_SCALE");
+  const double dt_used = dt * (dt_scale ? std::atof(dt_scale) : 1.0);
   for (Sample& s : out) {
     s.tip.time = t;
-    t += dt;
+    t += dt_used;
   }
   if (d == Design::ballbar || d == Design::ballbar_xy) {
     // The motion the importer gives each reading (the plane's two axes, from
@@ -477,7 +494,12 @@ Hidden draw(std::mt19937_64& rng, const Box& b, double L) {
 bool identifiable(Design d, const Hidden& h) {
   switch (d) {
     case Design::grid:
-      // Regular levels ≥ 50 mm apart alias every period of 8–40 mm.
+      // Regular levels ≥ 50 mm apart alias every period of 8–40 mm; on 4
+      // levels or fewer a cycle with its period free fits any function of
+      // the levels, a scale or squareness along that axis too.
+      if ((h.shape == Shape::scale || h.shape == Shape::squareness) &&
+          grid_levels(d)[static_cast<std::size_t>(h.axis)] <= 4)
+        return false;
       return h.shape != Shape::pitch;
     case Design::grid_irregular:
       // Irregular levels do not alias a period; 12 of them resolve a pitch
