@@ -192,8 +192,8 @@ void set_dirs(std::vector<Sample>& v, Eigen::Vector3d prev) {
 // ABBE_DESIGNS_GRID=NXxNYxNZ: other level counts, for a sweep on a grid the
 // engine was not tuned on.
 std::array<int, 3> grid_levels(Design d) {
-  std::array<int, 3> n = d == Design::grid_one_pass ? std::array<int, 3>{9, 7, 3}
-                                                    : std::array<int, 3>{12, 8, 5};
+  std::array<int, 3> n =
+      d == Design::grid_one_pass ? std::array<int, 3>{9, 7, 3} : std::array<int, 3>{12, 8, 5};
   if (const char* g = std::getenv("ABBE_DESIGNS_GRID"))
     if (std::sscanf(g, "%dx%dx%d", &n[0], &n[1], &n[2]) != 3 || n[0] < 2 || n[1] < 2 || n[2] < 2)
       throw std::invalid_argument(fmt::format("ABBE_DESIGNS_GRID={}: want NXxNYxNZ", g));
@@ -1122,7 +1122,9 @@ std::pair<Hidden, std::uint64_t> sweep_case(Design design, int i) {
 Rates sweep(Design design, bool no_directions = false) {
   const std::string label = std::string(design_name(design)) +
                             (no_directions ? ", no vx vy vz (inferred)" : "") +
-                            (current_vm_label.empty() ? "" : ", " + current_vm_label);
+                            (current_vm_label.empty() ? "" : ", " + current_vm_label) +
+                            (std::getenv("ABBE_DESIGNS_GRID") ? ", levels overridden" : "") +
+                            (std::getenv("ABBE_DESIGNS_DT_SCALE") ? ", time scaled" : "");
   const int n = seeds();
   Rates r;
   const int only = only_case();
