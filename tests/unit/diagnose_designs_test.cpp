@@ -1257,7 +1257,8 @@ void check(const Rates& r, const Floor& f) {
 // (200 seeds; 40 seeds: grid 25/26, toolpath 17/18 with 1 wrong, ballbar
 // 22/23, diagonals 1 wrong in 30): every floor rose, none fell. The
 // ballbar read through its importer: 1 wrong name in 50 cases it cannot
-// identify (200 seeds), at its ceiling. With rivals the data reject no
+// identify (200 seeds), at its ceiling (0 since an arm offset is preferred
+// over a rival only beyond the practical floor, RivalOptions). With rivals the data reject no
 // longer reported (rivals_by_test) the ballbar's named right rose 94/100 →
 // 95/100 (200 seeds; 40 seeds unchanged), nothing else changed. With a
 // drift of Z identifiable at one Z (ADriftOfZIsIdentifiableAtOneZ) the
