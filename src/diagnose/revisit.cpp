@@ -66,6 +66,14 @@ void first_step_alternatives(const Problem& pb, const CandidateSet& cs, const Se
 
 namespace {
 
+// A drift that grows with a position, revisited in place of the kept
+// path's first pick when that pick is the drift's own static form (the
+// scale or squareness of the same axes).
+bool drift_for_its_static_form(const Term& alt, const std::optional<Term>& first) {
+  return first && alt.kind == TermKind::thermal_drift && alt.with_axis >= 0 &&
+         first->label() == position_term(alt.with_axis, alt.direction).label();
+}
+
 bool ends_with_smooth_function(const SelectionResult& res) {
   return std::any_of(res.terms.begin(), res.terms.end(),
                      [](const SelectedTerm& st) { return st.term.kind == TermKind::unexplained; });
@@ -166,9 +174,8 @@ SelectionResult select_effects(const Problem& pb, const CandidateSet& cs,
     // path names the structure the kept path left to a smooth function
     // (revisit_course_floor).
     const bool course_short =
-        o.revisit_course_floor && kept.first && alt.kind == TermKind::thermal_drift &&
-        (!by_smooth_function || ends_with_smooth_function(res)) && alt.with_axis >= 0 &&
-        kept.first->label() == position_term(alt.with_axis, alt.direction).label() &&
+        o.revisit_course_floor && drift_for_its_static_form(alt, kept.first) &&
+        (!by_smooth_function || ends_with_smooth_function(res)) &&
         !(kept.rss - path.rss > c.s2 * std::max(chi2_upper_quantile(1, o.alpha),
                                                 n * o.min_effect_rms * o.min_effect_rms));
     const bool wins = better && !course_short &&

@@ -22,9 +22,11 @@ using Vec = Eigen::VectorXd;
 using span::orthonormal;
 using span::residual_of;
 
-// One swap test of an effect (span::SwapBasis) and the margin σ̂²·χ²₁(α)
-// by which a stand-in may remove less.
+// One swap test of an effect (span::SwapBasis), the residual variance σ̂²
+// the effect and the rest leave, and the margin σ̂²·χ²₁(α) by which a
+// stand-in may remove less.
 struct SwapTest : span::SwapBasis {
+  double s2 = 0.0;
   double margin = 0.0;
 };
 
@@ -43,7 +45,8 @@ std::optional<SwapTest> swap_test(const Problem& pb, const Mat& D, const std::ve
   const auto n = static_cast<Eigen::Index>(pb.obs.size());
   const double dof = static_cast<double>(n - t.QA.cols() - cols[e].cols());
   if (!(t.d_e > 0.0) || dof < 1.0) return std::nullopt;
-  t.margin = std::max(t.rA.squaredNorm() - t.d_e, 0.0) / dof * chi2_upper_quantile(1, alpha);
+  t.s2 = std::max(t.rA.squaredNorm() - t.d_e, 0.0) / dof;
+  t.margin = t.s2 * chi2_upper_quantile(1, alpha);
   return t;
 }
 
@@ -189,15 +192,13 @@ std::vector<std::string> mark_unrejected_rivals(const Problem& pb,
     }
     // The margin by which a rival may remove less: one column's χ², and
     // for an arm offset the share of the practical floor
-    // (RivalOptions::arm_offset_floor_share); t.margin is σ̂²·χ²₁(α).
+    // (RivalOptions::arm_offset_floor_share), in units of σ̂².
     const double floor_sigmas = se.term.kind == TermKind::arm_offset
                                     ? o.arm_offset_floor_share *
                                           static_cast<double>(pb.obs.size()) * min_effect_rms *
                                           min_effect_rms
                                     : 0.0;
-    auto margin_of = [&](const SwapTest& t) {
-      return std::max(t.margin, t.margin / chi2_upper_quantile(1, o.alpha) * floor_sigmas);
-    };
+    auto margin_of = [&](const SwapTest& t) { return std::max(t.margin, t.s2 * floor_sigmas); };
     std::vector<Term> rivals;
     for (const Term& cand : stand_ins(catalogue, se.term)) {
       // Parsimony: an alternative that costs more (columns, plus a

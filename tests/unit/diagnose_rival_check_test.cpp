@@ -318,9 +318,8 @@ namespace arm {
 // each, read along X, noise 0.3 µm. The model's pitch of X about Y, εY(x),
 // is a slope of 20 µrad over the half travel plus `wave_urad`·sin(2πx/97):
 // the wave is the model's own table error. An arm offset εX×ΔZ of Δ mm
-// reads dx = 1e-3·Δ·εY(x). The truth: that arm offset at 200 mm scaled by
-// `share` in its wave (share 1: the arm offset exactly; 0: a scale of X).
-Problem lines(double wave_urad, double share, std::uint64_t seed) {
+// reads dx = 1e-3·Δ·εY(x). The truth: that arm offset at 200 mm exactly.
+Problem lines(double wave_urad, std::uint64_t seed) {
   Problem pb;
   std::vector<double> y;
   std::mt19937_64 rng(seed);
@@ -337,7 +336,7 @@ Problem lines(double wave_urad, double share, std::uint64_t seed) {
       const double slope = 20.0 * (x - 200.0) / 200.0;
       const double wave = wave_urad * std::sin(2.0 * M_PI * x / 97.0);
       pc.eps_urad[0] = Eigen::Vector3d(0.0, slope + wave, 0.0);
-      const double truth = 1e-3 * 200.0 * (slope + share * wave);
+      const double truth = 1e-3 * 200.0 * (slope + wave);
       test::add_reading(pb, y, pc, Eigen::Vector3d::UnitX(), truth + noise(rng));
     }
   }
@@ -347,10 +346,7 @@ Problem lines(double wave_urad, double share, std::uint64_t seed) {
   return pb;
 }
 
-Term arm_offset_x_z() {
-  Term t = test::make_term(TermKind::arm_offset, 0, 2);
-  return t;
-}
+Term arm_offset_x_z() { return test::make_term(TermKind::arm_offset, 0, 2); }
 
 }  // namespace arm
 
@@ -363,7 +359,7 @@ Term arm_offset_x_z() {
 // 0.6 µm) stays a name.
 TEST(DiagnoseRivalCheck, AnArmOffsetIsPreferredOverAScaleOnlyBeyondTheTablesError) {
   for (std::uint64_t seed = 1; seed <= 5; ++seed) {
-    const Problem pb = arm::lines(0.35, 1.0, seed);
+    const Problem pb = arm::lines(0.35, seed);
     const CandidateSet cs = build_candidates(pb, CandidateOptions{});
     std::vector<SelectedTerm> eff = fit(pb, cs, arm::arm_offset_x_z());
     mark_unrejected_rivals(pb, datum_of(cs), eff, cs, 2.0, {}, 0.3);
@@ -374,7 +370,7 @@ TEST(DiagnoseRivalCheck, AnArmOffsetIsPreferredOverAScaleOnlyBeyondTheTablesErro
     mark_unrejected_rivals(pb, datum_of(cs), by_chi2, cs, 2.0, chi2_only, 0.3);
     EXPECT_FALSE(has(by_chi2[0].ambiguous_with, "scale X")) << seed;
 
-    const Problem real = arm::lines(3.0, 1.0, seed);
+    const Problem real = arm::lines(3.0, seed);
     const CandidateSet cr = build_candidates(real, CandidateOptions{});
     std::vector<SelectedTerm> named = fit(real, cr, arm::arm_offset_x_z());
     mark_unrejected_rivals(real, datum_of(cr), named, cr, 2.0, {}, 0.3);
