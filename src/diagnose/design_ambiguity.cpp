@@ -4,6 +4,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <numeric>
 #include <optional>
 #include <string>
 #include <utility>
@@ -56,16 +57,15 @@ bool depends_on_time(const Term& t) {
          std::find(t.vars.begin(), t.vars.end(), kTimeVariable) != t.vars.end();
 }
 
-// The share of the time's variance left within the levels of s_j (1 where
-// time does not vary): small where the design walks the levels in order.
-double time_within_levels(const Problem& pb, int j, const std::vector<double>& lv) {
-  std::vector<double> t_sum(lv.size(), 0.0), t_n(lv.size(), 0.0);
-  std::vector<std::size_t> level_of(pb.points.size());
+// The share of the time's variance left within groups of points (group_of:
+// each point's group, below `groups`; 1 where time does not vary).
+double time_within_groups(const Problem& pb, const std::vector<std::size_t>& group_of,
+                          std::size_t groups) {
+  std::vector<double> t_sum(groups, 0.0), t_n(groups, 0.0);
   double t_all = 0.0;
   for (std::size_t p = 0; p < pb.points.size(); ++p) {
-    level_of[p] = level_index(lv, pb.points[p].s[j]);
-    t_sum[level_of[p]] += pb.points[p].t;
-    t_n[level_of[p]] += 1.0;
+    t_sum[group_of[p]] += pb.points[p].t;
+    t_n[group_of[p]] += 1.0;
     t_all += pb.points[p].t;
   }
   t_all /= static_cast<double>(pb.points.size());
@@ -73,15 +73,88 @@ double time_within_levels(const Problem& pb, int j, const std::vector<double>& l
   for (std::size_t p = 0; p < pb.points.size(); ++p) {
     const double t = pb.points[p].t;
     t_total += (t - t_all) * (t - t_all);
-    const double mean = t_sum[level_of[p]] / t_n[level_of[p]];
+    const double mean = t_sum[group_of[p]] / t_n[group_of[p]];
     t_within += (t - mean) * (t - mean);
   }
   return t_total > 0.0 ? t_within / t_total : 1.0;
 }
 
-// The static terms a drift of direction i becomes where t follows s_j, one
-// or two together: a scale or squareness of j; for a drift ∝ s_w·t also of
-// w, and the coupling w·j.
+// The share of the time's variance left within the levels of s_j: small
+// where the design walks the levels in order.
+double time_within_levels(const Problem& pb, int j, const std::vector<double>& lv) {
+  std::vector<std::size_t> level_of(pb.points.size());
+  for (std::size_t p = 0; p < pb.points.size(); ++p)
+    level_of[p] = level_index(lv, pb.points[p].s[j]);
+  return time_within_groups(pb, level_of, lv.size());
+}
+
+// The share of the time's variance left within bins of s_j of about equal
+// counts (`bins` of them; points at one s_j stay in one bin), for an axis
+// the design does not level.
+double time_within_bins(const Problem& pb, int j, std::size_t bins) {
+  const std::size_t n = pb.points.size();
+  if (bins < 2 || n < 2 * bins) return 1.0;
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return pb.points[a].s[j] < pb.points[b].s[j]; });
+  std::vector<std::size_t> bin_of(n);
+  std::size_t bin = 0, count = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (count >= n / bins && pb.points[order[k]].s[j] > pb.points[order[k - 1]].s[j]) {
+      ++bin;
+      count = 0;
+    }
+    bin_of[order[k]] = bin;
+    ++count;
+  }
+  return time_within_groups(pb, bin_of, bin + 1);
+}
+
+// A uniform drift of `direction` at time constant `tau` (0: linear in t).
+Term uniform_drift(int direction, double tau) {
+  Term drift;
+  drift.kind = TermKind::thermal_drift;
+  drift.axis = drift.direction = direction;
+  drift.tau_s = tau;
+  return drift;
+}
+
+// A drift in the static effect's direction at each time constant.
+std::vector<std::vector<Term>> drift_stand_ins(const Term& effect,
+                                               const std::vector<double>& taus) {
+  std::vector<std::vector<Term>> out;
+  for (double tau : taus) out.push_back({uniform_drift(effect.direction, tau)});
+  return out;
+}
+
+// The drifts a static effect of s_j becomes where t follows s_j, at each
+// time constant: a uniform drift in its direction for a scale or
+// squareness of j; for a coupling w·j a drift ∝ s_w·t, alone or with the
+// uniform drift beside it (the drift about any zero); none for the rest.
+std::vector<std::vector<Term>> drifts_following(const Term& effect, int j,
+                                                const std::vector<double>& taus) {
+  std::vector<std::vector<Term>> out;
+  int w = -2;
+  if ((effect.kind == TermKind::scale || effect.kind == TermKind::squareness) && effect.axis == j)
+    w = -1;
+  else if (effect.kind == TermKind::coupling && (effect.axis == j || effect.with_axis == j))
+    w = effect.axis == j ? effect.with_axis : effect.axis;
+  if (w == -2 || effect.direction < 0) return out;
+  if (w == -1) return drift_stand_ins(effect, taus);
+  for (double tau : taus) {
+    const Term uniform = uniform_drift(effect.direction, tau);
+    Term proportional = uniform;
+    proportional.axis = proportional.with_axis = w;
+    out.push_back({proportional});
+    out.push_back({proportional, uniform});
+  }
+  return out;
+}
+
+// The static terms a drift of direction i becomes where t follows s_j, one,
+// two or all together: a scale or squareness of j; for a drift ∝ s_w·t also
+// of w, and the coupling w·j.
 std::vector<std::vector<Term>> static_stand_ins(const Problem& pb, const Term& drift, int j) {
   std::vector<Term> parts{position_term(j, drift.direction)};
   if (drift.with_axis >= 0 && drift.with_axis != j) {
@@ -100,20 +173,8 @@ std::vector<std::vector<Term>> static_stand_ins(const Problem& pb, const Term& d
     out.push_back({parts[a]});
     for (std::size_t b = a + 1; b < parts.size(); ++b) out.push_back({parts[a], parts[b]});
   }
-  return out;
-}
-
-// A drift in the static effect's direction at each time constant.
-std::vector<std::vector<Term>> drift_stand_ins(const Term& effect,
-                                               const std::vector<double>& taus) {
-  std::vector<std::vector<Term>> out;
-  for (double tau : taus) {
-    Term drift;
-    drift.kind = TermKind::thermal_drift;
-    drift.axis = drift.direction = effect.direction;
-    drift.tau_s = tau;
-    out.push_back({drift});
-  }
+  // All three: a coupling about any centre ((s_w − w0)·(s_j − j0)).
+  if (parts.size() == 3) out.push_back(parts);
   return out;
 }
 
@@ -138,6 +199,35 @@ void best_stand_in(const Problem& pb, const SwapTest& sw,
       best = label;
     }
   }
+}
+
+// A stand-in found as good as effect e in its place: the swap test's ΔRSS
+// of the effect, the stand-in's and its label.
+struct StandIn {
+  double d_effect = 0.0, d = 0.0;
+  std::string label;
+};
+
+// The swap test of effect e against `stand_ins` (and, where `levels` is
+// given, any function of those levels in its direction, `levels_text`):
+// the best one, where it removes as much as the effect or less by no more
+// than the margin (one column's χ² at `alpha`); none otherwise.
+std::optional<StandIn> stand_in_as_good(const Problem& pb, const Mat& D,
+                                        const std::vector<Mat>& cols, std::size_t e,
+                                        const std::vector<SelectedTerm>& effects,
+                                        const std::vector<std::vector<Term>>& stand_ins,
+                                        double alpha, const LevelSpan* levels = nullptr,
+                                        const std::string& levels_text = {}) {
+  const SwapTest sw = swap_test(pb, D, cols, e, alpha);
+  if (!sw.valid) return std::nullopt;
+  StandIn best{sw.d_e, 0.0, {}};
+  if (levels) {
+    best.d = levels->removes_in_place(sw.QA, sw.rA, effects[e].term.direction);
+    best.label = levels_text;
+  }
+  best_stand_in(pb, sw, stand_ins, effects, best.d, best.label);
+  if (best.label.empty() || !(sw.d_e - best.d < sw.margin)) return std::nullopt;
+  return best;
 }
 
 }  // namespace
@@ -170,8 +260,9 @@ std::vector<std::string> mark_design_ambiguities(const Problem& pb,
 
   const Mat D = span::datum_columns(pb, datum);
   const std::vector<double> taus = o.tau_s.empty() ? CandidateOptions{}.tau_s : o.tau_s;
+  const auto levelled =
+      o.levelled_axes ? levelled_axes(pb, o, min_period_mm) : std::array<std::vector<double>, 3>{};
   if (o.levelled_axes) {
-    const auto levelled = levelled_axes(pb, o, min_period_mm);
     for (int j = 0; j < 3; ++j) {
       const std::vector<double>& lv = levelled[static_cast<std::size_t>(j)];
       if (lv.empty()) continue;
@@ -218,24 +309,18 @@ std::vector<std::string> mark_design_ambiguities(const Problem& pb,
         if (!timed && !in_span[e]) continue;
         const std::vector<std::vector<Term>> stand_ins =
             timed ? static_stand_ins(pb, et, j) : drift_stand_ins(et, taus);
-        const SwapTest sw = swap_test(pb, D, cols, e, o.swap_alpha);
-        if (!sw.valid) continue;
-        double d_best = 0.0;
-        std::string best;
-        if (timed) {
-          d_best = levels.removes_in_place(sw.QA, sw.rA, et.direction);
-          best = levels_text;
-        }
-        best_stand_in(pb, sw, stand_ins, effects, d_best, best);
-        if (best.empty() || !(sw.d_e - d_best < sw.margin)) continue;
+        const std::optional<StandIn> best =
+            stand_in_as_good(pb, D, cols, e, effects, stand_ins, o.swap_alpha,
+                             timed ? &levels : nullptr, levels_text);
+        if (!best) continue;
         const std::string alt =
-            timed ? best : fmt::format("thermal_drift t→{}", axis_name(et.direction));
+            timed ? best->label : fmt::format("thermal_drift t→{}", axis_name(et.direction));
         add_alternative(effects[e], alt);
         if (effects[e].separate_by.empty()) effects[e].separate_by = order_text;
         log.push_back(fmt::format(
             "design: {} (ΔRSS {:.6g}) is not told from {} (ΔRSS {:.6g}): time mostly follows the "
             "{} levels of {}",
-            et.label(), sw.d_e, alt, d_best, lv.size(), variable_name(j)));
+            et.label(), best->d_effect, alt, best->d, lv.size(), variable_name(j)));
       }
       // On at most `few_levels` levels a cycle of j with its period, phase
       // and amplitude free fits every function of the levels (after the
@@ -275,6 +360,40 @@ std::vector<std::string> mark_design_ambiguities(const Problem& pb,
                                     variable_name(j), lv.size()));
         }
       }
+    }
+  }
+
+  // Time that follows an axis the design does not level (a raster's rows):
+  // the swap tests of the levelled axes, without the levels' own span.
+  const bool timed_data = pb.var_hi[3] > pb.var_lo[3];
+  for (int j = 0; o.time_follows_unlevelled && timed_data && j < 3; ++j) {
+    if (!levelled[static_cast<std::size_t>(j)].empty()) continue;
+    if (!(pb.var_hi[static_cast<std::size_t>(j)] > pb.var_lo[static_cast<std::size_t>(j)]))
+      continue;
+    const double left = time_within_bins(pb, j, o.time_bins);
+    if (left > o.time_share_left_unlevelled) continue;
+    const std::string order_text = fmt::format(
+        "measure the points again in another order or after a pause (in this design time "
+        "follows {}: {:.0f} % of its variance is left within bins of {})",
+        axis_name(j), 100.0 * left, variable_name(j));
+    for (std::size_t e = 0; e < effects.size(); ++e) {
+      const Term& et = effects[e].term;
+      if (et.kind == TermKind::unexplained || et.direction < 0 ||
+          !effects[e].ambiguous_with.empty())
+        continue;
+      const bool timed = depends_on_time(et);
+      const std::vector<std::vector<Term>> stand_ins =
+          timed ? static_stand_ins(pb, et, j) : drifts_following(et, j, taus);
+      if (stand_ins.empty()) continue;
+      const std::optional<StandIn> best =
+          stand_in_as_good(pb, D, cols, e, effects, stand_ins, o.swap_alpha);
+      if (!best) continue;
+      add_alternative(effects[e], best->label);
+      if (effects[e].separate_by.empty()) effects[e].separate_by = order_text;
+      log.push_back(fmt::format(
+          "design: {} (ΔRSS {:.6g}) is not told from {} (ΔRSS {:.6g}): time follows {} ({:.0f} % "
+          "of its variance left within bins)",
+          et.label(), best->d_effect, best->label, best->d, variable_name(j), 100.0 * left));
     }
   }
 

@@ -250,36 +250,39 @@ SelectionResult selection::select_path(const Problem& pb, const CandidateSet& cs
 
   // The backward check (backward_check.hpp): a named effect that the ones
   // chosen after it made redundant leaves the fit, the weakest first.
-  while (o.backward_check && chosen.size() > n_datum) {
-    const double dof = static_cast<double>(n - Q.cols());
-    if (dof < 1.0) break;
-    const auto weak = selection::least_needed_named(
-        X, Qd, y, chosen, n_datum, r.squaredNorm() / dof, o.alpha / ps.tests_named);
-    if (!weak) break;
-    res.log.push_back(fmt::format(
-        "backward check: {} dropped: ΔRSS {:.6g} beside the other effects, below {:.6g}",
-        chosen[weak->index].label(), weak->delta_rss, weak->threshold));
-    const Eigen::Index first = weak->first_column;
-    const Eigen::Index k = chosen[weak->index].columns();
-    Mat Xn(n, X.cols() - k);
-    Xn << X.leftCols(first), X.rightCols(X.cols() - first - k);
-    X = std::move(Xn);
-    const auto at = static_cast<std::ptrdiff_t>(weak->index);
-    // The rivals found for its partners in the same step were rivals beside
-    // it: the final rival check (rival_check.hpp) judges them anew.
-    for (std::size_t i = 0; i < chosen.size(); ++i)
-      if (step_of[i] == step_of[weak->index]) {
-        ambiguous[i].clear();
-        separations[i].clear();
-      }
-    chosen.erase(chosen.begin() + at);
-    ambiguous.erase(ambiguous.begin() + at);
-    separations.erase(separations.begin() + at);
-    step_of.erase(step_of.begin() + at);
-    Q = span::orthonormal(X);
-    r = y - Q * (Q.transpose() * y);
-    cv_prev = cross_validated_sse(pb, X, y, folds, o.folds);
-  }
+  auto backward_check = [&] {
+    while (o.backward_check && chosen.size() > n_datum) {
+      const double dof = static_cast<double>(n - Q.cols());
+      if (dof < 1.0) break;
+      const auto weak = selection::least_needed_named(
+          X, Qd, y, chosen, n_datum, r.squaredNorm() / dof, o.alpha / ps.tests_named);
+      if (!weak) break;
+      res.log.push_back(fmt::format(
+          "backward check: {} dropped: ΔRSS {:.6g} beside the other effects, below {:.6g}",
+          chosen[weak->index].label(), weak->delta_rss, weak->threshold));
+      const Eigen::Index first = weak->first_column;
+      const Eigen::Index k = chosen[weak->index].columns();
+      Mat Xn(n, X.cols() - k);
+      Xn << X.leftCols(first), X.rightCols(X.cols() - first - k);
+      X = std::move(Xn);
+      const auto at = static_cast<std::ptrdiff_t>(weak->index);
+      // The rivals found for its partners in the same step were rivals beside
+      // it: the final rival check (rival_check.hpp) judges them anew.
+      for (std::size_t i = 0; i < chosen.size(); ++i)
+        if (step_of[i] == step_of[weak->index]) {
+          ambiguous[i].clear();
+          separations[i].clear();
+        }
+      chosen.erase(chosen.begin() + at);
+      ambiguous.erase(ambiguous.begin() + at);
+      separations.erase(separations.begin() + at);
+      step_of.erase(step_of.begin() + at);
+      Q = span::orthonormal(X);
+      r = y - Q * (Q.transpose() * y);
+      cv_prev = cross_validated_sse(pb, X, y, folds, o.folds);
+    }
+  };
+  backward_check();
 
   // Final joint fit of every chosen term.
   res.cv_sse = cv_prev;
@@ -290,7 +293,22 @@ SelectionResult selection::select_path(const Problem& pb, const CandidateSet& cs
         std::sqrt(r.squaredNorm() / std::max<double>(static_cast<double>(n - X.cols()), 1.0));
     if (chosen.empty()) return res;
   }
-  if (o.refine_tau) selection::refine_time_constants(pb, X, y, chosen, res.log);
+  if (o.refine_tau) {
+    const bool moved = selection::refine_time_constants(pb, X, y, chosen, res.log);
+    // A drift at its own τ may make an effect chosen beside it at the
+    // grid's τ redundant: the backward check once more
+    // (SelectionOptions::backward_after_tau).
+    if (o.backward_after_tau && moved) {
+      Q = span::orthonormal(X);
+      r = y - Q * (Q.transpose() * y);
+      const std::size_t kept = chosen.size();
+      backward_check();
+      if (chosen.size() != kept) {  // the path's summary without it
+        res.cv_sse = cv_prev;
+        summary.rss = r.squaredNorm();
+      }
+    }
+  }
   fit_chosen(pb, X, y, Qd, {chosen, ambiguous, separations, n_datum}, res);
   return res;
 }

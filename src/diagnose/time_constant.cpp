@@ -44,20 +44,21 @@ double refine_tau_exactly(const Problem& pb, const Mat& Q, const Vec& r,
   return d_best;
 }
 
-void refine_time_constants(const Problem& pb, Mat& X, const Vec& y, std::vector<Term>& chosen,
+bool refine_time_constants(const Problem& pb, Mat& X, const Vec& y, std::vector<Term>& chosen,
                            std::vector<std::string>& log) {
   // Each chosen term's columns, as X holds them side by side.
   std::vector<Mat> blocks;
   std::vector<Eigen::Index> start;
   Eigen::Index columns = 0;
   for (const Term& t : chosen) {
-    if (columns + t.columns() > X.cols()) return;  // not the chosen terms' columns: leave them
+    if (columns + t.columns() > X.cols()) return false;  // not the chosen terms' columns
     start.push_back(columns);
     blocks.emplace_back(X.middleCols(columns, t.columns()));
     columns += t.columns();
   }
-  if (columns != X.cols()) return;
+  if (columns != X.cols()) return false;
   const Mat none(X.rows(), 0);
+  bool moved = false;
   for (std::size_t i = 0; i < chosen.size(); ++i) {
     Term& drift = chosen[i];
     if (drift.kind != TermKind::thermal_drift || !(drift.tau_s > 0.0)) continue;
@@ -78,7 +79,9 @@ void refine_time_constants(const Problem& pb, Mat& X, const Vec& y, std::vector<
     X.middleCols(start[i], drift.columns()) = blocks[i];
     log.push_back(fmt::format("final fit: {} τ {:.6g} s → {:.6g} s (ΔRSS {:.6g} → {:.6g})",
                               drift.label(), tau_before, drift.tau_s, before, after));
+    moved = true;
   }
+  return moved;
 }
 
 }  // namespace abbe::diagnose::selection

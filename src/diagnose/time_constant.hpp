@@ -36,7 +36,8 @@ double refine_tau_exactly(const Problem& pb, const Mat& Q, const Vec& r,
 // (SelectionOptions::refine_tau). Kept where it removes more; the term's
 // columns in X (the chosen terms' columns side by side, in order) are
 // replaced with it. One line per refined drift is appended to `log`.
-void refine_time_constants(const Problem& pb, Mat& X, const Vec& y, std::vector<Term>& chosen,
+// Returns whether any τ moved.
+bool refine_time_constants(const Problem& pb, Mat& X, const Vec& y, std::vector<Term>& chosen,
                            std::vector<std::string>& log);
 
 }  // namespace abbe::diagnose::selection

@@ -521,5 +521,102 @@ TEST(DiagnoseDesignAmbiguity, AScaleWhereTimeFollowsTheLevelsIsTestedAgainstADri
   }
 }
 
+// A raster in XY (30 rows along X, 5 mm apart in Y — closer than twice the
+// shortest period, so Y is not levelled — 20 points 30 mm apart per row,
+// serpentine, 2 s per point), dy read: time follows y (`shuffled`: the
+// same points in a random order in time, so it does not).
+template <class Truth>
+Problem raster(Truth truth, bool shuffled, std::uint64_t seed) {
+  std::vector<PointContext> pts;
+  for (int row = 0; row < 30; ++row)
+    for (int i = 0; i < 20; ++i)
+      pts.push_back(at(30.0 * (row % 2 == 0 ? i : 19 - i), 5.0 * row, row % 2 == 0 ? 1 : -1, 1));
+  std::vector<double> times(pts.size());
+  for (std::size_t k = 0; k < pts.size(); ++k) times[k] = 2.0 * static_cast<double>(k);
+  if (shuffled) std::shuffle(times.begin(), times.end(), std::mt19937_64(seed + 1));
+  for (std::size_t k = 0; k < pts.size(); ++k) pts[k].t = times[k];
+  Problem pb = make_problem(pts, truth, seed);
+  pb.var_lo[3] = 0.0;
+  pb.var_hi[3] = 2.0 * static_cast<double>(pts.size() - 1);
+  return pb;
+}
+
+// The datum: an offset of set "a" in X and in Y.
+std::vector<SelectedTerm> offsets() {
+  std::vector<SelectedTerm> out;
+  for (int i = 0; i < 2; ++i) {
+    Term t;
+    t.kind = TermKind::setup_offset;
+    t.axis = t.direction = i;
+    t.set = "a";
+    out.push_back(fitted(t, {0.0}));
+  }
+  return out;
+}
+
+Term drift_with_x(double tau) {
+  Term t;
+  t.kind = TermKind::thermal_drift;
+  t.axis = t.with_axis = 0;
+  t.direction = 1;
+  t.tau_s = tau;
+  return t;
+}
+
+// Where time follows an axis the design does not level (a raster's rows),
+// a drift ∝ x·t of Y and an off-centre coupling x·y→Y are one structure:
+// the drift named in the coupling's place is ambiguous with it ("measure in
+// another order"), and a coupling named in a drift's place with the drift.
+// A drift whose course the static terms cannot follow (τ 200 s of a 20 min
+// raster) stays named, and where time does not follow y the test does not
+// run.
+TEST(DiagnoseDesignAmbiguity, ADriftWhereTimeFollowsARasterIsTestedAgainstTheStaticTerms) {
+  auto coupling = [](const PointContext& pc) {
+    return Eigen::Vector3d(0.0, 2e-4 * (pc.s.x() - 100.0) * (pc.s.y() - 30.0), 0.0);
+  };
+  for (const bool shuffled : {false, true}) {
+    const Problem pb = raster(coupling, shuffled, 3);
+    std::vector<SelectedTerm> eff{fitted(drift_with_x(0.0), {1.0})};
+    const auto log = mark_design_ambiguities(pb, offsets(), eff, {}, 4.0);
+    if (!shuffled) {
+      ASSERT_EQ(eff[0].ambiguous_with.size(), 1u);
+      EXPECT_NE(eff[0].ambiguous_with[0].find("coupling x·y→Y"), std::string::npos)
+          << eff[0].ambiguous_with[0];
+      EXPECT_NE(eff[0].separate_by.find("another order"), std::string::npos);
+      ASSERT_EQ(log.size(), 1u);
+      EXPECT_NE(log[0].find("time follows y"), std::string::npos) << log[0];
+    } else {
+      EXPECT_TRUE(eff[0].ambiguous_with.empty()) << eff[0].ambiguous_with.front();
+    }
+  }
+  {
+    const Problem pb = raster(
+        [](const PointContext& pc) {
+          return Eigen::Vector3d(0.0, 6.0 * pc.s.x() / 570.0 * pc.t / 1200.0, 0.0);
+        },
+        false, 4);
+    Term c = test::make_term(TermKind::coupling, 0, 1);
+    c.with_axis = 1;
+    c.centre = pb.travel_mid;
+    c.half = pb.travel_half;
+    std::vector<SelectedTerm> eff{fitted(c, {1.0})};
+    mark_design_ambiguities(pb, offsets(), eff, {}, 4.0);
+    ASSERT_EQ(eff[0].ambiguous_with.size(), 1u);
+    EXPECT_NE(eff[0].ambiguous_with[0].find("thermal_drift x·t→Y"), std::string::npos)
+        << eff[0].ambiguous_with[0];
+  }
+  {
+    const Problem pb = raster(
+        [](const PointContext& pc) {
+          return Eigen::Vector3d(0.0, 6.0 * pc.s.x() / 570.0 * (1.0 - std::exp(-pc.t / 200.0)),
+                                 0.0);
+        },
+        false, 5);
+    std::vector<SelectedTerm> eff{fitted(drift_with_x(200.0), {1.0})};
+    mark_design_ambiguities(pb, offsets(), eff, {}, 4.0);
+    EXPECT_TRUE(eff[0].ambiguous_with.empty()) << eff[0].ambiguous_with.front();
+  }
+}
+
 }  // namespace
 }  // namespace abbe::diagnose

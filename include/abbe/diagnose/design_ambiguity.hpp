@@ -24,6 +24,10 @@
 //    or after a pause"). On at most `few_levels` levels a cycle of the axis
 //    fits any values of the levels: an effect that is a function of them is
 //    a pitch error as much ("measure that axis at more levels").
+//    Where time follows an axis that is not levelled (a raster
+//    toolpath's rows), the same swap tests run on bins of that axis: a
+//    coupling w·j is a drift ∝ s_w·t as much, and a drift a scale,
+//    squareness or coupling of j, unless the data prefer it.
 //  - A reversal that grows along its travel. Where the design drives the
 //    axis one way almost everywhere, sign(v_j)·s_j and s_j coincide: an
 //    effect linear in s_j beside a reversal of that axis (a scale, a drift
@@ -57,6 +61,19 @@ struct DesignAmbiguityOptions {
   // levels are tested against each other) when at most this share of its
   // variance is within levels (a one-pass walk of 3 levels leaves 1/9).
   double time_share_left = 0.2;
+  // Time may follow an axis the design does not level too (a raster
+  // toolpath: rows along X stepping in Y, a contour at the end). There a
+  // static effect of s_j (a scale or squareness of j, a coupling with j)
+  // is swap-tested against the drift it becomes when t follows s_j
+  // (uniform, or ∝ s_w·t for a coupling w·j), and a drift against those
+  // static terms (time_follows_unlevelled), where less than
+  // `time_share_left_unlevelled` of the time's variance is left within
+  // `time_bins` bins of s_j of equal counts (more than half of it is a
+  // function of s_j; a raster of 19 rows with a contour at the end leaves
+  // 0.21).
+  bool time_follows_unlevelled = true;
+  std::size_t time_bins = 20;
+  double time_share_left_unlevelled = 0.5;
   // The drift's time constants tried in place of a static effect there (0:
   // linear in t); empty: the candidates' default grid (CandidateOptions;
   // diagnose_problem gives its own candidates' grid).

@@ -80,6 +80,9 @@ struct SelectionOptions {
   // And once more in the final fit beside every other named term: the
   // reported τ and its uncertainty are the data's best (false: as chosen).
   bool refine_tau = true;
+  // Where that moves a τ, the backward check runs once more: an effect
+  // chosen beside the drift at the grid's τ may now be redundant.
+  bool backward_after_tau = true;
   // Parsimony between competing explanations of one structure: a cheaper
   // significant named candidate whose fitted contribution correlates with
   // the largest one's above `competing_corr` takes its place when its
