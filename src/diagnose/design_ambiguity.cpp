@@ -134,14 +134,12 @@ std::vector<std::vector<Term>> drift_stand_ins(const Term& effect,
 // uniform drift beside it (the drift about any zero); none for the rest.
 std::vector<std::vector<Term>> drifts_following(const Term& effect, int j,
                                                 const std::vector<double>& taus) {
-  std::vector<std::vector<Term>> out;
-  int w = -2;
+  if (effect.direction < 0) return {};
   if ((effect.kind == TermKind::scale || effect.kind == TermKind::squareness) && effect.axis == j)
-    w = -1;
-  else if (effect.kind == TermKind::coupling && (effect.axis == j || effect.with_axis == j))
-    w = effect.axis == j ? effect.with_axis : effect.axis;
-  if (w == -2 || effect.direction < 0) return out;
-  if (w == -1) return drift_stand_ins(effect, taus);
+    return drift_stand_ins(effect, taus);
+  if (effect.kind != TermKind::coupling || (effect.axis != j && effect.with_axis != j)) return {};
+  const int w = effect.axis == j ? effect.with_axis : effect.axis;
+  std::vector<std::vector<Term>> out;
   for (double tau : taus) {
     const Term uniform = uniform_drift(effect.direction, tau);
     Term proportional = uniform;
