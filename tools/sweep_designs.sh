@@ -10,8 +10,9 @@
 # GridIrregular, BallbarXY, GridTwoEffects, GridWithOutliers), or `all`.
 # The harness's own variables pass through the environment:
 #   ABBE_DESIGNS_VM_SEED / _PROFILE / _CHAIN  another truth machine
-#   ABBE_DESIGNS_GRID="nx ny nz"              the grid's levels
+#   ABBE_DESIGNS_GRID=NXxNYxNZ                the grid's levels (e.g. 6x6x6)
 #   ABBE_DESIGNS_DT_SCALE=f                   time per point × f
+#   ABBE_DESIGNS_NOISE=µm                     another measurement noise (0.5)
 # One case with the diagnosis's selection log:
 #   ABBE_DIAGNOSE_CASE=i build/rt/tests/abbe_tests --gtest_filter=DiagnoseDesigns.Grid
 set -euo pipefail
@@ -26,12 +27,12 @@ while getopts "b:n:j:o:" opt; do
     n) seeds=$OPTARG ;;
     j) jobs=$OPTARG ;;
     o) out=$OPTARG ;;
-    *) sed -n '2,17p' "$0" >&2; exit 1 ;;
+    *) sed -n '2,18p' "$0" >&2; exit 1 ;;
   esac
 done
 shift $((OPTIND - 1))
 if [[ $# -eq 0 ]]; then
-  sed -n '2,17p' "$0" >&2
+  sed -n '2,18p' "$0" >&2
   exit 1
 fi
 tests=("$@")
