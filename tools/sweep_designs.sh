@@ -13,6 +13,9 @@
 #   ABBE_DESIGNS_GRID=NXxNYxNZ                the grid's levels (e.g. 6x6x6)
 #   ABBE_DESIGNS_DT_SCALE=f                   time per point × f
 #   ABBE_DESIGNS_NOISE=µm                     another measurement noise (0.5)
+#   ABBE_DESIGNS_BALLBAR_RADIUS=mm            another ballbar length (150)
+#   ABBE_DESIGNS_DIAGONAL_STEP=mm             another target spacing on the diagonals (37)
+#   ABBE_DESIGNS_PLATE_PITCH=mm               another hole pitch of the plate (50)
 # One case with the diagnosis's selection log:
 #   ABBE_DIAGNOSE_CASE=i build/rt/tests/abbe_tests --gtest_filter=DiagnoseDesigns.Grid
 set -euo pipefail

@@ -65,16 +65,20 @@ namespace {
 // µm per measured component; ABBE_DESIGNS_NOISE: another noise (the hidden
 // effects keep their 3–20 × the noise), for a sweep at a noise the engine
 // was not tuned on (the truth machine's own table error stays as it is).
+// A positive length or noise from the environment, or `fallback` when unset
+// (a sweep on a design the engine was not tuned on); junk is an error.
+double env_positive(const char* name, double fallback, const char* what) {
+  const char* s = std::getenv(name);
+  if (!s) return fallback;
+  char* end = nullptr;
+  const double v = std::strtod(s, &end);
+  if (end == s || *end != '\0' || !(v > 0.0))
+    throw std::invalid_argument(fmt::format("{}={}: want {} > 0", name, s, what));
+  return v;
+}
+
 double noise_level() {
-  static const double noise = [] {
-    const char* s = std::getenv("ABBE_DESIGNS_NOISE");
-    if (!s) return 0.5;
-    char* end = nullptr;
-    const double v = std::strtod(s, &end);
-    if (end == s || *end != '\0' || !(v > 0.0))
-      throw std::invalid_argument(fmt::format("ABBE_DESIGNS_NOISE={}: want a noise in µm > 0", s));
-    return v;
-  }();
+  static const double noise = env_positive("ABBE_DESIGNS_NOISE", 0.5, "a noise in µm");
   return noise;
 }
 
@@ -163,7 +167,12 @@ struct Sample {
   double angle_deg = 0.0;
 };
 
-constexpr double kBallbarRadius = 150.0;
+// The ballbar's length: 150 mm, or ABBE_DESIGNS_BALLBAR_RADIUS (mm; the
+// usual bars are 50, 100, 150 and 300 mm).
+double ballbar_radius() {
+  static const double r = env_positive("ABBE_DESIGNS_BALLBAR_RADIUS", 150.0, "a radius in mm");
+  return r;
+}
 
 // The ballbar readings as the documented CSV of `abbe import ballbar`
 // (docs/formats.md), read back by its importer: the harness's circular
@@ -174,7 +183,7 @@ io::MeasuredData import_ballbar(const std::vector<Sample>& design, const std::ve
   for (std::size_t i = 0; i < design.size(); ++i) {
     const Sample& s = design[i];
     csv += fmt::format("{},{},{:.17g},{:.17g},{:.17g},1000,{},{:.17g},{:.17g},{:.17g},{}\n",
-                       s.plane, kBallbarRadius, s.centre.x(), s.centre.y(), s.centre.z(),
+                       s.plane, ballbar_radius(), s.centre.x(), s.centre.y(), s.centre.z(),
                        s.way > 0 ? "ccw" : "cw", s.angle_deg, dr[i], s.tip.time, s.tip.set);
   }
   std::istringstream in(csv);
@@ -269,13 +278,20 @@ std::vector<Sample> make_design(Design d) {
       break;
     }
     case Design::plane: {
-      // A plate of 13 × 9 holes at 50 mm pitch on the table, z = top − 100.
+      // A plate of 13 × 9 holes at 50 mm pitch on the table, z = top − 100
+      // (ABBE_DESIGNS_PLATE_PITCH: another pitch, the plate within the travel).
       const double z = b.hi.z() - 100.0;
       const Eigen::Vector3d c = 0.5 * (b.lo + b.hi);
+      static const double pitch =
+          env_positive("ABBE_DESIGNS_PLATE_PITCH", 50.0, "a hole pitch in mm");
+      for (int a = 0; a < 2; ++a)
+        if (pitch * (a == 0 ? 6 : 4) > 0.5 * (b.hi[a] - b.lo[a]))
+          throw std::invalid_argument(
+              fmt::format("plate pitch {} mm: the plate leaves the travel of {}", pitch, "XY"[a]));
       for (int ky = 0; ky < 9; ++ky)
         for (int kx = 0; kx < 13; ++kx) {
           const int xx = ky % 2 == 0 ? kx : 12 - kx;
-          push({c.x() + 50.0 * (xx - 6), c.y() + 50.0 * (ky - 4), z}, "plate");
+          push({c.x() + pitch * (xx - 6), c.y() + pitch * (ky - 4), z}, "plate");
         }
       break;
     }
@@ -296,20 +312,27 @@ std::vector<Sample> make_design(Design d) {
     }
     case Design::ballbar:
     case Design::ballbar_xy: {
-      // r = 150 mm about the box centre, a reading every 2°, CCW then CW,
+      // r = 150 mm (ballbar_radius()) about the box centre, a reading every 2°, CCW then CW,
       // one set per plane (the ballbar is re-placed); or the XY plane only
       // (the shop's usual test).
       const Eigen::Vector3d c = 0.5 * (b.lo + b.hi);
       const int planes[3][2] = {{0, 1}, {0, 2}, {1, 2}};
       const char* names[3] = {"XY", "XZ", "YZ"};
-      for (int pl = 0; pl < (d == Design::ballbar_xy ? 1 : 3); ++pl)
+      const int n_planes = d == Design::ballbar_xy ? 1 : 3;
+      for (int pl = 0; pl < n_planes; ++pl)
+        for (int a : planes[pl])
+          if (ballbar_radius() > 0.5 * (b.hi[a] - b.lo[a]))
+            throw std::invalid_argument(fmt::format(
+                "ballbar radius {} mm: the {} circle leaves the travel of {} ({:.0f} mm)",
+                ballbar_radius(), names[pl], "XYZ"[a], b.hi[a] - b.lo[a]));
+      for (int pl = 0; pl < n_planes; ++pl)
         for (int way : {1, -1})
           for (int k = 0; k < 180; ++k) {
             const double a = way * units::kTwoPi * k / 180.0;
             Eigen::Vector3d n = Eigen::Vector3d::Zero();
             n[planes[pl][0]] = std::cos(a);
             n[planes[pl][1]] = std::sin(a);
-            push(c + kBallbarRadius * n, names[pl], n);
+            push(c + ballbar_radius() * n, names[pl], n);
             out.back().plane = names[pl];
             out.back().centre = c;
             out.back().way = way;
@@ -319,7 +342,8 @@ std::vector<Sample> make_design(Design d) {
     }
     case Design::diagonals: {
       // ISO 230-6: each body diagonal of the box (inset 30 mm), a target every
-      // 37 mm, there and back; one set per line (the laser is re-aligned).
+      // 37 mm (ABBE_DESIGNS_DIAGONAL_STEP: another spacing), there and back;
+      // one set per line (the laser is re-aligned).
       const Eigen::Vector3d lo = b.lo + Eigen::Vector3d::Constant(30.0);
       const Eigen::Vector3d hi = b.hi - Eigen::Vector3d::Constant(30.0);
       for (int k = 0; k < 4; ++k) {
@@ -328,7 +352,9 @@ std::vector<Sample> make_design(Design d) {
         if (k & 2) std::swap(a.y(), e.y());
         const Eigen::Vector3d u = (e - a).normalized();
         const double len = (e - a).norm();
-        const int m = static_cast<int>(len / 37.0);
+        static const double step =
+            env_positive("ABBE_DESIGNS_DIAGONAL_STEP", 37.0, "a target spacing in mm");
+        const int m = std::max(2, static_cast<int>(len / step));
         const std::string set = fmt::format("diag{}", k + 1);
         for (int i = 0; i <= m; ++i) push(a + u * (len * i / m), set, u);
         for (int i = m; i >= 0; --i) push(a + u * (len * i / m), set, u);
@@ -1138,12 +1164,15 @@ std::pair<Hidden, std::uint64_t> sweep_case(Design design, int i) {
 }
 
 Rates sweep(Design design, bool no_directions = false) {
-  const std::string label = std::string(design_name(design)) +
-                            (no_directions ? ", no vx vy vz (inferred)" : "") +
-                            (current_vm_label.empty() ? "" : ", " + current_vm_label) +
-                            (std::getenv("ABBE_DESIGNS_GRID") ? ", levels overridden" : "") +
-                            (std::getenv("ABBE_DESIGNS_NOISE") ? ", noise overridden" : "") +
-                            (std::getenv("ABBE_DESIGNS_DT_SCALE") ? ", time scaled" : "");
+  const std::string label =
+      std::string(design_name(design)) + (no_directions ? ", no vx vy vz (inferred)" : "") +
+      (current_vm_label.empty() ? "" : ", " + current_vm_label) +
+      (std::getenv("ABBE_DESIGNS_GRID") ? ", levels overridden" : "") +
+      (std::getenv("ABBE_DESIGNS_NOISE") ? ", noise overridden" : "") +
+      (std::getenv("ABBE_DESIGNS_DT_SCALE") ? ", time scaled" : "") +
+      (std::getenv("ABBE_DESIGNS_BALLBAR_RADIUS") ? ", ballbar radius overridden" : "") +
+      (std::getenv("ABBE_DESIGNS_DIAGONAL_STEP") ? ", diagonal step overridden" : "") +
+      (std::getenv("ABBE_DESIGNS_PLATE_PITCH") ? ", plate pitch overridden" : "");
   const int n = seeds();
   Rates r;
   const int only = only_case();
@@ -1387,8 +1416,19 @@ struct TwoEffects {
   bool named[2] = {false, false};  // each named right, not ambiguous
   bool bad = false;                // a name that is part of neither, or a wrong sign
   bool resolvable = false;         // the oracle gains at least kResolvable
-  bool each_resolvable = false;    // and each shape alone does (Case::part_oracle)
+  bool each_resolvable = false;    // and each alone does (Case::part_oracle), not
+                                   // two squarenesses of one plane
 };
+
+// Two squarenesses of one plane (d_i ∝ s_j and d_j ∝ s_i) span the same
+// as one of them beside a rotation about the plane's normal, which is a
+// candidate on the grid (the instrument's or the artefact's setup): the
+// design cannot tell the pair from a rotation and one squareness, so
+// neither is resolvable beside the other.
+bool one_plane_squarenesses(const Hidden& a, const Hidden& b) {
+  return a.shape == Shape::squareness && b.shape == Shape::squareness && a.axis == b.dir &&
+         a.dir == b.axis;
+}
 
 TwoEffects two_effects_case(int i, const SelectionOptions* selection = nullptr,
                             const RivalOptions* rivals = nullptr) {
@@ -1426,7 +1466,8 @@ TwoEffects two_effects_case(int i, const SelectionOptions* selection = nullptr,
   }
   r.resolvable = r.c.oracle >= kResolvable;
   r.each_resolvable = r.resolvable && r.c.part_oracle.size() == 2 &&
-                      r.c.part_oracle[0] >= kResolvable && r.c.part_oracle[1] >= kResolvable;
+                      r.c.part_oracle[0] >= kResolvable && r.c.part_oracle[1] >= kResolvable &&
+                      !one_plane_squarenesses(r.h, r.h2);
   return r;
 }
 
@@ -1474,6 +1515,54 @@ TEST(DiagnoseDesigns, GridTwoEffects) {
   EXPECT_GE(resolvable ? static_cast<double>(both) / resolvable : 1.0, 0.8);
   EXPECT_GE(each ? static_cast<double>(both_each) / each : 1.0, 0.8);
   EXPECT_LE(static_cast<double>(wrong) / std::max(resolvable, 1), 0.02);
+}
+
+// Two squarenesses of one plane on the grid (two-effect case 124: dX ∝ y
+// and dY ∝ x) are one span with a rotation about Z beside the datum: the
+// three columns have rank 2 (and a rotation about X, not in that span,
+// makes it 3). The engine names one squareness and reports the rest
+// `ambiguous` between the other squareness and the setup rotation; the
+// sweep does not count the pair among those each resolvable.
+TEST(DiagnoseDesigns, TwoSquarenessesOfOnePlaneAreOneSpanWithARotation) {
+  const TwoEffects r = two_effects_case(124);
+  ASSERT_TRUE(one_plane_squarenesses(r.h, r.h2));
+  EXPECT_FALSE(r.each_resolvable);
+  EXPECT_GE(r.c.part_oracle.at(0), kResolvable);  // each alone would count
+  EXPECT_GE(r.c.part_oracle.at(1), kResolvable);
+  EXPECT_FALSE(r.bad);
+  bool rotation_alternative = false;
+  for (const SelectedTerm& st : r.c.effects)
+    for (const std::string& a : st.ambiguous_with)
+      if ((st.term.kind == TermKind::setup_rotation && a.find("squareness") != std::string::npos) ||
+          (st.term.kind == TermKind::squareness && a.find("rotation") != std::string::npos))
+        rotation_alternative = true;
+  EXPECT_TRUE(rotation_alternative);
+
+  const io::MeasuredData data = measure(make_design(Design::grid), Hidden{}, 5, false);
+  const Problem pb = build_problem(noisy_vm().machine, data, model::ModelKind::ae_arm, nullptr);
+  const Box b = box();
+  const Eigen::Vector3d c = 0.5 * (b.lo + b.hi);
+  auto rank_with = [&](int about) {
+    Eigen::MatrixXd M(pb.y.size(), 3);
+    for (std::size_t o = 0; o < pb.obs.size(); ++o) {
+      const auto& ob = pb.obs[o];
+      const sim::TipState tip = tip_at(pb.points[ob.point]);
+      const Eigen::Vector3d q = tip.p - c;
+      const auto row = static_cast<Eigen::Index>(o);
+      M(row, 0) = ob.u.dot(r.h.at(tip, b));
+      M(row, 1) = ob.u.dot(r.h2.at(tip, b));
+      M(row, 2) = ob.u.dot(Eigen::Vector3d::Unit(about).cross(q));
+    }
+    for (Eigen::Index k = 0; k < 3; ++k) {
+      M.col(k) = remove_datum(pb, M.col(k), false);
+      M.col(k).normalize();
+    }
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(M);
+    qr.setThreshold(1e-9);
+    return qr.rank();
+  };
+  EXPECT_EQ(rank_with(2), 2);
+  EXPECT_EQ(rank_with(0), 3);
 }
 
 // Whether one line of the selection log holds both texts.
