@@ -1424,7 +1424,11 @@ struct TwoEffects {
 // as one of them beside a rotation about the plane's normal, which is a
 // candidate on the grid (the instrument's or the artefact's setup): the
 // design cannot tell the pair from a rotation and one squareness, so
-// neither is resolvable beside the other.
+// neither is resolvable beside the other. (A squareness beside an
+// off-centre coupling whose linear part is its partner is such a pair
+// only where that part is large enough to be named: cases 273 and 324
+// `ambiguous` with the rotation, 120, 128 and 254 both named. Those stay
+// counted as resolvable.)
 bool one_plane_squarenesses(const Hidden& a, const Hidden& b) {
   return a.shape == Shape::squareness && b.shape == Shape::squareness && a.axis == b.dir &&
          a.dir == b.axis;
@@ -1511,32 +1515,39 @@ TEST(DiagnoseDesigns, GridTwoEffects) {
   // of the first step; the misses name one of the two:
   // the other smaller or a drift ∝ s left as a smooth function), no case
   // with a wrong name in either. Where each shape alone is resolvable (its
-  // own oracle gain ≥ 5 % once the other is taken out): 17/18 and 91/98.
+  // own oracle gain ≥ 5 % once the other is taken out, and not two
+  // squarenesses of one plane): 17/18 and 91/98; 456/471 with 500 cases
+  // (456/473 before such pairs were set apart: cases 124 and 398).
   EXPECT_GE(resolvable ? static_cast<double>(both) / resolvable : 1.0, 0.8);
   EXPECT_GE(each ? static_cast<double>(both_each) / each : 1.0, 0.8);
   EXPECT_LE(static_cast<double>(wrong) / std::max(resolvable, 1), 0.02);
 }
 
-// Two squarenesses of one plane on the grid (two-effect case 124: dX ∝ y
-// and dY ∝ x) are one span with a rotation about Z beside the datum: the
+// Two squarenesses of one plane on the grid (two-effect cases 124 and 398:
+// dX ∝ y and dY ∝ x) are one span with a rotation about Z beside the datum: the
 // three columns have rank 2 (and a rotation about X, not in that span,
 // makes it 3). The engine names one squareness and reports the rest
 // `ambiguous` between the other squareness and the setup rotation; the
 // sweep does not count the pair among those each resolvable.
 TEST(DiagnoseDesigns, TwoSquarenessesOfOnePlaneAreOneSpanWithARotation) {
+  for (const int i : {124, 398}) {
+    SCOPED_TRACE(i);
+    const TwoEffects r = two_effects_case(i);
+    ASSERT_TRUE(one_plane_squarenesses(r.h, r.h2));
+    EXPECT_FALSE(r.each_resolvable);
+    EXPECT_GE(r.c.part_oracle.at(0), kResolvable);  // each alone would count
+    EXPECT_GE(r.c.part_oracle.at(1), kResolvable);
+    EXPECT_FALSE(r.bad);
+    bool rotation_alternative = false;
+    for (const SelectedTerm& st : r.c.effects)
+      for (const std::string& a : st.ambiguous_with)
+        if ((st.term.kind == TermKind::setup_rotation &&
+             a.find("squareness") != std::string::npos) ||
+            (st.term.kind == TermKind::squareness && a.find("rotation") != std::string::npos))
+          rotation_alternative = true;
+    EXPECT_TRUE(rotation_alternative);
+  }
   const TwoEffects r = two_effects_case(124);
-  ASSERT_TRUE(one_plane_squarenesses(r.h, r.h2));
-  EXPECT_FALSE(r.each_resolvable);
-  EXPECT_GE(r.c.part_oracle.at(0), kResolvable);  // each alone would count
-  EXPECT_GE(r.c.part_oracle.at(1), kResolvable);
-  EXPECT_FALSE(r.bad);
-  bool rotation_alternative = false;
-  for (const SelectedTerm& st : r.c.effects)
-    for (const std::string& a : st.ambiguous_with)
-      if ((st.term.kind == TermKind::setup_rotation && a.find("squareness") != std::string::npos) ||
-          (st.term.kind == TermKind::squareness && a.find("rotation") != std::string::npos))
-        rotation_alternative = true;
-  EXPECT_TRUE(rotation_alternative);
 
   const io::MeasuredData data = measure(make_design(Design::grid), Hidden{}, 5, false);
   const Problem pb = build_problem(noisy_vm().machine, data, model::ModelKind::ae_arm, nullptr);
