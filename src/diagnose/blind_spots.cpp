@@ -12,7 +12,8 @@
 namespace abbe::diagnose {
 
 std::vector<BlindSpot> blind_spots(const Problem& pb, const DesignAmbiguityOptions& design,
-                                   double min_period_mm, double max_period_mm) {
+                                   double min_period_mm, double max_period_mm,
+                                   double max_period_span_share) {
   std::vector<BlindSpot> out;
   if (pb.obs.empty()) return out;
   const Coverage seen(pb);
@@ -51,6 +52,18 @@ std::vector<BlindSpot> blind_spots(const Problem& pb, const DesignAmbiguityOptio
                fmt::format("measure d{} at several {} positions",
                            variable_name(static_cast<int>(i)), axis_name(a))});
     }
+    // A short travel: the catalogue's longer periods are not held twice
+    // (candidates.cpp scans up to max_period_span_share of the span).
+    const double span = pb.var_hi[j] - pb.var_lo[j];
+    if (seen.varies(a) && span > 0.0 && max_period_span_share * span < max_period_mm)
+      out.push_back(
+          {fmt::format("a cycle of {} longer than {:.4g} mm (a pitch error, a long wave)",
+                       axis_name(a), max_period_span_share * span),
+           fmt::format("{} spans {:.4g} mm: a longer period is not seen twice, and a part of it "
+                       "is a slope or a bow of {}",
+                       axis_name(a), span, axis_name(a)),
+           fmt::format("measure over a longer travel of {} (a larger circle, a longer line)",
+                       axis_name(a))});
     // (An axis at one position, approached one way, makes a reversal of it
     // a constant: the datum's, said above.)
     if (!seen.reverses(a) && seen.varies(a))

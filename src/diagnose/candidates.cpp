@@ -121,10 +121,17 @@ CandidateSet build_candidates(const Problem& pb, const CandidateOptions& o) {
         const double span =
             pb.var_hi[static_cast<std::size_t>(j)] - pb.var_lo[static_cast<std::size_t>(j)];
         const double df = 0.25 / std::max(span, 1e-3);
-        for (double fr = 1.0 / o.max_period_mm; fr <= 1.0 / o.min_period_mm; fr += df)
+        // A cycle is named only where the travel holds two of its periods
+        // (max_period_span_share): over less, a sinusoid is a bow or a
+        // slope of the axis, not a period (a scale of X on a 50 mm ballbar
+        // circle is a cycle of 64 mm as well).
+        const double max_period = std::min(o.max_period_mm, o.max_period_span_share * span);
+        for (double fr = 1.0 / max_period; fr <= 1.0 / o.min_period_mm; fr += df)
           f.grid.push_back(1.0 / fr);
-        cs.named_tests += static_cast<int>(f.grid.size());
-        cs.scanned.push_back(std::move(f));
+        if (f.grid.size() >= 2) {
+          cs.named_tests += static_cast<int>(f.grid.size());
+          cs.scanned.push_back(std::move(f));
+        }
       }
     }
     if (eps[static_cast<std::size_t>(j)])

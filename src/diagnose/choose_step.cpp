@@ -119,7 +119,14 @@ bool choose_step(const Problem& pb, const CandidateSet& cs, const SelectionOptio
   // Searched families: pick the parameter by a quick projection, then
   // evaluate the best of each family exactly.
   PowerCache power_cache;
-  const ScanInput scan_in{pb, R, W, ps.set_of, ps.stride, o.alias_power, o.refine_period};
+  const ScanInput scan_in{pb,
+                          R,
+                          W,
+                          ps.set_of,
+                          ps.stride,
+                          o.alias_power,
+                          o.refine_period,
+                          o.resolve_chosen_cycles ? &ps.cycles : nullptr};
   for (const ScanFamily& f : cs.scanned) {
     std::vector<double> aliases;
     const Term t = scan_parameter(f, scan_in, power_cache, aliases);
@@ -275,9 +282,11 @@ bool choose_step(const Problem& pb, const CandidateSet& cs, const SelectionOptio
       }
       if (!o.exact_period) return;
       const double half_step = std::abs(1.0 / grid[1] - 1.0 / grid[0]);
-      sc.d = refine_period_exactly(pb, Q, r, half_step, scanned[i]);
+      const FrequencyRange range{std::min(1.0 / grid.front(), 1.0 / grid.back()),
+                                 std::max(1.0 / grid.front(), 1.0 / grid.back())};
+      sc.d = refine_period_exactly(pb, Q, r, half_step, scanned[i], range);
       if (o.rivals_by_test && !ps.levelled[static_cast<std::size_t>(s->c->term.axis)])
-        confirm_aliases(pb, Q, r, half_step, sc.d, step_view.rival_margin(), scanned[i]);
+        confirm_aliases(pb, Q, r, half_step, sc.d, step_view.rival_margin(), scanned[i], range);
     };
     refine(best_named);
     for (const Score* s : structure.partners) refine(s);

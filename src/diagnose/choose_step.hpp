@@ -38,6 +38,8 @@ struct PathState {
   std::map<std::string, std::array<double, 3>> share_cache;  // by label, per direction
   // Per axis: its positions are at most o.alias_levels distinct levels.
   std::array<bool, 3> levelled{};
+  // The cycles chosen on this path so far (ScanInput::chosen_cycles).
+  std::vector<Term> cycles;
 
   // The practical floor for k columns, in units of σ̂² (min_effect_test).
   double practical(int k, const SelectionOptions& o);

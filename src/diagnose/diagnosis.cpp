@@ -140,7 +140,8 @@ Diagnosis diagnose_problem(const Problem& full, const DiagnoseOptions& o) {
                               o.rivals, o.selection.min_effect_rms))
     d.log.push_back(std::move(line));
   d.isotropic = isotropic_scale(d.effects);
-  d.blind_spots = blind_spots(pb, design, o.candidates.min_period_mm, o.candidates.max_period_mm);
+  d.blind_spots = blind_spots(pb, design, o.candidates.min_period_mm, o.candidates.max_period_mm,
+                              o.candidates.max_period_span_share);
   d.extended = residual_stats(pb, sel.residual);
   d.extended.model = pb.base_model + "+effects";
   const double np = std::max<double>(static_cast<double>(d.n_points), 1.0);

@@ -53,6 +53,17 @@ Term scan_parameter(const ScanFamily& f, const ScanInput& in, PowerCache& power_
         }
       }
     }
+    // Frequencies within the resolution 1/span of a chosen cycle of the
+    // same axis and direction (ScanInput::chosen_cycles) are not scanned.
+    const double resolution = 1.0 / std::max(pb.var_hi[j] - pb.var_lo[j], 1e-3);
+    auto resolved_from_chosen = [&](double period) {
+      if (!in.chosen_cycles) return true;
+      for (const Term& c : *in.chosen_cycles)
+        if (c.kind == TermKind::cyclic && c.axis == t.axis && c.direction == t.direction &&
+            c.period_mm > 0.0 && std::abs(1.0 / period - 1.0 / c.period_mm) < resolution)
+          return false;
+      return true;
+    };
     std::size_t best = 0;
     double best_pow = -1.0;
     std::vector<double> pow(f.grid.size());
@@ -60,7 +71,7 @@ Term scan_parameter(const ScanFamily& f, const ScanInput& in, PowerCache& power_
       const std::size_t at = 6 * q + 2 * static_cast<std::size_t>(t.direction);
       const double pw = acc[at] * acc[at] + acc[at + 1] * acc[at + 1];
       pow[q] = pw;
-      if (pw > best_pow) {
+      if (pw > best_pow && resolved_from_chosen(f.grid[q])) {
         best_pow = pw;
         best = q;
       }
@@ -132,7 +143,7 @@ std::pair<double, double> brent_maximum(const std::function<double(double)>& f, 
 }
 
 double refine_period_exactly(const Problem& pb, const Mat& Q, const Vec& r, double half_step,
-                             Cached& c) {
+                             Cached& c, FrequencyRange range) {
   const double d_scan = delta_rss(c.C, c.CtC, c.QtC, r);
   if (c.term.kind != TermKind::cyclic || !(c.term.period_mm > 0.0) || !(half_step > 0.0))
     return d_scan;
@@ -149,7 +160,11 @@ double refine_period_exactly(const Problem& pb, const Mat& Q, const Vec& r, doub
   // precision a double allows (2⁻²⁵ of f: over a 1 m travel a period of
   // 16 mm is placed to a few 10⁻⁶ of a cycle).
   constexpr int kSamples = 9;
-  const double lo = std::max(f_scan - half_step, 0.5 * f_scan), hi = f_scan + half_step;
+  // Never beyond the family's frequency grid: a period the catalogue does
+  // not search is not named by refining one at its end.
+  const double lo = std::max({f_scan - half_step, 0.5 * f_scan, range.lo}),
+               hi = std::min(f_scan + half_step, range.hi);
+  if (!(hi > lo)) return d_scan;
   const double step = (hi - lo) / (kSamples - 1);
   int k_best = 0;
   double g_sampled = -1.0;
@@ -173,14 +188,14 @@ double refine_period_exactly(const Problem& pb, const Mat& Q, const Vec& r, doub
 }
 
 void confirm_aliases(const Problem& pb, const Mat& Q, const Vec& r, double half_step, double d_pick,
-                     double margin, Cached& c) {
+                     double margin, Cached& c, FrequencyRange range) {
   if (c.term.kind != TermKind::cyclic) return;
   std::vector<double> kept;
   for (double period : c.aliases) {
     Term t = c.term;
     t.period_mm = period;
     Cached a = cached(pb, t, Q);
-    const double d = refine_period_exactly(pb, Q, r, half_step, a);
+    const double d = refine_period_exactly(pb, Q, r, half_step, a, range);
     if (d_pick - d < margin) kept.push_back(a.term.period_mm);
   }
   c.aliases = std::move(kept);

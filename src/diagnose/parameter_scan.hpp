@@ -8,6 +8,7 @@
 #include <array>
 #include <cstddef>
 #include <functional>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -24,6 +25,12 @@ struct ScanInput {
   std::size_t stride = 1;                  // every stride-th point is used
   double alias_power = 0.9;                // SelectionOptions::alias_power
   bool refine_period = true;               // SelectionOptions::refine_period
+  // The cycles the path has chosen: a cycle of the same axis and direction
+  // is not scanned within 1/span of their frequencies (span: the axis's
+  // measured travel), where two sinusoids are not resolved from each other
+  // and a second one only takes up what the first's period left
+  // (SelectionOptions::resolve_chosen_cycles; nullptr: none).
+  const std::vector<Term>* chosen_cycles = nullptr;
 };
 
 // Per axis, the periodogram sums over the frequency grid, shared by the
@@ -41,6 +48,12 @@ Term scan_parameter(const ScanFamily& f, const ScanInput& in, PowerCache& power_
 std::pair<double, double> brent_maximum(const std::function<double(double)>& f, double lo,
                                         double hi, int bits);
 
+// A cycle family's frequencies (1/mm): those of its period grid.
+struct FrequencyRange {
+  double lo = 0.0;
+  double hi = std::numeric_limits<double>::infinity();
+};
+
 // A cycle's period refined on the exact ΔRSS beside span(Q) (r ⟂ Q):
 // within ±half_step of the scan's estimate in frequency, 9 samples, then
 // a Brent search (boost::math::tools::brent_find_minima, as a drift's τ)
@@ -50,9 +63,10 @@ std::pair<double, double> brent_maximum(const std::function<double(double)>& f, 
 // least-squares period, and over a long travel that fraction beats against the data: a second cycle
 // at a neighbouring period is then needed for what the first left. c's
 // term, columns and products are replaced when the refined period removes
-// more (c's QtC must be Qᵀ·C). Returns what c removes then.
+// more (c's QtC must be Qᵀ·C), never outside `range` (the family's grid).
+// Returns what c removes then.
 double refine_period_exactly(const Problem& pb, const Mat& Q, const Vec& r, double half_step,
-                             Cached& c);
+                             Cached& c, FrequencyRange range = {});
 
 // The aliases of a chosen cycle c (removing d_pick) that these data do not
 // reject: each is refined like the pick (refine_period_exactly, ±half_step)
@@ -63,6 +77,6 @@ double refine_period_exactly(const Problem& pb, const Mat& Q, const Vec& r, doub
 // can still fit far worse. Used where the axis's positions are not a few
 // levels (SelectionOptions::alias_levels).
 void confirm_aliases(const Problem& pb, const Mat& Q, const Vec& r, double half_step, double d_pick,
-                     double margin, Cached& c);
+                     double margin, Cached& c, FrequencyRange range = {});
 
 }  // namespace abbe::diagnose::selection

@@ -11,6 +11,7 @@
 #include "backward_check.hpp"
 #include "candidate_fit.hpp"
 #include "choose_step.hpp"
+#include "chosen_periods.hpp"
 #include "final_fit.hpp"
 #include "path.hpp"
 #include "span.hpp"
@@ -246,6 +247,8 @@ SelectionResult selection::select_path(const Problem& pb, const CandidateSet& cs
       step_of.push_back(step);
     }
     ps.advance(Qnew, labels);
+    for (std::size_t k = chosen.size() - 1 - ch.partners.size(); k < chosen.size(); ++k)
+      if (chosen[k].kind == TermKind::cyclic) ps.cycles.push_back(chosen[k]);
   }
 
   // The backward check (backward_check.hpp): a named effect that the ones
@@ -293,8 +296,10 @@ SelectionResult selection::select_path(const Problem& pb, const CandidateSet& cs
         std::sqrt(r.squaredNorm() / std::max<double>(static_cast<double>(n - X.cols()), 1.0));
     if (chosen.empty()) return res;
   }
-  if (o.refine_tau) {
-    const bool moved = selection::refine_time_constants(pb, X, y, chosen, res.log);
+  if (o.refine_tau || o.refine_periods) {
+    bool moved = o.refine_tau && selection::refine_time_constants(pb, X, y, chosen, res.log);
+    if (o.refine_periods)
+      moved = selection::refine_chosen_periods(pb, cs, X, y, chosen, res.log) || moved;
     // A drift at its own τ may make an effect chosen beside it at the
     // grid's τ redundant: the backward check once more
     // (SelectionOptions::backward_after_tau).

@@ -118,5 +118,20 @@ TEST(DiagnoseBlindSpots, RegularLevelsCannotSeeTheCyclesTheyAlias) {
   EXPECT_EQ(w.size(), 3u);
 }
 
+// A short travel (a 50 mm ballbar circle: X and Y span 100 mm): no cycle
+// longer than half the span, said per axis; an 800 mm line none.
+TEST(DiagnoseBlindSpots, AShortTravelCannotSeeItsLongerPeriods) {
+  const auto w = whats(test::sine_line(0.0, 100.0, 200, 20.0, 1.0, 0.0, 0.1, 1, 2));
+  EXPECT_TRUE(has(w, "a cycle of X longer than 50 mm"));
+  const auto far = whats(test::sine_line(0.0, 800.0, 200, 20.0, 1.0, 0.0, 0.1, 1, 2));
+  EXPECT_FALSE(has(far, "a cycle of X longer"));
+  // The share as an option: with 1.0 the 100 mm line holds every period.
+  bool said = false;
+  for (const BlindSpot& b : blind_spots(test::sine_line(0.0, 100.0, 200, 20.0, 1.0, 0.0, 0.1, 1, 2),
+                                        DesignAmbiguityOptions{}, 4.0, 100.0, 1.0))
+    said = said || b.what.rfind("a cycle of X longer", 0) == 0;
+  EXPECT_FALSE(said);
+}
+
 }  // namespace
 }  // namespace abbe::diagnose

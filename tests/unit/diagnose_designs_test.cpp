@@ -1703,11 +1703,14 @@ TEST(DiagnoseDesigns, ARevisitedDriftMustGainItsCourseBesideItsStaticForm) {
 // Case 313 (a squareness dZ ∝ x beside an off-centre coupling x·z→Z): the
 // same with a cycle of X in Z at 4.51 mm beside the squareness.
 // (With the drifts at their grid's τ: with the τ refined, exact_tau, both
-// cases name both effects on the kept path without the rule.)
+// cases name both effects on the kept path without the rule. And with the
+// cycles at their chosen periods: with the final fit's period refinement,
+// refine_periods, case 31's revisited path ends elsewhere.)
 TEST(DiagnoseDesigns, ARevisitedAlternativeMustTakeThePicksPlace) {
   SelectionOptions rules;
   rules.exact_tau = false;
   rules.refine_tau = false;
+  rules.refine_periods = false;
   SelectionOptions joined_wins = rules;
   joined_wins.revisit_alternative_replaces = false;
   expect_both_named_only_with_the_rule({31, 313}, joined_wins, &rules);
@@ -1971,7 +1974,11 @@ TEST(DiagnoseDesigns, ACyclicPartnerPassesTheWholeFloor) {
 // travel: a third cycle at a neighbouring period (69: 8.85 mm beside
 // 8.92 mm, and an arm offset) or at an alias of the harmonic (142) came in
 // (a wrong name, until the cycle period test's margin became the levels'
-// noise: now 142's third cycle is `ambiguous`).
+// noise: now 142's third cycle is `ambiguous`). The "periodogram only" runs
+// also leave out the later rules that keep a third cycle away by
+// themselves: no cycle within 1/span of a chosen one
+// (resolve_chosen_cycles; with it 69's third cycle moves to 11.6 mm) and
+// the final fit's period refinement (refine_periods).
 TEST(DiagnoseDesigns, AChosenCyclesPeriodIsRefinedOnTheFit) {
   auto cycles = [](const Case& c) {
     return std::count_if(c.effects.begin(), c.effects.end(),
@@ -1979,6 +1986,8 @@ TEST(DiagnoseDesigns, AChosenCyclesPeriodIsRefinedOnTheFit) {
   };
   SelectionOptions periodogram_only;
   periodogram_only.exact_period = false;
+  periodogram_only.resolve_chosen_cycles = false;
+  periodogram_only.refine_periods = false;
   for (int i : {69, 142}) {
     const auto [h, seed] = sweep_case(Design::axis_lines, i);
     ASSERT_EQ(h.shape, Shape::pitch);
@@ -2037,17 +2046,23 @@ TEST(DiagnoseDesigns, TheCyclePeriodMarginIsTheLevelsNoise) {
 // 39.9 mm) or along a laser line's 21 targets (case 45, 39.4 mm of Z),
 // selected as a cycle at a period one level alone prefers (10.9 mm;
 // 13.2 mm). Leaving that level out, another period fits as well, and the
-// cycle is not named; without the test each was a wrong name.
+// cycle is not named; without the test each was a wrong name. (Case 45
+// is also kept from the wrong name by the final fit's period refinement
+// and the resolution rule for a second cycle, refine_periods and
+// resolve_chosen_cycles: the runs without the test leave them out too.)
 TEST(DiagnoseDesigns, APeriodThatRestsOnOneLevelIsNotAName) {
   DesignAmbiguityOptions without_test;
   without_test.level_out_test = false;
+  SelectionOptions earlier_cycles;
+  earlier_cycles.refine_periods = false;
+  earlier_cycles.resolve_chosen_cycles = false;
   for (const auto& [design, i] : std::vector<std::pair<Design, int>>{{Design::grid_irregular, 22},
                                                                      {Design::axis_lines, 45}}) {
     const auto [h, seed] = sweep_case(design, i);
     ASSERT_EQ(h.shape, Shape::pitch);
     const Case with = run_case(design, h, seed);
     EXPECT_NE(with.verdict, Verdict::wrong) << i << with.found;
-    const Case without = run_case(design, h, seed, 0.0, nullptr, false, &without_test);
+    const Case without = run_case(design, h, seed, 0.0, &earlier_cycles, false, &without_test);
     EXPECT_EQ(without.verdict, Verdict::wrong) << i << without.found;
   }
 }

@@ -12,7 +12,10 @@
 //  - a direction measured only where an axis stands still (a laser line
 //    along X measures d_x at one y and z): no d_i as a function of s_j;
 //  - an axis on a few regular levels (design_ambiguity.hpp): no cycle of it
-//    shorter than two level spacings.
+//    shorter than two level spacings;
+//  - an axis over a short travel (a 50 mm ballbar circle spans 100 mm): no
+//    cycle of it longer than half its span (CandidateOptions::
+//    max_period_span_share), which it does not hold twice.
 // Reported as such (text, JSON `blind_spots`, HTML), never as an effect.
 #include <string>
 #include <vector>
@@ -28,8 +31,10 @@ struct BlindSpot {
   std::string measure;  // what would add it
 };
 
-// `min_period_mm`, `max_period_mm`: the catalogue's cycles (CandidateOptions).
+// `min_period_mm`, `max_period_mm`, `max_period_span_share`: the
+// catalogue's cycles (CandidateOptions).
 std::vector<BlindSpot> blind_spots(const Problem& problem, const DesignAmbiguityOptions& design,
-                                   double min_period_mm, double max_period_mm);
+                                   double min_period_mm, double max_period_mm,
+                                   double max_period_span_share = 0.5);
 
 }  // namespace abbe::diagnose

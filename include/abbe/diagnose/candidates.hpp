@@ -15,6 +15,9 @@ namespace abbe::diagnose {
 struct CandidateOptions {
   double min_period_mm = 4.0;    // cyclic periods searched in [min, max]
   double max_period_mm = 100.0;  // (pitch errors a 25–50 mm table under-samples)
+  // And at most this share of the axis's measured span (0.5: two periods
+  // on the travel; a 50 mm ballbar circle spans 100 mm of X and Y).
+  double max_period_span_share = 0.5;
   std::vector<double> tau_s{300, 600, 900, 1200, 1800, 2700, 3600, 5400, 7200, 10800, 0};
   int single_degree = 6;  // unexplained: Legendre degree in one variable
   int pair_degree = 4;    // ... per variable of a pair

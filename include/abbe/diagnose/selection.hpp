@@ -80,8 +80,18 @@ struct SelectionOptions {
   // And once more in the final fit beside every other named term: the
   // reported τ and its uncertainty are the data's best (false: as chosen).
   bool refine_tau = true;
-  // Where that moves a τ, the backward check runs once more: an effect
-  // chosen beside the drift at the grid's τ may now be redundant.
+  // A cycle of the axis and direction of a chosen one is not scanned
+  // within 1/span of its frequency (span: the axis's measured travel),
+  // where two sinusoids are not resolved from each other and a second one
+  // would only take up what the first one's period left (false: it is).
+  bool resolve_chosen_cycles = true;
+  // And each chosen cycle's period, within half the resolution 1/span of
+  // its axis (chosen_periods.hpp): a pitch error's harmonic chosen after
+  // its fundamental moves the fundamental's best period.
+  bool refine_periods = true;
+  // Where that moves a τ or a period, the backward check runs once more: an
+  // effect chosen beside the drift at the grid's τ, or beside a cycle at
+  // its first period, may now be redundant.
   bool backward_after_tau = true;
   // Parsimony between competing explanations of one structure: a cheaper
   // significant named candidate whose fitted contribution correlates with
