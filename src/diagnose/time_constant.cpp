@@ -6,8 +6,8 @@
 #include <cmath>
 
 #include "abbe/diagnose/selection.hpp"
+#include "final_refit.hpp"
 #include "parameter_scan.hpp"
-#include "span.hpp"
 
 namespace abbe::diagnose::selection {
 
@@ -46,42 +46,20 @@ double refine_tau_exactly(const Problem& pb, const Mat& Q, const Vec& r,
 
 bool refine_time_constants(const Problem& pb, Mat& X, const Vec& y, std::vector<Term>& chosen,
                            std::vector<std::string>& log) {
-  // Each chosen term's columns, as X holds them side by side.
-  std::vector<Mat> blocks;
-  std::vector<Eigen::Index> start;
-  Eigen::Index columns = 0;
-  for (const Term& t : chosen) {
-    if (columns + t.columns() > X.cols()) return false;  // not the chosen terms' columns
-    start.push_back(columns);
-    blocks.emplace_back(X.middleCols(columns, t.columns()));
-    columns += t.columns();
-  }
-  if (columns != X.cols()) return false;
-  const Mat none(X.rows(), 0);
-  bool moved = false;
-  for (std::size_t i = 0; i < chosen.size(); ++i) {
-    Term& drift = chosen[i];
-    if (drift.kind != TermKind::thermal_drift || !(drift.tau_s > 0.0)) continue;
-    // Everything else of the named stage, and the data beside it.
-    std::vector<bool> others(chosen.size());
-    for (std::size_t j = 0; j < chosen.size(); ++j)
-      others[j] = j != i && chosen[j].kind != TermKind::unexplained;
-    const Mat Q = span::basis_of(none, blocks, others);
-    const Vec r = span::residual_of(Q, y);
-    const Mat& C = blocks[i];
-    const double before = delta_rss(C, C.transpose() * C, Q.transpose() * C, r);
+  FinalRefit how;
+  how.applies = [](const Term& t) { return t.kind == TermKind::thermal_drift && t.tau_s > 0.0; };
+  how.refine = [&](const Term& drift, const Mat& Q, const Vec& r) -> std::pair<Term, double> {
     const auto [tau_best, after] =
         best_time_constant(pb, Q, r, drift, 0.5 * drift.tau_s, 2.0 * drift.tau_s);
-    if (!(after > before)) continue;
-    const double tau_before = drift.tau_s;
-    drift.tau_s = tau_best;
-    blocks[i] = term_columns(pb, drift);
-    X.middleCols(start[i], drift.columns()) = blocks[i];
-    log.push_back(fmt::format("final fit: {} τ {:.6g} s → {:.6g} s (ΔRSS {:.6g} → {:.6g})",
-                              drift.label(), tau_before, drift.tau_s, before, after));
-    moved = true;
-  }
-  return moved;
+    Term t = drift;
+    t.tau_s = tau_best;
+    return {t, after};
+  };
+  how.describe = [](const Term& a, const Term& b, double before, double after) {
+    return fmt::format("final fit: {} τ {:.6g} s → {:.6g} s (ΔRSS {:.6g} → {:.6g})", b.label(),
+                       a.tau_s, b.tau_s, before, after);
+  };
+  return refine_each_beside_others(pb, X, y, chosen, how, log);
 }
 
 }  // namespace abbe::diagnose::selection
