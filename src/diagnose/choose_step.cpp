@@ -90,7 +90,12 @@ double PathState::practical(int k, const SelectionOptions& o) {
   return q;
 }
 
-void PathState::advance(const Mat& Qnew, const std::vector<std::string>& chosen_labels) {
+void PathState::advance(const Mat& Qnew, const std::vector<Term>& picked) {
+  std::vector<std::string> chosen_labels;
+  for (const Term& t : picked) {
+    chosen_labels.push_back(t.label());
+    if (t.kind == TermKind::cyclic) cycles.push_back(t);
+  }
   for (Cached& c : named) {
     Mat ext(c.QtC.rows() + Qnew.cols(), c.C.cols());
     ext << c.QtC, Qnew.transpose() * c.C;
@@ -282,8 +287,7 @@ bool choose_step(const Problem& pb, const CandidateSet& cs, const SelectionOptio
       }
       if (!o.exact_period) return;
       const double half_step = std::abs(1.0 / grid[1] - 1.0 / grid[0]);
-      const FrequencyRange range{std::min(1.0 / grid.front(), 1.0 / grid.back()),
-                                 std::max(1.0 / grid.front(), 1.0 / grid.back())};
+      const FrequencyRange range = frequency_range(cs.scanned[i]);
       sc.d = refine_period_exactly(pb, Q, r, half_step, scanned[i], range);
       if (o.rivals_by_test && !ps.levelled[static_cast<std::size_t>(s->c->term.axis)])
         confirm_aliases(pb, Q, r, half_step, sc.d, step_view.rival_margin(), scanned[i], range);

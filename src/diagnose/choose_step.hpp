@@ -44,8 +44,9 @@ struct PathState {
   // The practical floor for k columns, in units of σ̂² (min_effect_test).
   double practical(int k, const SelectionOptions& o);
   // After a step: the named candidates' projections on the span's new
-  // columns Qnew, and the chosen ones (by label) removed.
-  void advance(const Mat& Qnew, const std::vector<std::string>& chosen_labels);
+  // columns Qnew, the picked ones (by label) removed, the picked cycles
+  // added to `cycles`.
+  void advance(const Mat& Qnew, const std::vector<Term>& picked);
 
  private:
   std::array<double, 64> practical_cache_{};  // by column count

@@ -22,15 +22,14 @@ bool refine_chosen_periods(const Problem& pb, const CandidateSet& cs, Mat& X, co
     if (!(span > 0.0)) return {cycle, 0.0};
     // Within the frequencies its family searches (the catalogue's periods,
     // CandidateOptions::max_period_span_share).
-    double f_lo = 0.0, f_hi = std::numeric_limits<double>::infinity();
+    FrequencyRange family;
     for (const ScanFamily& f : cs.scanned)
       if (f.base.kind == TermKind::cyclic && f.base.axis == cycle.axis &&
-          f.base.direction == cycle.direction && !f.grid.empty()) {
-        f_lo = 1.0 / std::max(f.grid.front(), f.grid.back());
-        f_hi = 1.0 / std::min(f.grid.front(), f.grid.back());
-      }
+          f.base.direction == cycle.direction)
+        family = frequency_range(f);
     const double f0 = 1.0 / cycle.period_mm, half = 0.5 / span;
-    const double lo = std::max({f0 - half, 0.5 * f0, f_lo}), hi = std::min(f0 + half, f_hi);
+    const double lo = std::max({f0 - half, 0.5 * f0, family.lo}),
+                 hi = std::min(f0 + half, family.hi);
     if (!(hi > lo)) return {cycle, 0.0};
     auto removes_at = [&](double f) {
       Term t = cycle;

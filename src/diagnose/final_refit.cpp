@@ -4,11 +4,32 @@
 
 namespace abbe::diagnose::selection {
 
+namespace {
+
+// X split into its terms' blocks, where X holds the terms' columns side by
+// side in order: each block and its first column. False when X's columns
+// are not those.
+bool split_by_terms(const Eigen::MatrixXd& X, const std::vector<Term>& terms,
+                    std::vector<Eigen::MatrixXd>& blocks, std::vector<Eigen::Index>& start) {
+  blocks.clear();
+  start.clear();
+  Eigen::Index columns = 0;
+  for (const Term& t : terms) {
+    if (columns + t.columns() > X.cols()) return false;
+    start.push_back(columns);
+    blocks.emplace_back(X.middleCols(columns, t.columns()));
+    columns += t.columns();
+  }
+  return columns == X.cols();
+}
+
+}  // namespace
+
 bool refine_each_beside_others(const Problem& pb, Mat& X, const Vec& y, std::vector<Term>& chosen,
                                const FinalRefit& how, std::vector<std::string>& log) {
   std::vector<Mat> blocks;
   std::vector<Eigen::Index> start;
-  if (!span::split_by_terms(X, chosen, blocks, start)) return false;
+  if (!split_by_terms(X, chosen, blocks, start)) return false;
   const Mat none(X.rows(), 0);
   bool moved = false;
   for (std::size_t i = 0; i < chosen.size(); ++i) {

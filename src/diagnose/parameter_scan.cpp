@@ -142,6 +142,12 @@ std::pair<double, double> brent_maximum(const std::function<double(double)>& f, 
   return {x, -lost};
 }
 
+FrequencyRange frequency_range(const ScanFamily& f) {
+  if (f.grid.empty()) return {};
+  const auto [shortest, longest] = std::minmax_element(f.grid.begin(), f.grid.end());
+  return {1.0 / *longest, 1.0 / *shortest};
+}
+
 double refine_period_exactly(const Problem& pb, const Mat& Q, const Vec& r, double half_step,
                              Cached& c, FrequencyRange range) {
   const double d_scan = delta_rss(c.C, c.CtC, c.QtC, r);

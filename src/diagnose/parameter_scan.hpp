@@ -53,6 +53,8 @@ struct FrequencyRange {
   double lo = 0.0;
   double hi = std::numeric_limits<double>::infinity();
 };
+// The frequencies of f's grid (unbounded for an empty grid).
+FrequencyRange frequency_range(const ScanFamily& f);
 
 // A cycle's period refined on the exact ΔRSS beside span(Q) (r ⟂ Q):
 // within ±half_step of the scan's estimate in frequency, 9 samples, then

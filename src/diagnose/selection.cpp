@@ -232,7 +232,6 @@ SelectionResult selection::select_path(const Problem& pb, const CandidateSet& cs
     append_orthonormal(Q, C);
     const Mat Qnew = Q.rightCols(Q.cols() - p0);
     r -= Qnew * (Qnew.transpose() * r);
-    std::vector<std::string> labels{pick.label()};
     chosen.push_back(pick);
     ambiguous.push_back(ch.amb);
     separations.push_back(ch.separation);
@@ -240,15 +239,15 @@ SelectionResult selection::select_path(const Problem& pb, const CandidateSet& cs
     if (step == 0 && ch.partners.empty() && pick.kind != TermKind::unexplained)
       summary.first = pick;
     for (std::size_t i = 0; i < ch.partners.size(); ++i) {
-      labels.push_back(ch.partners[i].label());
       chosen.push_back(ch.partners[i]);
       ambiguous.push_back(ch.partner_amb[i]);
       separations.push_back(ch.partner_separation[i]);
       step_of.push_back(step);
     }
-    ps.advance(Qnew, labels);
-    for (std::size_t k = chosen.size() - 1 - ch.partners.size(); k < chosen.size(); ++k)
-      if (chosen[k].kind == TermKind::cyclic) ps.cycles.push_back(chosen[k]);
+    // This step's picks: the pick and its partners, the last of `chosen`.
+    ps.advance(Qnew,
+               std::vector<Term>(chosen.end() - 1 - static_cast<std::ptrdiff_t>(ch.partners.size()),
+                                 chosen.end()));
   }
 
   // The backward check (backward_check.hpp): a named effect that the ones

@@ -26,20 +26,6 @@ Eigen::MatrixXd residual_of(const Eigen::MatrixXd& Q, const Eigen::MatrixXd& C) 
   return Q.cols() > 0 ? Eigen::MatrixXd(C - Q * (Q.transpose() * C)) : C;
 }
 
-bool split_by_terms(const Eigen::MatrixXd& X, const std::vector<Term>& terms,
-                    std::vector<Eigen::MatrixXd>& blocks, std::vector<Eigen::Index>& start) {
-  blocks.clear();
-  start.clear();
-  Eigen::Index columns = 0;
-  for (const Term& t : terms) {
-    if (columns + t.columns() > X.cols()) return false;
-    start.push_back(columns);
-    blocks.emplace_back(X.middleCols(columns, t.columns()));
-    columns += t.columns();
-  }
-  return columns == X.cols();
-}
-
 Eigen::MatrixXd columns_of(const Problem& pb, const std::vector<Term>& terms) {
   Eigen::Index k = 0;
   for (const Term& t : terms) k += t.columns();

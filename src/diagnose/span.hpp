@@ -22,12 +22,6 @@ Eigen::MatrixXd orthonormal(const Eigen::MatrixXd& A);
 // C minus its projection on the span of the orthonormal columns of Q.
 Eigen::MatrixXd residual_of(const Eigen::MatrixXd& Q, const Eigen::MatrixXd& C);
 
-// X split into its terms' blocks, where X holds the terms' columns side by
-// side in order (the selection's design matrix): each block and its first
-// column. False (nothing split) when X's columns are not those.
-bool split_by_terms(const Eigen::MatrixXd& X, const std::vector<Term>& terms,
-                    std::vector<Eigen::MatrixXd>& blocks, std::vector<Eigen::Index>& start);
-
 // The terms' columns side by side (observations × their columns).
 Eigen::MatrixXd columns_of(const Problem& problem, const std::vector<Term>& terms);
 // The same for fitted datum terms.
