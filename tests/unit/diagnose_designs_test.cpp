@@ -942,7 +942,8 @@ Case run_case(Design design, const Hidden& h, std::uint64_t seed, double outlier
     for (double p : st.other_periods_mm) alt += fmt::format(" or period {:.4g} mm", p);
     const bool by_period = !st.other_periods_mm.empty();
     bool hidden_part = h.shape != Shape::none && consistent(st.term, h, by_period);
-    for (const Hidden& other : h.also) hidden_part = hidden_part || consistent(st.term, other, by_period);
+    for (const Hidden& other : h.also)
+      hidden_part = hidden_part || consistent(st.term, other, by_period);
     const bool machine = !is_datum(st.term) && st.term.kind != TermKind::unexplained &&
                          !hidden_part && of_the_machine(pb, own, st.term, plane);
     c.of_machine.push_back(machine);
@@ -2371,8 +2372,8 @@ TEST(DiagnoseDesigns, TheMachinesOwnErrorIsNotAWrongName) {
   ASSERT_EQ(c.of_machine.size(), c.effects.size());
   bool coupling_of_machine = false;
   for (std::size_t e = 0; e < c.effects.size(); ++e)
-    coupling_of_machine = coupling_of_machine ||
-                          (c.effects[e].term.kind == TermKind::coupling && c.of_machine[e]);
+    coupling_of_machine =
+        coupling_of_machine || (c.effects[e].term.kind == TermKind::coupling && c.of_machine[e]);
   EXPECT_TRUE(coupling_of_machine) << c.found;
   EXPECT_EQ(c.machine_names, 1);
 

@@ -170,10 +170,9 @@ void BM_Diagnose(benchmark::State& state) {
     const abbe::diagnose::Diagnosis d = abbe::diagnose::diagnose(s.machine, s.data, o);
     effects = d.effects.size();
     revisited = revisits(d);
-    cycles = static_cast<std::size_t>(
-        std::count_if(d.effects.begin(), d.effects.end(), [](const auto& e) {
-          return e.term.kind == abbe::diagnose::TermKind::cyclic;
-        }));
+    cycles = static_cast<std::size_t>(std::count_if(
+        d.effects.begin(), d.effects.end(),
+        [](const auto& e) { return e.term.kind == abbe::diagnose::TermKind::cyclic; }));
     benchmark::DoNotOptimize(effects);
   }
   state.counters["points"] = static_cast<double>(state.range(0));
