@@ -871,8 +871,9 @@ std::set<std::size_t> add_outliers(io::MeasuredData& data, std::uint64_t seed, d
 
 // The truth machine differs from its model by more than the hidden effect:
 // its tables were measured by a laser campaign with its own noise, so the
-// model leaves the machine's own error at every point (about 0.2 µm rms,
-// below the tuned noise, above a laser tracer's). A diagnosis that names it
+// model leaves the machine's own error at every point (0.28–0.32 µm rms on
+// the grid's and the plate's points after the datum: below the tuned noise,
+// above a laser tracer's). A diagnosis that names it
 // names what the simulation gets wrong, which is its task. A name that is
 // not the hidden effect's counts as the machine's own where that error —
 // the truth without noise and without the hidden effect, against the
