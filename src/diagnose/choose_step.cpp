@@ -288,7 +288,7 @@ bool choose_step(const Problem& pb, const CandidateSet& cs, const SelectionOptio
       if (!o.exact_period) return;
       const double half_step = std::abs(1.0 / grid[1] - 1.0 / grid[0]);
       const FrequencyRange range = frequency_range(cs.scanned[i]);
-      sc.d = refine_period_exactly(pb, Q, r, half_step, scanned[i], range);
+      sc.d = refine_period_exactly(pb, Q, r, half_step, scanned[i], range, o.aliases_at_range_end);
       if (o.rivals_by_test && !ps.levelled[static_cast<std::size_t>(s->c->term.axis)])
         confirm_aliases(pb, Q, r, half_step, sc.d, step_view.rival_margin(), scanned[i], range);
     };

@@ -149,7 +149,7 @@ FrequencyRange frequency_range(const ScanFamily& f) {
 }
 
 double refine_period_exactly(const Problem& pb, const Mat& Q, const Vec& r, double half_step,
-                             Cached& c, FrequencyRange range) {
+                             Cached& c, FrequencyRange range, bool aliases_at_range_end) {
   const double d_scan = delta_rss(c.C, c.CtC, c.QtC, r);
   if (c.term.kind != TermKind::cyclic || !(c.term.period_mm > 0.0) || !(half_step > 0.0))
     return d_scan;
@@ -185,8 +185,26 @@ double refine_period_exactly(const Problem& pb, const Mat& Q, const Vec& r, doub
                                                 lo + std::min(k_best + 1, kSamples - 1) * step,
                                                 std::numeric_limits<double>::digits / 2);
   const bool brent_better = g_brent >= g_sampled;
-  const double f_best = brent_better ? f_brent : lo + k_best * step;
-  const double g_best = brent_better ? g_brent : g_sampled;
+  double f_best = brent_better ? f_brent : lo + k_best * step;
+  double g_best = brent_better ? g_brent : g_sampled;
+  // Stopped at the end of the range: the best lies beyond it, where the
+  // catalogue does not search; on regular levels the periods the scan found
+  // as good (c.aliases) give nearly the same samples within the range, so
+  // each is refined too and the best kept (a pitch error of Z on the grid's
+  // 5 levels, held at 100 mm, fitted worse than its alias at 16.2 mm).
+  const bool at_end = f_best <= range.lo * (1.0 + 1e-9) || f_best >= range.hi * (1.0 - 1e-9);
+  if (aliases_at_range_end && at_end)
+    for (double period : c.aliases) {
+      if (!(period > 0.0) || std::abs(1.0 / period - f_scan) <= 1e-12 * f_scan) continue;
+      Term t = c.term;
+      t.period_mm = period;
+      Cached a = cached(pb, t, Q);
+      const double d = refine_period_exactly(pb, Q, r, half_step, a, range, false);
+      if (d > g_best) {
+        g_best = d;
+        f_best = 1.0 / a.term.period_mm;
+      }
+    }
   if (!(g_best > d_scan)) return d_scan;
   c.term.period_mm = 1.0 / f_best;
   c = cached(pb, c.term, Q, std::move(c.aliases));

@@ -65,10 +65,13 @@ FrequencyRange frequency_range(const ScanFamily& f);
 // least-squares period, and over a long travel that fraction beats against the data: a second cycle
 // at a neighbouring period is then needed for what the first left. c's
 // term, columns and products are replaced when the refined period removes
-// more (c's QtC must be Qᵀ·C), never outside `range` (the family's grid).
+// more (c's QtC must be Qᵀ·C), never outside `range` (the family's grid);
+// where that holds it at the range's end, each of c's aliases within the
+// range is refined too and the best kept (`aliases_at_range_end`).
 // Returns what c removes then.
 double refine_period_exactly(const Problem& pb, const Mat& Q, const Vec& r, double half_step,
-                             Cached& c, FrequencyRange range = {});
+                             Cached& c, FrequencyRange range = {},
+                             bool aliases_at_range_end = false);
 
 // The aliases of a chosen cycle c (removing d_pick) that these data do not
 // reject: each is refined like the pick (refine_period_exactly, ±half_step)

@@ -89,6 +89,11 @@ struct SelectionOptions {
   // its axis (chosen_periods.hpp): a pitch error's harmonic chosen after
   // its fundamental moves the fundamental's best period.
   bool refine_periods = true;
+  // A chosen cycle whose exact refinement stops at the end of its family's
+  // range (the best period lies beyond what the catalogue searches): the
+  // periods the scan found as good (its aliases) are refined too and the
+  // best kept (parameter_scan.hpp; false: the period at the range's end).
+  bool aliases_at_range_end = true;
   // Where that moves a τ or a period, the backward check runs once more: an
   // effect chosen beside the drift at the grid's τ, or beside a cycle at
   // its first period, may now be redundant.
