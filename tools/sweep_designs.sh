@@ -6,7 +6,7 @@
 #   tools/sweep_designs.sh [-b build-dir] [-n seeds] [-j jobs] [-o out-dir] TEST...
 #
 # TEST is a DiagnoseDesigns test name (Grid, Plane, Toolpath, Ballbar,
-# Diagonals, AxisLines, GridOnePass, GridWithoutDirectionsInferred,
+# Diagonals, DiagonalsFiveRuns, AxisLines, GridOnePass, GridWithoutDirectionsInferred,
 # GridIrregular, BallbarXY, GridTwoEffects, GridWithOutliers), or `all`.
 # The harness's own variables pass through the environment:
 #   ABBE_DESIGNS_VM_SEED / _PROFILE / _CHAIN  another truth machine
@@ -30,17 +30,17 @@ while getopts "b:n:j:o:" opt; do
     n) seeds=$OPTARG ;;
     j) jobs=$OPTARG ;;
     o) out=$OPTARG ;;
-    *) sed -n '2,18p' "$0" >&2; exit 1 ;;
+    *) sed -n '2,20p' "$0" >&2; exit 1 ;;
   esac
 done
 shift $((OPTIND - 1))
 if [[ $# -eq 0 ]]; then
-  sed -n '2,18p' "$0" >&2
+  sed -n '2,20p' "$0" >&2
   exit 1
 fi
 tests=("$@")
 if [[ ${tests[0]} == all ]]; then
-  tests=(Grid Plane Toolpath Ballbar Diagonals AxisLines GridOnePass GridWithoutDirectionsInferred
+  tests=(Grid Plane Toolpath Ballbar Diagonals DiagonalsFiveRuns AxisLines GridOnePass GridWithoutDirectionsInferred
          GridIrregular BallbarXY GridTwoEffects GridWithOutliers)
 fi
 binary=$build/tests/abbe_tests

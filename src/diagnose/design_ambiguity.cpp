@@ -452,6 +452,57 @@ std::vector<std::string> mark_design_ambiguities(const Problem& pb,
       }
     }
   }
+  if (o.reversal_jump) {
+    for (std::size_t rv = 0; rv < effects.size(); ++rv) {
+      const Term& rt = effects[rv].term;
+      if (rt.kind != TermKind::reversal || rt.axis < 0 || rt.degree < 1) continue;
+      // Beside the datum and the other named effects: a smooth `unexplained`
+      // function fitted after them could take a part of the jump (a step
+      // between two passes is a function of time too), after which any
+      // column removes about as little.
+      std::vector<bool> named(effects.size());
+      for (std::size_t f = 0; f < effects.size(); ++f)
+        named[f] = effects[f].term.kind != TermKind::unexplained;
+      const SwapTest sw = swap_test(pb, D, cols, rv, o.swap_alpha, named);
+      if (!sw.valid) continue;
+      // Whose jump it is matters only where the data hold a jump beside the
+      // growth (given everything else, more than the margin: elsewhere any
+      // column in its place removes as much).
+      const double d_growth = sw.removes(cols[rv].col(1));
+      if (!(sw.d_e - d_growth >= sw.margin)) continue;
+      // The same growth with another axis's jump (a plain reversal k→d's
+      // only column) in place of the term's own.
+      Mat C(pb.y.size(), 2);
+      C.col(0) = cols[rv].col(1);
+      for (int k = 0; k < 3; ++k) {
+        if (k == rt.axis) continue;
+        std::vector<int> directions{k};
+        if (rt.direction >= 0 && rt.direction != k) directions.push_back(rt.direction);
+        for (const int d : directions) {
+          Term jump;
+          jump.kind = TermKind::reversal;
+          jump.axis = k;
+          jump.direction = d;
+          C.col(1) = term_columns(pb, jump).col(0);
+          if (!(C.col(1).squaredNorm() > 0.0)) continue;
+          const double d_j = sw.removes(C);
+          if (!(sw.d_e - d_j < sw.margin)) continue;
+          const std::string alt = fmt::format("{} (its jump)", jump.label());
+          add_alternative(effects[rv], alt);
+          if (effects[rv].separate_by.empty())
+            effects[rv].separate_by = fmt::format(
+                "measure the reversal of each axis on its own (a line along each axis, ISO "
+                "230-2): on these points every axis reverses at once and the jump of {} is the "
+                "jump of {} as much; the growth along {} is {}'s",
+                rt.label(), jump.label(), variable_name(rt.axis), axis_name(rt.axis));
+          log.push_back(fmt::format(
+              "design: the jump of {} (ΔRSS {:.6g}) is not told from the jump of {} beside the "
+              "same growth (ΔRSS {:.6g})",
+              rt.label(), sw.d_e, jump.label(), d_j));
+        }
+      }
+    }
+  }
   return log;
 }
 

@@ -8,8 +8,12 @@ namespace abbe::diagnose::design {
 
 SwapTest swap_test(const Problem& pb, const Mat& D, const std::vector<Mat>& cols, std::size_t e,
                    double alpha) {
+  return swap_test(pb, D, cols, e, alpha, std::vector<bool>(cols.size(), true));
+}
+
+SwapTest swap_test(const Problem& pb, const Mat& D, const std::vector<Mat>& cols, std::size_t e,
+                   double alpha, std::vector<bool> others) {
   SwapTest sw;
-  std::vector<bool> others(cols.size(), true);
   others[e] = false;
   static_cast<span::SwapBasis&>(sw) = span::swap_basis(pb, D, cols, others, e);
   if (sw.rank == 0) return sw;

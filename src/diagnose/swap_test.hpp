@@ -23,6 +23,9 @@ struct SwapTest : span::SwapBasis {
 
 SwapTest swap_test(const Problem& pb, const Mat& D, const std::vector<Mat>& cols, std::size_t e,
                    double alpha);
+// The same beside the datum and the effects `others` marks only.
+SwapTest swap_test(const Problem& pb, const Mat& D, const std::vector<Mat>& cols, std::size_t e,
+                   double alpha, std::vector<bool> others);
 
 // Appends `alt` to the effect's alternatives unless it is there.
 void add_alternative(SelectedTerm& st, const std::string& alt);

@@ -405,6 +405,70 @@ TEST(DiagnoseDesignAmbiguity, ScaleBesideAReversalThatGrowsAlongItsTravel) {
   }
 }
 
+// A reversal of X growing along x, read along two face diagonals of XY
+// driven there and back (every target approached in X and Y at once, as
+// along a body diagonal): each axis's jump projects as the same step on
+// both lines, so the jump of Y beside the same growth of X fits as well —
+// the growth tells X, the jump does not, and the reversal of Y is an
+// alternative of the jump. Where the data hold no jump (the growth alone),
+// whose jump it is does not arise: no alternative. Approached in X and Y
+// independently (at random), the two jumps differ and the growing reversal
+// stays named.
+TEST(DiagnoseDesignAmbiguity, AGrowingReversalsJumpIsTheJumpOfEveryAxisThatReversesWithIt) {
+  const Eigen::Vector3d lo(0.0, 0.0, 0.0), hi(400.0, 300.0, 0.0);
+  Term grown = test::make_term(TermKind::reversal, 0, 0);
+  grown.degree = 1;
+  grown.centre = 0.5 * (lo + hi);
+  grown.half = (0.5 * (hi - lo)).cwiseMax(1e-9);
+  for (const auto& [together, jump] : {std::pair{true, 3.0}, {true, 0.0}, {false, 3.0}}) {
+    Problem pb;
+    std::vector<double> y;
+    std::mt19937_64 rng(8);
+    std::normal_distribution<double> noise(0.0, 0.3);
+    std::uniform_real_distribution<double> u01(0.0, 1.0);
+    const std::array<std::pair<Eigen::Vector3d, Eigen::Vector3d>, 2> lines{
+        std::pair{lo, hi},
+        std::pair{Eigen::Vector3d(400.0, 0.0, 0.0), Eigen::Vector3d(0.0, 300.0, 0.0)}};
+    for (const auto& [a, e] : lines)
+      for (int run = 0; run < 3; ++run)
+        for (const int way : {1, -1})
+          for (int k = 0; k <= 20; ++k) {
+            const double f = way > 0 ? k / 20.0 : 1.0 - k / 20.0;
+            const Eigen::Vector3d u = (e - a).normalized();
+            PointContext pc;
+            pc.p = pc.s = a + f * (e - a);
+            pc.set = "a";
+            for (int i = 0; i < 2; ++i)
+              pc.dir[static_cast<std::size_t>(i)] =
+                  together ? (way * u[i] > 0.0 ? 1 : -1) : (u01(rng) < 0.5 ? -1 : 1);
+            // A jump of X growing by 1 µm to the end of x's travel.
+            const double dx =
+                0.5 * pc.dir[0] * (jump + 1.0 * (pc.s.x() - grown.centre.x()) / grown.half.x());
+            test::add_reading(pb, y, pc, u, u.x() * dx + noise(rng));
+          }
+    test::finish_problem(pb, y, "a", {true, true, false}, lo, hi);
+    std::vector<SelectedTerm> eff{fitted(grown, {jump, 1.0})}, off = eff;
+    DesignAmbiguityOptions o;
+    o.levelled_axes = false;
+    const auto log = mark_design_ambiguities(pb, {}, eff, o, 4.0);
+    DesignAmbiguityOptions without = o;
+    without.reversal_jump = false;
+    mark_design_ambiguities(pb, {}, off, without, 4.0);
+    EXPECT_TRUE(off[0].ambiguous_with.empty());
+    if (together && jump > 0.0) {
+      ASSERT_EQ(eff[0].ambiguous_with.size(), 1u);
+      EXPECT_EQ(eff[0].ambiguous_with[0], "reversal Y→Y (its jump)");
+      EXPECT_NE(eff[0].separate_by.find("measure the reversal of each axis on its own"),
+                std::string::npos)
+          << eff[0].separate_by;
+      EXPECT_NE(eff[0].separate_by.find("the growth along x is X's"), std::string::npos)
+          << eff[0].separate_by;
+    } else {
+      EXPECT_TRUE(eff[0].ambiguous_with.empty()) << eff[0].ambiguous_with.front();
+    }
+  }
+}
+
 // A drift of Z in time on a grid whose 5 Z levels are walked in order (one
 // pass: time and z go together) is told from any function of z on the
 // levels only by its course within each level. Where that course is below

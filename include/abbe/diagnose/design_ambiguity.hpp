@@ -36,6 +36,16 @@
 //    effect, or less by no more than a one-column χ² at `swap_alpha`
 //    (the data do not prefer the effect), the effect is ambiguous ("drive
 //    the axis both ways over its whole travel").
+//  - A growing reversal's jump. Where every axis reverses at once (a line
+//    through the volume driven there and back: the body diagonals), each
+//    axis's reversal jump is the same step along the line: the growth tells
+//    the axis whose reversal grows, the jump does not. Where the data hold
+//    a jump beside the growth (it adds more than the margin to everything
+//    else) and the reversal of another axis, its jump in place of the
+//    growing one's beside the same growth, removes as much given
+//    everything else (or less by no more than a one-column χ² at
+//    `swap_alpha`), that reversal is an alternative of the jump ("reversal
+//    Z→Z (its jump)"; "measure each axis's reversal on its own").
 #include <array>
 #include <string>
 #include <vector>
@@ -79,6 +89,9 @@ struct DesignAmbiguityOptions {
   // diagnose_problem gives its own candidates' grid).
   std::vector<double> tau_s;
   bool growing_reversal = true;
+  // A growing reversal's jump tested against the other axes' reversals
+  // (the jump's axis, not the growth's).
+  bool reversal_jump = true;
   // A cycle of a levelled axis is tested against a cycle at every other
   // period of the catalogue's range in its place: its period is the data's
   // only where none removes as much.
