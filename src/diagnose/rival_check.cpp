@@ -147,6 +147,9 @@ std::vector<std::string> mark_unrejected_rivals(const Problem& pb,
   const Mat Qd = orthonormal(D);
   std::vector<Mat> cols;
   for (const SelectedTerm& st : effects) cols.push_back(term_columns(pb, st.term));
+  // The rivals of a drift in proportion to a position found with their
+  // zero free: the effect's index and the rival.
+  std::vector<std::pair<std::size_t, Term>> zero_free_rivals;
 
   for (std::size_t e = 0; e < effects.size(); ++e) {
     SelectedTerm& se = effects[e];
@@ -232,6 +235,7 @@ std::vector<std::string> mark_unrejected_rivals(const Problem& pb,
         const double d_e = both_proportional ? d_zero_free[test == &named_only ? 0 : 1] : t.d_e;
         if (d_c < d_e - margin_of(t)) continue;
         rivals.push_back(cand);
+        if (both_proportional && o.uniform_drift_as_zero) zero_free_rivals.emplace_back(e, cand);
         log.push_back(fmt::format(
             "data: {} (ΔRSS {:.6g}) is not preferred over {} in its place{}{} (ΔRSS {:.6g}, "
             "margin {:.3g})",
@@ -247,6 +251,52 @@ std::vector<std::string> mark_unrejected_rivals(const Problem& pb,
     if (!rivals.empty()) periods_as_alternatives(se);
     if (!rivals.empty() && se.separate_by.empty())
       se.separate_by = separating_measurement(se.term, rivals, {});
+  }
+
+  // A uniform drift named beside a drift in proportion to a position is
+  // that drift's zero as much ((s_w − w0)·f(t) holds −w0·f(t)): where the
+  // proportional drift has a rival of another direction with its zero
+  // free, the pair — the proportional drift with its zero free and the
+  // uniform drift — is swapped for the rival with its zero free and the
+  // uniform drift moved to the rival's direction (at its own τ), beside
+  // the datum and the other named effects. Where that removes as much (or
+  // less by no more than the margin), the uniform drift's direction is not
+  // the data's: the moved drift is its alternative.
+  for (const auto& [p, rival] : zero_free_rivals) {
+    const Term& pt = effects[p].term;
+    for (std::size_t u = 0; u < effects.size(); ++u) {
+      SelectedTerm& su = effects[u];
+      if (u == p || su.term.kind != TermKind::thermal_drift || su.term.with_axis >= 0 ||
+          su.term.direction != pt.direction || rival.direction == pt.direction)
+        continue;
+      std::vector<Mat> pair_cols = cols;
+      const Mat P = with_uniform_drift(pb, pt, cols[p]);
+      pair_cols[p].resize(P.rows(), P.cols() + cols[u].cols());
+      pair_cols[p] << P, cols[u];
+      std::vector<bool> rest(effects.size());
+      for (std::size_t f = 0; f < effects.size(); ++f)
+        rest[f] = f != p && f != u && effects[f].term.kind != TermKind::unexplained;
+      const std::optional<SwapTest> t = swap_test(pb, D, pair_cols, rest, p, o.alpha, 0.0);
+      if (!t) continue;
+      Term moved = su.term;
+      moved.axis = moved.direction = rival.direction;
+      const Mat R = with_uniform_drift(pb, rival, term_columns(pb, rival));
+      const Mat M = term_columns(pb, moved);
+      Mat C(R.rows(), R.cols() + M.cols());
+      C << R, M;
+      const double d_c = t->removes(C);
+      if (d_c < t->d_e - t->margin) continue;
+      const std::string alt = fmt::format("{} (the zero of {})", moved.label(), rival.label());
+      if (std::find(su.ambiguous_with.begin(), su.ambiguous_with.end(), alt) !=
+          su.ambiguous_with.end())
+        continue;
+      su.ambiguous_with.push_back(alt);
+      if (su.separate_by.empty()) su.separate_by = separating_measurement(su.term, {moved}, {});
+      log.push_back(fmt::format(
+          "data: {} beside {} (ΔRSS {:.6g}) is not preferred over {} beside {}, each with its "
+          "zero free (ΔRSS {:.6g}, margin {:.3g})",
+          su.term.label(), pt.label(), t->d_e, moved.label(), rival.label(), d_c, t->margin));
+    }
   }
   return log;
 }

@@ -49,6 +49,13 @@ struct RivalOptions {
   // y·t→Y about the zero fits a drift ∝ (x − x0)·t in X better than x·t→X
   // about the zero does.
   bool zero_free_drifts = true;
+  // A uniform drift named beside such a drift, whose rival of another
+  // direction was found with its zero free, is that drift's zero as much:
+  // the pair is swapped for the rival with its zero free and the uniform
+  // drift moved to the rival's direction; where that removes as much, the
+  // moved drift is an alternative ("thermal_drift t→X (τ …) (the zero of
+  // thermal_drift x·t→X (τ …))").
+  bool uniform_drift_as_zero = true;
   // An arm offset (the model's own angular tables times an unknown arm)
   // carries those tables' error, which every residual holds too (the real
   // arms times the same error): on top of what it shares with a rival it
