@@ -291,7 +291,12 @@ std::vector<std::string> mark_unrejected_rivals(const Problem& pb,
           su.ambiguous_with.end())
         continue;
       su.ambiguous_with.push_back(alt);
-      if (su.separate_by.empty()) su.separate_by = separating_measurement(su.term, {moved}, {});
+      if (su.separate_by.empty())
+        su.separate_by = fmt::format(
+            "measure along {} on its own (an ISO 230-2 line): on these points a drift in "
+            "proportion to the position fits alike in {} and {}, and its zero, a uniform drift, "
+            "takes the direction of whichever is chosen",
+            axis_name(rival.direction), axis_name(pt.direction), axis_name(rival.direction));
       log.push_back(fmt::format(
           "data: {} beside {} (ΔRSS {:.6g}) is not preferred over {} beside {}, each with its "
           "zero free (ΔRSS {:.6g}, margin {:.3g})",

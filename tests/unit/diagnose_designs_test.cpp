@@ -2428,6 +2428,10 @@ TEST(DiagnoseDesigns, AUniformDriftBesideAnAmbiguousProportionalDriftIsItsZeroAs
   const Case c = run_case(Design::diagonals_runs, h, seed);
   EXPECT_EQ(c.verdict, Verdict::ambiguous) << c.found;
   EXPECT_NE(c.found.find("(the zero of thermal_drift x·t→X"), std::string::npos) << c.found;
+  bool told = false;
+  for (const SelectedTerm& st : c.effects)
+    told = told || st.separate_by.find("measure along X on its own") != std::string::npos;
+  EXPECT_TRUE(told) << c.found;
   RivalOptions direction_named;
   direction_named.uniform_drift_as_zero = false;
   const Case w =
