@@ -453,16 +453,16 @@ std::vector<std::string> mark_design_ambiguities(const Problem& pb,
     }
   }
   if (o.reversal_jump) {
+    // Beside the datum and the other named effects: a smooth `unexplained`
+    // function fitted after them could take a part of the jump (a step
+    // between two passes is a function of time too), after which any
+    // column removes about as little.
+    std::vector<bool> named(effects.size());
+    for (std::size_t f = 0; f < effects.size(); ++f)
+      named[f] = effects[f].term.kind != TermKind::unexplained;
     for (std::size_t rv = 0; rv < effects.size(); ++rv) {
       const Term& rt = effects[rv].term;
       if (rt.kind != TermKind::reversal || rt.axis < 0 || rt.degree < 1) continue;
-      // Beside the datum and the other named effects: a smooth `unexplained`
-      // function fitted after them could take a part of the jump (a step
-      // between two passes is a function of time too), after which any
-      // column removes about as little.
-      std::vector<bool> named(effects.size());
-      for (std::size_t f = 0; f < effects.size(); ++f)
-        named[f] = effects[f].term.kind != TermKind::unexplained;
       const SwapTest sw = swap_test(pb, D, cols, rv, o.swap_alpha, named);
       if (!sw.valid) continue;
       // Whose jump it is matters only where the data hold a jump beside the

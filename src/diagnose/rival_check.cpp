@@ -269,14 +269,16 @@ std::vector<std::string> mark_unrejected_rivals(const Problem& pb,
       if (u == p || su.term.kind != TermKind::thermal_drift || su.term.with_axis >= 0 ||
           su.term.direction != pt.direction || rival.direction == pt.direction)
         continue;
-      std::vector<Mat> pair_cols = cols;
       const Mat P = with_uniform_drift(pb, pt, cols[p]);
-      pair_cols[p].resize(P.rows(), P.cols() + cols[u].cols());
-      pair_cols[p] << P, cols[u];
+      Mat pair(P.rows(), P.cols() + cols[u].cols());
+      pair << P, cols[u];
       std::vector<bool> rest(effects.size());
       for (std::size_t f = 0; f < effects.size(); ++f)
         rest[f] = f != p && f != u && effects[f].term.kind != TermKind::unexplained;
-      const std::optional<SwapTest> t = swap_test(pb, D, pair_cols, rest, p, o.alpha, 0.0);
+      // The pair in the proportional drift's block for this one test.
+      std::swap(cols[p], pair);
+      const std::optional<SwapTest> t = swap_test(pb, D, cols, rest, p, o.alpha, 0.0);
+      std::swap(cols[p], pair);
       if (!t) continue;
       Term moved = su.term;
       moved.axis = moved.direction = rival.direction;
