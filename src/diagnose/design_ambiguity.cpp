@@ -257,6 +257,7 @@ std::vector<std::string> mark_design_ambiguities(const Problem& pb,
   }
 
   const Mat D = span::datum_columns(pb, datum);
+  const Mat Qd = span::orthonormal(D);
   const std::vector<double> taus = o.tau_s.empty() ? CandidateOptions{}.tau_s : o.tau_s;
   const auto levelled =
       o.levelled_axes ? levelled_axes(pb, o, min_period_mm) : std::array<std::vector<double>, 3>{};
@@ -271,10 +272,21 @@ std::vector<std::string> mark_design_ambiguities(const Problem& pb,
       if (!any) continue;
       // Every function of the level of s_j, per direction: u_i · [level = l].
       const LevelSpan levels(pb, j, lv);
+      // An effect is a function of the levels where its columns lie (but
+      // for level_share_left) in their span, and not only by their mean:
+      // beside the datum too, but for level_share_left_beside_datum. A
+      // drift measured long after the machine started is mostly its mean
+      // over the measurement, an offset that the datum takes as well as
+      // the level indicators do.
+      const double beside_datum_max = o.level_share_left_beside_datum;
       std::vector<bool> in_span(effects.size(), false);
       for (std::size_t e = 0; e < effects.size(); ++e) {
         const double total = cols[e].squaredNorm();
         in_span[e] = total > 0.0 && total - levels.projected(cols[e]) <= o.level_share_left * total;
+        if (!in_span[e] || !(beside_datum_max < 1.0)) continue;
+        const Mat C = residual_of(Qd, cols[e]);
+        const double total_d = C.squaredNorm();
+        in_span[e] = total_d - levels.projected(C) <= beside_datum_max * total_d;
       }
       double gap = 1e300;
       for (std::size_t l = 1; l < lv.size(); ++l) gap = std::min(gap, lv[l] - lv[l - 1]);

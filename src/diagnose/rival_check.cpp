@@ -235,7 +235,7 @@ std::vector<std::string> mark_unrejected_rivals(const Problem& pb,
         const double d_e = both_proportional ? d_zero_free[test == &named_only ? 0 : 1] : t.d_e;
         if (d_c < d_e - margin_of(t)) continue;
         rivals.push_back(cand);
-        if (both_proportional && o.uniform_drift_as_zero) zero_free_rivals.emplace_back(e, cand);
+        if (both_proportional) zero_free_rivals.emplace_back(e, cand);
         log.push_back(fmt::format(
             "data: {} (ΔRSS {:.6g}) is not preferred over {} in its place{}{} (ΔRSS {:.6g}, "
             "margin {:.3g})",
@@ -254,55 +254,100 @@ std::vector<std::string> mark_unrejected_rivals(const Problem& pb,
   }
 
   // A uniform drift named beside a drift in proportion to a position is
-  // that drift's zero as much ((s_w − w0)·f(t) holds −w0·f(t)): where the
-  // proportional drift has a rival of another direction with its zero
-  // free, the pair — the proportional drift with its zero free and the
-  // uniform drift — is swapped for the rival with its zero free and the
-  // uniform drift moved to the rival's direction (at its own τ), beside
-  // the datum and the other named effects. Where that removes as much (or
-  // less by no more than the margin), the uniform drift's direction is not
-  // the data's: the moved drift is its alternative.
-  for (const auto& [p, rival] : zero_free_rivals) {
-    const Term& pt = effects[p].term;
-    for (std::size_t u = 0; u < effects.size(); ++u) {
-      SelectedTerm& su = effects[u];
-      if (u == p || su.term.kind != TermKind::thermal_drift || su.term.with_axis >= 0 ||
-          su.term.direction != pt.direction || rival.direction == pt.direction)
-        continue;
-      const Mat P = with_uniform_drift(pb, pt, cols[p]);
-      Mat pair(P.rows(), P.cols() + cols[u].cols());
-      pair << P, cols[u];
-      std::vector<bool> rest(effects.size());
-      for (std::size_t f = 0; f < effects.size(); ++f)
-        rest[f] = f != p && f != u && effects[f].term.kind != TermKind::unexplained;
-      // The pair in the proportional drift's block for this one test.
-      std::swap(cols[p], pair);
-      const std::optional<SwapTest> t = swap_test(pb, D, cols, rest, p, o.alpha, 0.0);
-      std::swap(cols[p], pair);
-      if (!t) continue;
-      Term moved = su.term;
-      moved.axis = moved.direction = rival.direction;
-      const Mat R = with_uniform_drift(pb, rival, term_columns(pb, rival));
-      const Mat M = term_columns(pb, moved);
-      Mat C(R.rows(), R.cols() + M.cols());
-      C << R, M;
-      const double d_c = t->removes(C);
-      if (d_c < t->d_e - t->margin) continue;
-      const std::string alt = fmt::format("{} (the zero of {})", moved.label(), rival.label());
-      if (std::find(su.ambiguous_with.begin(), su.ambiguous_with.end(), alt) !=
-          su.ambiguous_with.end())
-        continue;
-      su.ambiguous_with.push_back(alt);
-      if (su.separate_by.empty())
-        su.separate_by = fmt::format(
-            "measure along {} on its own (an ISO 230-2 line): on these points a drift in "
-            "proportion to the position fits alike in {} and {}, and its zero, a uniform drift, "
-            "takes the direction of whichever is chosen",
-            axis_name(rival.direction), axis_name(pt.direction), axis_name(rival.direction));
-      log.push_back(fmt::format(
-          "data: {} beside {} (ΔRSS {:.6g}) is not preferred over {} beside {}, each with its "
-          "zero free (ΔRSS {:.6g}, margin {:.3g})",
-          su.term.label(), pt.label(), t->d_e, moved.label(), rival.label(), d_c, t->margin));
+  // that drift's zero as much ((s_w − w0)·f(t) holds −w0·f(t)): the pair —
+  // the proportional drift with its zero free and the uniform drift — is
+  // swapped for a drift in proportion to a position of another direction
+  // with its zero free and the uniform drift moved to that direction (at
+  // its own τ), beside the datum and the other named effects. The other
+  // drifts are the proportional drift's rivals found with their zero free
+  // and, with RivalOptions::zero_pair_every_direction, every catalogue one
+  // of another direction (a rival that needs its own zero to stand in is
+  // not found alone, and an effect the design's rules marked is not put to
+  // the rival test at all). Where one removes as much (or less by no more
+  // than the margin), the uniform drift's direction is not the data's: the
+  // moved drift is its alternative, and that drift the proportional one's
+  // (one per family, at its best time constant).
+  if (o.uniform_drift_as_zero) {
+    for (std::size_t p = 0; p < effects.size(); ++p) {
+      const Term pt = effects[p].term;
+      if (!(o.zero_free_drifts && is_proportional_drift(pt))) continue;
+      std::vector<Term> others;
+      for (const auto& [e, rival] : zero_free_rivals)
+        if (e == p && rival.direction != pt.direction) others.push_back(rival);
+      if (o.zero_pair_every_direction)
+        for (const Term& cand : stand_ins(catalogue, pt))
+          if (is_proportional_drift(cand) && cand.direction != pt.direction) others.push_back(cand);
+      if (others.empty()) continue;
+      for (std::size_t u = 0; u < effects.size(); ++u) {
+        SelectedTerm& su = effects[u];
+        if (u == p || su.term.kind != TermKind::thermal_drift || su.term.with_axis >= 0 ||
+            su.term.direction != pt.direction)
+          continue;
+        const Mat P = with_uniform_drift(pb, pt, cols[p]);
+        Mat pair(P.rows(), P.cols() + cols[u].cols());
+        pair << P, cols[u];
+        std::vector<bool> rest(effects.size());
+        for (std::size_t f = 0; f < effects.size(); ++f)
+          rest[f] = f != p && f != u && effects[f].term.kind != TermKind::unexplained;
+        // The pair in the proportional drift's block for this one test.
+        std::swap(cols[p], pair);
+        const std::optional<SwapTest> t = swap_test(pb, D, cols, rest, p, o.alpha, 0.0);
+        std::swap(cols[p], pair);
+        if (!t) continue;
+        // The best time constant of each family of drifts that stands in.
+        std::vector<std::pair<Term, double>> best;
+        for (const Term& other : others) {
+          Term moved = su.term;
+          moved.axis = moved.direction = other.direction;
+          const Mat R = with_uniform_drift(pb, other, term_columns(pb, other));
+          const Mat M = term_columns(pb, moved);
+          if (!(R.squaredNorm() > 0.0) || !(M.squaredNorm() > 0.0)) continue;
+          Mat C(R.rows(), R.cols() + M.cols());
+          C << R, M;
+          const double d_c = t->removes(C);
+          if (d_c < t->d_e - t->margin) continue;
+          auto same_family = [&](const std::pair<Term, double>& b) {
+            return b.first.axis == other.axis && b.first.direction == other.direction &&
+                   b.first.with_axis == other.with_axis;
+          };
+          const auto it = std::find_if(best.begin(), best.end(), same_family);
+          if (it == best.end())
+            best.emplace_back(other, d_c);
+          else if (d_c > it->second)
+            *it = {other, d_c};
+        }
+        for (const auto& [other, d_c] : best) {
+          Term moved = su.term;
+          moved.axis = moved.direction = other.direction;
+          const std::string alt = fmt::format("{} (the zero of {})", moved.label(), other.label());
+          if (std::find(su.ambiguous_with.begin(), su.ambiguous_with.end(), alt) !=
+              su.ambiguous_with.end())
+            continue;
+          su.ambiguous_with.push_back(alt);
+          const std::string text = fmt::format(
+              "measure along {} on its own (an ISO 230-2 line): on these points a drift in "
+              "proportion to the position fits alike in {} and {}, and its zero, a uniform "
+              "drift, takes the direction of whichever is chosen",
+              axis_name(other.direction), axis_name(pt.direction), axis_name(other.direction));
+          if (su.separate_by.empty()) su.separate_by = text;
+          // The proportional drift's own alternative, where no form of that
+          // family is one yet.
+          SelectedTerm& sp = effects[p];
+          const std::string label = other.label();
+          const std::string family = label.substr(0, label.find(" ("));
+          const bool listed = std::any_of(
+              sp.ambiguous_with.begin(), sp.ambiguous_with.end(),
+              [&](const std::string& a) { return a == family || a.rfind(family + " (", 0) == 0; });
+          if (!listed) {
+            sp.ambiguous_with.push_back(label + " (with its zero, " + moved.label() + ")");
+            if (sp.separate_by.empty()) sp.separate_by = text;
+          }
+          log.push_back(fmt::format(
+              "data: {} beside {} (ΔRSS {:.6g}) is not preferred over {} beside {}, each with "
+              "its zero free (ΔRSS {:.6g}, margin {:.3g})",
+              su.term.label(), pt.label(), t->d_e, moved.label(), other.label(), d_c, t->margin));
+        }
+      }
     }
   }
   return log;

@@ -682,5 +682,68 @@ TEST(DiagnoseDesignAmbiguity, ADriftWhereTimeFollowsARasterIsTestedAgainstTheSta
   }
 }
 
+// An effect is a function of a levelled axis only where it is one beside
+// the datum too (DesignAmbiguityOptions::level_share_left_beside_datum).
+// Two face diagonals of XY, five runs there and back on each (ISO 230-2's
+// cycle), read along the line from an hour after the machine started: a
+// uniform drift of X (τ 900 s) is by then mostly its mean, an offset of
+// each line that the datum takes — and that a function of the 21 levels of
+// x holds too, as two values per level fit the two lines. Judged on the
+// raw column alone the drift was "a function of x" and so ambiguous with a
+// cycle of X named beside it; beside the datum its course in time is all
+// that is left, and none of it lies in the levels' span: the drift stays
+// named. A scale of X
+// is a function of the levels either way, and stays ambiguous with the
+// cycle.
+TEST(DiagnoseDesignAmbiguity, AnEffectIsAFunctionOfTheLevelsOnlyBesideTheDatum) {
+  const Eigen::Vector3d lo(0.0, 0.0, 0.0), hi(400.0, 300.0, 0.0);
+  const std::array<std::pair<Eigen::Vector3d, Eigen::Vector3d>, 2> lines{
+      std::pair{lo, hi},
+      std::pair{Eigen::Vector3d(400.0, 0.0, 0.0), Eigen::Vector3d(0.0, 300.0, 0.0)}};
+  Problem pb;
+  std::vector<double> y;
+  std::mt19937_64 rng(12);
+  std::normal_distribution<double> noise(0.0, 0.3);
+  double t = 3600.0;
+  for (const auto& [a, e] : lines)
+    for (int run = 0; run < 5; ++run)
+      for (const int way : {1, -1})
+        for (int k = 0; k <= 20; ++k, t += 10.0) {
+          const double f = way > 0 ? k / 20.0 : 1.0 - k / 20.0;
+          const Eigen::Vector3d u = (e - a).normalized();
+          PointContext pc;
+          pc.p = pc.s = a + f * (e - a);
+          pc.set = "a";
+          pc.t = t;
+          pc.dir = {way * u.x() > 0.0 ? 1 : -1, way * u.y() > 0.0 ? 1 : -1, 0};
+          const double dx = 3.0 * (1.0 - std::exp(-t / 900.0));
+          test::add_reading(pb, y, pc, u, u.x() * dx + noise(rng));
+        }
+  test::finish_problem(pb, y, "a", {true, true, false}, lo, hi);
+  pb.var_lo[3] = 3600.0;
+  pb.var_hi[3] = t;
+  Term drift;
+  drift.kind = TermKind::thermal_drift;
+  drift.axis = drift.direction = 0;
+  drift.tau_s = 900.0;
+  for (const bool beside_datum : {true, false}) {
+    DesignAmbiguityOptions o;
+    o.level_share_left_beside_datum = beside_datum ? 0.5 : 1.0;
+    o.cycle_period_test = false;
+    std::vector<SelectedTerm> eff{fitted(drift, {3.0}), fitted(cyclic(0, 30.0), {0.2, 0.1})};
+    const auto log = mark_design_ambiguities(pb, offsets(), eff, o, 4.0);
+    if (beside_datum)
+      EXPECT_TRUE(eff[0].ambiguous_with.empty()) << eff[0].ambiguous_with.front();
+    else
+      EXPECT_TRUE(std::find(eff[0].ambiguous_with.begin(), eff[0].ambiguous_with.end(),
+                            "cyclic X→X (30.00 mm)") != eff[0].ambiguous_with.end())
+          << fmt::format("{}", fmt::join(eff[0].ambiguous_with, " | "));
+    std::vector<SelectedTerm> with_scale{fitted(scale(0), {3.0}),
+                                         fitted(cyclic(0, 30.0), {0.2, 0.1})};
+    mark_design_ambiguities(pb, offsets(), with_scale, o, 4.0);
+    EXPECT_FALSE(with_scale[0].ambiguous_with.empty()) << beside_datum;
+  }
+}
+
 }  // namespace
 }  // namespace abbe::diagnose

@@ -1506,11 +1506,12 @@ const GantrySweep kGantrySweeps[] = {{Design::grid, {0.94, 0.02, 0.06, 0.95, 0.9
                                      {Design::axis_lines, {0.9, 0.02, 0.05, 0.95, 0.95}},
                                      {Design::grid_one_pass, {0.85, 0.05, 0.05, 0.95, 0.85}},
                                      {Design::ballbar_xy, {0.85, 0.02, 0.02, 0.95, 0.9}},
-                                     {Design::grid_irregular, {0.85, 0.05, 0.05, 0.95, 0.95}}};
+                                     {Design::grid_irregular, {0.85, 0.05, 0.05, 0.95, 0.95}},
+                                     {Design::diagonals_runs, {0.5, 0.02, 0.05, 0.95, 0.5}}};
 std::string gantry_sweep_name(const ::testing::TestParamInfo<GantrySweep>& info) {
-  static const char* const names[] = {"Grid",    "Plane",     "Toolpath",
-                                      "Ballbar", "Diagonals", "AxisLines",
-                                      "OnePass", "BallbarXY", "GridIrregular"};
+  static const char* const names[] = {
+      "Grid",      "Plane",   "Toolpath",  "Ballbar",       "Diagonals",
+      "AxisLines", "OnePass", "BallbarXY", "GridIrregular", "DiagonalsFiveRuns"};
   return names[static_cast<int>(info.param.design)];
 }
 INSTANTIATE_TEST_SUITE_P(Designs, DiagnoseDesignsOnAGantry, ::testing::ValuesIn(kGantrySweeps),
@@ -1806,6 +1807,27 @@ TEST(DiagnoseDesigns, ARevisitedDriftMustGainItsCourseBesideItsStaticForm) {
   without.revisit_course_floor = false;
   const Case w = run_case(Design::grid_irregular, h, seed, 0.0, &without);
   EXPECT_EQ(w.verdict, Verdict::wrong) << w.found;
+}
+
+// An effect is a function of a levelled axis only where it is one beside
+// the datum too (DesignAmbiguityOptions::level_share_left_beside_datum).
+// Five-run diagonals case 0 on the gantry (a uniform drift of X, +7.2 µm):
+// the drift t→X is named beside a 0.2 µm cycle of Z in X (the machine's
+// own); its raw column kept 7 % outside the 30 levels of z — it is mostly
+// its mean, an offset of each line — and so the two were "one function of
+// z", the drift `ambiguous`. Beside the datum none of it lies in the
+// levels' span, and the drift is named.
+TEST(DiagnoseDesigns, ADriftIsNotAFunctionOfTheLevelsByItsMean) {
+  const OnMachine on(gantry_vm(), "gantry (generic, seed 11)");
+  const auto [h, seed] = sweep_case(Design::diagonals_runs, 0);
+  ASSERT_EQ(h.shape, Shape::drift);
+  const Case c = run_case(Design::diagonals_runs, h, seed);
+  EXPECT_EQ(c.verdict, Verdict::right) << c.found;
+  DesignAmbiguityOptions raw;
+  raw.level_share_left_beside_datum = 1.0;
+  const Case w = run_case(Design::diagonals_runs, h, seed, 0.0, nullptr, false, &raw);
+  EXPECT_EQ(w.verdict, Verdict::ambiguous) << w.found;
+  EXPECT_NE(w.found.find("any function of z on its 30 levels"), std::string::npos) << w.found;
 }
 
 // A revisited path wins only where its alternative takes the first pick's
@@ -2436,6 +2458,34 @@ TEST(DiagnoseDesigns, AUniformDriftBesideAnAmbiguousProportionalDriftIsItsZeroAs
   direction_named.uniform_drift_as_zero = false;
   const Case w =
       run_case(Design::diagonals_runs, h, seed, 0.0, nullptr, false, nullptr, &direction_named);
+  EXPECT_EQ(w.verdict, Verdict::wrong) << w.found;
+}
+
+// The same where the proportional part's rivals do not hold the truth's
+// direction. Five runs, case 144 (a drift ∝ (x − x0)·t of X): z·t→Z is
+// named `ambiguous` with y·t→Y by the design's rules, so it is never put
+// to the rival test, and x·t→X about the machine's zero fits less than
+// either without its zero; the uniform drift beside it was named t→Z — a
+// wrong name. Swapped as a pair for every drift in proportion to a
+// position of another direction, each with its zero free and the uniform
+// drift moved there (RivalOptions::zero_pair_every_direction), x·t→X with
+// t→X removes as much: t→X is the uniform drift's alternative and x·t→X
+// the proportional drift's.
+TEST(DiagnoseDesigns, AUniformDriftIsTheZeroOfEveryProportionalDriftThatFitsAsMuch) {
+  const auto [h, seed] = sweep_case(Design::diagonals_runs, 144);
+  ASSERT_EQ(h.shape, Shape::drift);
+  ASSERT_TRUE(h.proportional);
+  ASSERT_EQ(h.dir, 0);
+  const Case c = run_case(Design::diagonals_runs, h, seed);
+  EXPECT_EQ(c.verdict, Verdict::ambiguous) << c.found;
+  EXPECT_NE(c.found.find("(the zero of thermal_drift x·t→X"), std::string::npos) << c.found;
+  EXPECT_NE(c.found.find("thermal_drift x·t→X (τ 1800 s) (with its zero, thermal_drift t→X"),
+            std::string::npos)
+      << c.found;
+  RivalOptions rivals_only;
+  rivals_only.zero_pair_every_direction = false;
+  const Case w =
+      run_case(Design::diagonals_runs, h, seed, 0.0, nullptr, false, nullptr, &rivals_only);
   EXPECT_EQ(w.verdict, Verdict::wrong) << w.found;
 }
 

@@ -56,6 +56,14 @@ struct RivalOptions {
   // moved drift is an alternative ("thermal_drift t→X (τ …) (the zero of
   // thermal_drift x·t→X (τ …))").
   bool uniform_drift_as_zero = true;
+  // And the pair is swapped for every catalogue drift in proportion to a
+  // position of another direction, not only the rivals found: a rival that
+  // needs its own zero to stand in is not found alone (the named pair's
+  // zero is in the uniform drift), and an effect design_ambiguity marked is
+  // not put to the rival test. The proportional drift then gets that drift
+  // as its alternative too ("thermal_drift x·t→X (τ …) (with its zero,
+  // thermal_drift t→X (τ …))"). false: the rivals found only.
+  bool zero_pair_every_direction = true;
   // An arm offset (the model's own angular tables times an unknown arm)
   // carries those tables' error, which every residual holds too (the real
   // arms times the same error): on top of what it shares with a rival it
