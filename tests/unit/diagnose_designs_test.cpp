@@ -1426,14 +1426,13 @@ TEST(DiagnoseDesigns, Ballbar) { check(sweep(Design::ballbar), {0.9, 0.02, 0.02,
 // seeds (1000: wrong where not identifiable 1/692 → 0/692).
 TEST(DiagnoseDesigns, Diagonals) { check(sweep(Design::diagonals), {0.7, 0.02, 0.02, 0.95, 0.7}); }
 // The same lines measured as the laser lines are (ISO 230-2's five runs
-// there and back on each): 5/5 named right, 0 wrong, 1/145 wrong where not
+// there and back on each): 5/5 named right, 0 wrong, 0/145 wrong where not
 // identifiable (200 seeds; 40 seeds: 3/3, 0, 0/27; 1000 seeds: 50/50, 0,
-// 3/700): a drift ∝ (x − x0)·t of X, its proportional part `ambiguous`
-// among the three directions, named with a uniform drift of another
-// direction beside it where the truth's direction is not among the
-// proportional part's rivals (2 of the 3; 4 of 5 before
-// AUniformDriftBesideAnAmbiguousProportionalDriftIsItsZeroAsMuch), and an
-// off-centre coupling x·z→X named with an arm offset εZ×ΔY.
+// 1/700: an off-centre coupling x·z→X named with an arm offset εZ×ΔY).
+// Before AUniformDriftBesideAnAmbiguousProportionalDriftIsItsZeroAsMuch and
+// AUniformDriftIsTheZeroOfEveryProportionalDriftThatFitsAsMuch, 4 more:
+// drifts ∝ (x − x0)·t of X, their proportional part `ambiguous` among the
+// three directions, named with a uniform drift of another direction.
 TEST(DiagnoseDesigns, DiagonalsFiveRuns) {
   check(sweep(Design::diagonals_runs), {0.9, 0.02, 0.03, 0.95, 0.9});
 }
