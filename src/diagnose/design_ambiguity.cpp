@@ -278,15 +278,14 @@ std::vector<std::string> mark_design_ambiguities(const Problem& pb,
       // drift measured long after the machine started is mostly its mean
       // over the measurement, an offset that the datum takes as well as
       // the level indicators do.
-      const double beside_datum_max = o.level_share_left_beside_datum;
       std::vector<bool> in_span(effects.size(), false);
       for (std::size_t e = 0; e < effects.size(); ++e) {
         const double total = cols[e].squaredNorm();
         in_span[e] = total > 0.0 && total - levels.projected(cols[e]) <= o.level_share_left * total;
-        if (!in_span[e] || !(beside_datum_max < 1.0)) continue;
+        if (!in_span[e] || !(o.level_share_left_beside_datum < 1.0)) continue;
         const Mat C = residual_of(Qd, cols[e]);
         const double total_d = C.squaredNorm();
-        in_span[e] = total_d - levels.projected(C) <= beside_datum_max * total_d;
+        in_span[e] = total_d - levels.projected(C) <= o.level_share_left_beside_datum * total_d;
       }
       double gap = 1e300;
       for (std::size_t l = 1; l < lv.size(); ++l) gap = std::min(gap, lv[l] - lv[l - 1]);

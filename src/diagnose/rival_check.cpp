@@ -130,6 +130,111 @@ std::vector<std::string> rival_labels(const std::vector<Term>& rivals) {
   return out;
 }
 
+// A uniform drift named beside a drift in proportion to a position is
+// that drift's zero as much ((s_w − w0)·f(t) holds −w0·f(t)): the pair —
+// the proportional drift with its zero free and the uniform drift — is
+// swapped for a drift in proportion to a position of another direction
+// with its zero free and the uniform drift moved to that direction (at its
+// own τ), beside the datum and the other named effects. The other drifts
+// are, with RivalOptions::zero_pair_every_direction, every catalogue one of
+// another direction (a rival that needs its own zero to stand in is not
+// found alone, and an effect the design's rules marked is not put to the
+// rival test at all), else the proportional drift's rivals found with
+// their zero free (`zero_free_rivals`: effect index, rival). Where one
+// removes as much (or less by no more than the margin), the uniform
+// drift's direction is not the data's: the moved drift is its
+// alternative, and that drift the proportional one's (one per family, at
+// its best time constant). `cols`: the effects' columns (each pair is put
+// in the proportional drift's block for its test and taken out again).
+void mark_uniform_drifts_as_zero(const Problem& pb, const Mat& D, std::vector<Mat>& cols,
+                                 std::vector<SelectedTerm>& effects, const CandidateSet& catalogue,
+                                 const std::vector<std::pair<std::size_t, Term>>& zero_free_rivals,
+                                 const RivalOptions& o, std::vector<std::string>& log) {
+  for (std::size_t p = 0; p < effects.size(); ++p) {
+    const Term pt = effects[p].term;
+    if (!is_proportional_drift(pt)) continue;
+    std::vector<Term> others;
+    if (o.zero_pair_every_direction) {
+      for (const Term& cand : stand_ins(catalogue, pt))
+        if (is_proportional_drift(cand) && cand.direction != pt.direction) others.push_back(cand);
+    } else {
+      for (const auto& [e, rival] : zero_free_rivals)
+        if (e == p && rival.direction != pt.direction) others.push_back(rival);
+    }
+    if (others.empty()) continue;
+    for (std::size_t u = 0; u < effects.size(); ++u) {
+      SelectedTerm& su = effects[u];
+      if (u == p || su.term.kind != TermKind::thermal_drift || su.term.with_axis >= 0 ||
+          su.term.direction != pt.direction)
+        continue;
+      const Mat P = with_uniform_drift(pb, pt, cols[p]);
+      Mat pair(P.rows(), P.cols() + cols[u].cols());
+      pair << P, cols[u];
+      std::vector<bool> rest(effects.size());
+      for (std::size_t f = 0; f < effects.size(); ++f)
+        rest[f] = f != p && f != u && effects[f].term.kind != TermKind::unexplained;
+      std::swap(cols[p], pair);
+      const std::optional<SwapTest> t = swap_test(pb, D, cols, rest, p, o.alpha, 0.0);
+      std::swap(cols[p], pair);
+      if (!t) continue;
+      // The best time constant of each family that stands in: the drift,
+      // the uniform drift moved to its direction, what the two remove.
+      struct StandIn {
+        Term drift, moved;
+        double d = 0.0;
+      };
+      std::vector<StandIn> best;
+      for (const Term& other : others) {
+        Term moved = su.term;
+        moved.axis = moved.direction = other.direction;
+        const Mat R = with_uniform_drift(pb, other, term_columns(pb, other));
+        const Mat M = term_columns(pb, moved);
+        if (!(R.squaredNorm() > 0.0) || !(M.squaredNorm() > 0.0)) continue;
+        Mat C(R.rows(), R.cols() + M.cols());
+        C << R, M;
+        const double d_c = t->removes(C);
+        if (d_c < t->d_e - t->margin) continue;
+        const auto it = std::find_if(best.begin(), best.end(),
+                                     [&](const StandIn& b) { return same_effect(b.drift, other); });
+        if (it == best.end())
+          best.push_back({other, moved, d_c});
+        else if (d_c > it->d)
+          *it = {other, moved, d_c};
+      }
+      for (const StandIn& b : best) {
+        const std::string alt =
+            fmt::format("{} (the zero of {})", b.moved.label(), b.drift.label());
+        if (std::find(su.ambiguous_with.begin(), su.ambiguous_with.end(), alt) !=
+            su.ambiguous_with.end())
+          continue;
+        su.ambiguous_with.push_back(alt);
+        const std::string text = fmt::format(
+            "measure along {} on its own (an ISO 230-2 line): on these points a drift in "
+            "proportion to the position fits alike in {} and {}, and its zero, a uniform "
+            "drift, takes the direction of whichever is chosen",
+            axis_name(b.drift.direction), axis_name(pt.direction), axis_name(b.drift.direction));
+        if (su.separate_by.empty()) su.separate_by = text;
+        // The proportional drift's own alternative, where no form of that
+        // family is one yet.
+        SelectedTerm& sp = effects[p];
+        const std::string label = b.drift.label();
+        const std::string family = label.substr(0, label.find(" ("));
+        const bool listed = std::any_of(
+            sp.ambiguous_with.begin(), sp.ambiguous_with.end(),
+            [&](const std::string& a) { return a == family || a.rfind(family + " (", 0) == 0; });
+        if (!listed) {
+          sp.ambiguous_with.push_back(label + " (with its zero, " + b.moved.label() + ")");
+          if (sp.separate_by.empty()) sp.separate_by = text;
+        }
+        log.push_back(fmt::format(
+            "data: {} beside {} (ΔRSS {:.6g}) is not preferred over {} beside {}, each with "
+            "its zero free (ΔRSS {:.6g}, margin {:.3g})",
+            su.term.label(), pt.label(), t->d_e, b.moved.label(), b.drift.label(), b.d, t->margin));
+      }
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<std::string> mark_unrejected_rivals(const Problem& pb,
@@ -253,103 +358,8 @@ std::vector<std::string> mark_unrejected_rivals(const Problem& pb,
       se.separate_by = separating_measurement(se.term, rivals, {});
   }
 
-  // A uniform drift named beside a drift in proportion to a position is
-  // that drift's zero as much ((s_w − w0)·f(t) holds −w0·f(t)): the pair —
-  // the proportional drift with its zero free and the uniform drift — is
-  // swapped for a drift in proportion to a position of another direction
-  // with its zero free and the uniform drift moved to that direction (at
-  // its own τ), beside the datum and the other named effects. The other
-  // drifts are the proportional drift's rivals found with their zero free
-  // and, with RivalOptions::zero_pair_every_direction, every catalogue one
-  // of another direction (a rival that needs its own zero to stand in is
-  // not found alone, and an effect the design's rules marked is not put to
-  // the rival test at all). Where one removes as much (or less by no more
-  // than the margin), the uniform drift's direction is not the data's: the
-  // moved drift is its alternative, and that drift the proportional one's
-  // (one per family, at its best time constant).
-  if (o.uniform_drift_as_zero) {
-    for (std::size_t p = 0; p < effects.size(); ++p) {
-      const Term pt = effects[p].term;
-      if (!(o.zero_free_drifts && is_proportional_drift(pt))) continue;
-      std::vector<Term> others;
-      for (const auto& [e, rival] : zero_free_rivals)
-        if (e == p && rival.direction != pt.direction) others.push_back(rival);
-      if (o.zero_pair_every_direction)
-        for (const Term& cand : stand_ins(catalogue, pt))
-          if (is_proportional_drift(cand) && cand.direction != pt.direction) others.push_back(cand);
-      if (others.empty()) continue;
-      for (std::size_t u = 0; u < effects.size(); ++u) {
-        SelectedTerm& su = effects[u];
-        if (u == p || su.term.kind != TermKind::thermal_drift || su.term.with_axis >= 0 ||
-            su.term.direction != pt.direction)
-          continue;
-        const Mat P = with_uniform_drift(pb, pt, cols[p]);
-        Mat pair(P.rows(), P.cols() + cols[u].cols());
-        pair << P, cols[u];
-        std::vector<bool> rest(effects.size());
-        for (std::size_t f = 0; f < effects.size(); ++f)
-          rest[f] = f != p && f != u && effects[f].term.kind != TermKind::unexplained;
-        // The pair in the proportional drift's block for this one test.
-        std::swap(cols[p], pair);
-        const std::optional<SwapTest> t = swap_test(pb, D, cols, rest, p, o.alpha, 0.0);
-        std::swap(cols[p], pair);
-        if (!t) continue;
-        // The best time constant of each family of drifts that stands in.
-        std::vector<std::pair<Term, double>> best;
-        for (const Term& other : others) {
-          Term moved = su.term;
-          moved.axis = moved.direction = other.direction;
-          const Mat R = with_uniform_drift(pb, other, term_columns(pb, other));
-          const Mat M = term_columns(pb, moved);
-          if (!(R.squaredNorm() > 0.0) || !(M.squaredNorm() > 0.0)) continue;
-          Mat C(R.rows(), R.cols() + M.cols());
-          C << R, M;
-          const double d_c = t->removes(C);
-          if (d_c < t->d_e - t->margin) continue;
-          auto same_family = [&](const std::pair<Term, double>& b) {
-            return b.first.axis == other.axis && b.first.direction == other.direction &&
-                   b.first.with_axis == other.with_axis;
-          };
-          const auto it = std::find_if(best.begin(), best.end(), same_family);
-          if (it == best.end())
-            best.emplace_back(other, d_c);
-          else if (d_c > it->second)
-            *it = {other, d_c};
-        }
-        for (const auto& [other, d_c] : best) {
-          Term moved = su.term;
-          moved.axis = moved.direction = other.direction;
-          const std::string alt = fmt::format("{} (the zero of {})", moved.label(), other.label());
-          if (std::find(su.ambiguous_with.begin(), su.ambiguous_with.end(), alt) !=
-              su.ambiguous_with.end())
-            continue;
-          su.ambiguous_with.push_back(alt);
-          const std::string text = fmt::format(
-              "measure along {} on its own (an ISO 230-2 line): on these points a drift in "
-              "proportion to the position fits alike in {} and {}, and its zero, a uniform "
-              "drift, takes the direction of whichever is chosen",
-              axis_name(other.direction), axis_name(pt.direction), axis_name(other.direction));
-          if (su.separate_by.empty()) su.separate_by = text;
-          // The proportional drift's own alternative, where no form of that
-          // family is one yet.
-          SelectedTerm& sp = effects[p];
-          const std::string label = other.label();
-          const std::string family = label.substr(0, label.find(" ("));
-          const bool listed = std::any_of(
-              sp.ambiguous_with.begin(), sp.ambiguous_with.end(),
-              [&](const std::string& a) { return a == family || a.rfind(family + " (", 0) == 0; });
-          if (!listed) {
-            sp.ambiguous_with.push_back(label + " (with its zero, " + moved.label() + ")");
-            if (sp.separate_by.empty()) sp.separate_by = text;
-          }
-          log.push_back(fmt::format(
-              "data: {} beside {} (ΔRSS {:.6g}) is not preferred over {} beside {}, each with "
-              "its zero free (ΔRSS {:.6g}, margin {:.3g})",
-              su.term.label(), pt.label(), t->d_e, moved.label(), other.label(), d_c, t->margin));
-        }
-      }
-    }
-  }
+  if (o.uniform_drift_as_zero && o.zero_free_drifts)
+    mark_uniform_drifts_as_zero(pb, D, cols, effects, catalogue, zero_free_rivals, o, log);
   return log;
 }
 
