@@ -235,6 +235,113 @@ void mark_uniform_drifts_as_zero(const Problem& pb, const Mat& D, std::vector<Ma
   }
 }
 
+// A coupling's columns with its centre free: the catalogue's coupling about
+// the travel centre and its linear parts beside it, d ∝ s_i and d ∝ s_j (a
+// scale or a squareness each): a·(s_i − c_i)(s_j − c_j) about any centre c.
+Mat with_linear_parts(const Problem& pb, const Term& coupling, const Mat& C) {
+  const Mat Li = term_columns(pb, position_term(coupling.axis, coupling.direction));
+  const Mat Lj = term_columns(pb, position_term(coupling.with_axis, coupling.direction));
+  Mat out(C.rows(), C.cols() + Li.cols() + Lj.cols());
+  out << C, Li, Lj;
+  return out;
+}
+
+// An arm offset may be (part of) a coupling off its travel centre:
+// a·(s_i − c_i)(s_j − c_j) is the catalogue's coupling about the centre plus
+// a scale or squareness d ∝ s_i and d ∝ s_j, and along the body diagonals,
+// where every position moves with the line's parameter, the model's
+// angular table times an arm fits that sum or its linear part. The centre
+// is the coupling's own unknown, as a drift's zero is. An arm offset named
+// beside a coupling: the pair — the arm offset and that coupling with its
+// centre free — is swapped for each catalogue coupling with its centre
+// free, beside the datum and the other named effects. An arm offset named
+// where no coupling is (RivalOptions::arm_offset_alone_as_coupling): it
+// alone is swapped for each coupling with its centre free, which costs two
+// columns more and must remove as much and ln(n)·σ̂² per extra column (the
+// price of a column in the information criterion). Where one removes as
+// much (or less by no more than the arm offset's margin,
+// RivalOptions::arm_offset_floor_share), the arm offset is not the data's:
+// that coupling off its centre is its alternative, and, where it is
+// another coupling than the one named, that one's too.
+void mark_arm_offsets_as_coupling_centres(const Problem& pb, const Mat& D, std::vector<Mat>& cols,
+                                          std::vector<SelectedTerm>& effects,
+                                          const CandidateSet& catalogue, double floor_sigmas,
+                                          const RivalOptions& o, std::vector<std::string>& log) {
+  std::vector<Term> couplings;
+  for (const Term& t : catalogue.fixed)
+    if (t.kind == TermKind::coupling) couplings.push_back(t);
+  const bool coupling_named =
+      std::any_of(effects.begin(), effects.end(),
+                  [](const SelectedTerm& st) { return st.term.kind == TermKind::coupling; });
+  const double ln_n = std::log(static_cast<double>(pb.obs.size()));
+  for (std::size_t a = 0; a < effects.size(); ++a) {
+    SelectedTerm& sa = effects[a];
+    if (sa.term.kind != TermKind::arm_offset || !sa.ambiguous_with.empty()) continue;
+    // The couplings named beside it (their index), or the arm offset alone
+    // (index a).
+    std::vector<std::size_t> partners;
+    for (std::size_t c = 0; c < effects.size(); ++c)
+      if (effects[c].term.kind == TermKind::coupling) partners.push_back(c);
+    if (!coupling_named && o.arm_offset_alone_as_coupling) partners.push_back(a);
+    for (const std::size_t c : partners) {
+      const bool alone = c == a;
+      Mat named = cols[a];
+      if (!alone) {
+        const Mat P = with_linear_parts(pb, effects[c].term, cols[c]);
+        named.resize(P.rows(), cols[a].cols() + P.cols());
+        named << cols[a], P;
+      }
+      const Eigen::Index named_cols = named.cols();
+      std::vector<bool> rest(effects.size());
+      for (std::size_t f = 0; f < effects.size(); ++f)
+        rest[f] = f != a && f != c && effects[f].term.kind != TermKind::unexplained;
+      std::swap(cols[a], named);
+      const std::optional<SwapTest> t = swap_test(pb, D, cols, rest, a, o.alpha, 0.0);
+      std::swap(cols[a], named);
+      if (!t) continue;
+      const double margin = std::max(t->margin, t->s2 * floor_sigmas);
+      for (const Term& k : couplings) {
+        const Mat K = with_linear_parts(pb, k, term_columns(pb, k));
+        if (!(K.squaredNorm() > 0.0)) continue;
+        const double extra = static_cast<double>(std::max<Eigen::Index>(K.cols() - named_cols, 0));
+        const double d_k = t->removes(K) - extra * ln_n * t->s2;
+        if (d_k < t->d_e - margin) continue;
+        const std::string alt = fmt::format("{} off its travel centre (its linear parts {} and {})",
+                                            k.label(), position_term(k.axis, k.direction).label(),
+                                            position_term(k.with_axis, k.direction).label());
+        if (std::find(sa.ambiguous_with.begin(), sa.ambiguous_with.end(), alt) !=
+            sa.ambiguous_with.end())
+          continue;
+        sa.ambiguous_with.push_back(alt);
+        const std::string text = fmt::format(
+            "measure {} along {} at several {} apart from the other axes (lines parallel to "
+            "the axes, or a grid): on these points an arm offset fits alike a coupling whose "
+            "centre is not the travel's, or its linear part",
+            axis_name(k.direction), variable_name(k.axis), variable_name(k.with_axis));
+        if (sa.separate_by.empty()) sa.separate_by = text;
+        SelectedTerm& sc = effects[c];
+        if (!alone && !same_effect(k, sc.term)) {
+          const std::string label = k.label();
+          const bool listed = std::any_of(
+              sc.ambiguous_with.begin(), sc.ambiguous_with.end(),
+              [&](const std::string& x) { return x == label || x.rfind(label + " ", 0) == 0; });
+          if (!listed) {
+            sc.ambiguous_with.push_back(label + " (off its travel centre, in place of " +
+                                        sa.term.label() + ")");
+            if (sc.separate_by.empty()) sc.separate_by = text;
+          }
+        }
+        log.push_back(fmt::format(
+            "data: {}{}{} (ΔRSS {:.6g}) is not preferred over {} with its centre free (ΔRSS "
+            "{:.6g}{}, margin {:.3g})",
+            sa.term.label(), alone ? "" : " beside ",
+            alone ? "" : sc.term.label() + " with its centre free", t->d_e, k.label(), d_k,
+            extra > 0.0 ? fmt::format(" after {:g} columns' price", extra) : "", margin));
+      }
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<std::string> mark_unrejected_rivals(const Problem& pb,
@@ -360,6 +467,12 @@ std::vector<std::string> mark_unrejected_rivals(const Problem& pb,
 
   if (o.uniform_drift_as_zero && o.zero_free_drifts)
     mark_uniform_drifts_as_zero(pb, D, cols, effects, catalogue, zero_free_rivals, o, log);
+  if (o.arm_offset_as_coupling_centre)
+    mark_arm_offsets_as_coupling_centres(pb, D, cols, effects, catalogue,
+                                         o.arm_offset_floor_share *
+                                             static_cast<double>(pb.obs.size()) * min_effect_rms *
+                                             min_effect_rms,
+                                         o, log);
   return log;
 }
 

@@ -114,6 +114,15 @@ const testing::VirtualMachine& gantry_vm() {
   return vm;
 }
 
+// Another machine the engine was not tuned on (generic profile, seed 5,
+// the chain of the tuned machine: an X' column).
+const testing::VirtualMachine& generic5_vm() {
+  static const testing::VirtualMachine vm = testing::build_virtual_machine(
+      true, "abbe_designs_generic5", sim::GeneratorOptions{}.noise_scale, 5, "generic",
+      "w X' b Y Z t");
+  return vm;
+}
+
 // The machine the sweeps measure on (OnMachine switches it for one test).
 const testing::VirtualMachine* current_vm = nullptr;
 std::string current_vm_label;  // printed with the design's name
@@ -1428,7 +1437,8 @@ TEST(DiagnoseDesigns, Diagonals) { check(sweep(Design::diagonals), {0.7, 0.02, 0
 // The same lines measured as the laser lines are (ISO 230-2's five runs
 // there and back on each): 5/5 named right, 0 wrong, 0/145 wrong where not
 // identifiable (200 seeds; 40 seeds: 3/3, 0, 0/27; 1000 seeds: 50/50, 0,
-// 1/700: an off-centre coupling x·z→X named with an arm offset εZ×ΔY).
+// 0/700; 1/700, an off-centre coupling x·z→X named with an arm offset
+// εZ×ΔY, before AnArmOffsetIsTheLinearPartOfACouplingOffItsCentre).
 // Before AUniformDriftBesideAnAmbiguousProportionalDriftIsItsZeroAsMuch and
 // AUniformDriftIsTheZeroOfEveryProportionalDriftThatFitsAsMuch, 4 more:
 // drifts ∝ (x − x0)·t of X, their proportional part `ambiguous` among the
@@ -2003,10 +2013,15 @@ TEST(DiagnoseDesigns, AStructureTwoSmoothFunctionsFindIsExplainedFromEither) {
 // directions of X and Z change together at a level's end) takes its place
 // as well — `ambiguous` now, a wrong name before. Diagonals, case 956 (an
 // off-centre coupling x·y→Y, which the diagonals cannot identify): an arm
-// offset εX×ΔZ led a squareness, and a cycle of X fits in its place.
+// offset εX×ΔZ led a squareness, and a cycle of X fits in its place. (Case
+// 956's arm offset is also `ambiguous` with the coupling off its centre,
+// AnArmOffsetIsTheLinearPartOfACouplingOffItsCentre: that rule is off
+// where the lead's rivals are, to show what each does alone.)
 TEST(DiagnoseDesigns, ALeadOfACombinationHasItsRivalsToo) {
   SelectionOptions partners_only;
   partners_only.lead_rivals_in_combination = false;
+  RivalOptions centred;
+  centred.arm_offset_as_coupling_centre = false;
   for (const auto& [design, i, inferred] :
        {std::tuple{Design::grid, 714, true}, std::tuple{Design::diagonals, 956, false}}) {
     const auto [h, seed] = sweep_case(design, i);
@@ -2019,7 +2034,7 @@ TEST(DiagnoseDesigns, ALeadOfACombinationHasItsRivalsToo) {
           ((st.term.kind == TermKind::reversal || st.term.kind == TermKind::arm_offset) &&
            !st.ambiguous_with.empty());
     EXPECT_TRUE(lead_ambiguous) << "case " << i << ": " << with.found;
-    const Case off = run_case(design, h, seed, 0.0, &partners_only, inferred);
+    const Case off = run_case(design, h, seed, 0.0, &partners_only, inferred, nullptr, &centred);
     EXPECT_EQ(off.verdict, Verdict::wrong) << "case " << i << ": " << off.found;
   }
 }
@@ -2485,6 +2500,59 @@ TEST(DiagnoseDesigns, AUniformDriftIsTheZeroOfEveryProportionalDriftThatFitsAsMu
   rivals_only.zero_pair_every_direction = false;
   const Case w =
       run_case(Design::diagonals_runs, h, seed, 0.0, nullptr, false, nullptr, &rivals_only);
+  EXPECT_EQ(w.verdict, Verdict::wrong) << w.found;
+}
+
+// An arm offset can be the linear part of a coupling off its travel
+// centre. Five runs, case 801 (an off-centre coupling x·z→X, +9.5 µm): the
+// catalogue's coupling about the travel centre left its linear parts (a
+// scale X and a squareness dX ∝ z: along a body diagonal both grow with
+// the line's parameter), which an arm offset εZ×ΔY took in step 1; the
+// coupling named beside it was `ambiguous` (y·z→Y ~ x·z→X), the arm
+// offset a plain wrong name. Swapped with that coupling, each coupling
+// with its centre free (RivalOptions::arm_offset_as_coupling_centre),
+// x·z→X off its centre removes more than the pair: the arm offset is
+// `ambiguous` with it.
+TEST(DiagnoseDesigns, AnArmOffsetIsTheLinearPartOfACouplingOffItsCentre) {
+  const auto [h, seed] = sweep_case(Design::diagonals_runs, 801);
+  ASSERT_EQ(h.shape, Shape::coupling);
+  ASSERT_EQ(h.dir, 0);
+  const Case c = run_case(Design::diagonals_runs, h, seed);
+  EXPECT_EQ(c.verdict, Verdict::ambiguous) << c.found;
+  EXPECT_NE(c.found.find("arm_offset εZ×ΔY 0.74 ~ coupling x·z→X off its travel centre"),
+            std::string::npos)
+      << c.found;
+  bool told = false;
+  for (const SelectedTerm& st : c.effects)
+    told = told || (st.term.kind == TermKind::arm_offset &&
+                    st.separate_by.find("lines parallel to the axes") != std::string::npos);
+  EXPECT_TRUE(told) << c.found;
+  RivalOptions centred;
+  centred.arm_offset_as_coupling_centre = false;
+  const Case w = run_case(Design::diagonals_runs, h, seed, 0.0, nullptr, false, nullptr, &centred);
+  EXPECT_EQ(w.verdict, Verdict::wrong) << w.found;
+}
+
+// The same where no coupling is named beside the arm offset. On the generic
+// machine of seed 5, five runs, case 870 (an off-centre coupling x·z→X,
+// +7.1 µm): an arm offset εZ×ΔY alone, beside a smooth function dZ(x, t).
+// Swapped alone for every coupling with its centre free
+// (RivalOptions::arm_offset_alone_as_coupling), x·z→X off its centre
+// removes more even after the price of its two extra columns: `ambiguous`.
+TEST(DiagnoseDesigns, AnArmOffsetAloneIsACouplingOffItsCentreAsMuch) {
+  const OnMachine on(generic5_vm(), "generic, seed 5");
+  const auto [h, seed] = sweep_case(Design::diagonals_runs, 870);
+  ASSERT_EQ(h.shape, Shape::coupling);
+  ASSERT_EQ(h.dir, 0);
+  const Case c = run_case(Design::diagonals_runs, h, seed);
+  EXPECT_EQ(c.verdict, Verdict::ambiguous) << c.found;
+  EXPECT_NE(c.found.find("arm_offset εZ×ΔY 0.70 ~ coupling x·z→X off its travel centre"),
+            std::string::npos)
+      << c.found;
+  RivalOptions beside_a_coupling_only;
+  beside_a_coupling_only.arm_offset_alone_as_coupling = false;
+  const Case w = run_case(Design::diagonals_runs, h, seed, 0.0, nullptr, false, nullptr,
+                          &beside_a_coupling_only);
   EXPECT_EQ(w.verdict, Verdict::wrong) << w.found;
 }
 

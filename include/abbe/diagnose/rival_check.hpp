@@ -74,6 +74,21 @@ struct RivalOptions {
   // enough on a machine whose model error is twice the noise); 0: by one
   // column's χ² as every other effect.
   double arm_offset_floor_share = 1.0;
+  // An arm offset named beside a coupling is swapped, with that coupling
+  // with its centre free (its linear parts beside it), for every catalogue
+  // coupling with its centre free: a coupling off its travel centre holds a
+  // scale or squareness along each of its axes, which an arm offset whose
+  // angular table is near linear fits. Where one removes as much (by the
+  // arm offset's margin), it is the arm offset's alternative ("coupling
+  // x·z→X off its travel centre (its linear parts …)"). false: not tested.
+  bool arm_offset_as_coupling_centre = true;
+  // And an arm offset named where no coupling is: swapped alone for every
+  // catalogue coupling with its centre free, which must remove as much and
+  // ln(n)·σ̂² for each of its two extra columns (along the body diagonals an
+  // off-centre coupling is a parabola plus slopes along each line, and the
+  // model's angular table times an arm fits that as one column). false: only
+  // beside a named coupling.
+  bool arm_offset_alone_as_coupling = true;
 };
 
 // Marks the effects (fitted, with coef) the data do not prefer over another
