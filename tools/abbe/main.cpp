@@ -1,13 +1,14 @@
 // abbe — toolpath error predictor and NC-code post-processor.
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 #include <iostream>
 #include <map>
 
-#include <spdlog/sinks/stdout_color_sinks.h>
-#include <spdlog/spdlog.h>
-
 #include "abbe/io/input_error.hpp"
 #include "command.hpp"
+#include "heap.hpp"
 
 namespace abbe::cli {
 std::vector<CommandInfo>& command_registry() {
@@ -18,9 +19,11 @@ std::vector<CommandInfo>& command_registry() {
 
 int main(int argc, char** argv) {
   using namespace abbe::cli;
-  CLI::App app{"abbe: predict how far a 3-axis machine tool deviates along an NC program, "
-               "and why.\n"
-               "Exit codes: 0 ok, 1 bad input, 2 usage, 3 internal error, 4 a check failed."};
+  keep_large_buffers_in_heap();
+  CLI::App app{
+      "abbe: predict how far a 3-axis machine tool deviates along an NC program, "
+      "and why.\n"
+      "Exit codes: 0 ok, 1 bad input, 2 usage, 3 internal error, 4 a check failed."};
   app.set_version_flag("--version", std::string("abbe ") + ABBE_VERSION);
   app.require_subcommand(1);
   GlobalOptions global;
