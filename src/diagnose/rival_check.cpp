@@ -130,6 +130,24 @@ std::vector<std::string> rival_labels(const std::vector<Term>& rivals) {
   return out;
 }
 
+// Adds `alt` to the effect's alternatives unless it is there (false then),
+// and `separate_by` where the effect has no separating measurement yet.
+bool add_alternative(SelectedTerm& st, std::string alt, const std::string& separate_by) {
+  if (std::find(st.ambiguous_with.begin(), st.ambiguous_with.end(), alt) != st.ambiguous_with.end())
+    return false;
+  st.ambiguous_with.push_back(std::move(alt));
+  if (st.separate_by.empty()) st.separate_by = separate_by;
+  return true;
+}
+
+// Whether an alternative of the effect is a form of `family` (a label
+// without its parenthesis: "thermal_drift x·t→X", "coupling x·z→X").
+bool lists_family(const SelectedTerm& st, const std::string& family) {
+  return std::any_of(st.ambiguous_with.begin(), st.ambiguous_with.end(), [&](const std::string& a) {
+    return a == family || a.rfind(family + " ", 0) == 0;
+  });
+}
+
 // A uniform drift named beside a drift in proportion to a position is
 // that drift's zero as much ((s_w − w0)·f(t) holds −w0·f(t)): the pair —
 // the proportional drift with its zero free and the uniform drift — is
@@ -204,28 +222,18 @@ void mark_uniform_drifts_as_zero(const Problem& pb, const Mat& D, std::vector<Ma
       for (const StandIn& b : best) {
         const std::string alt =
             fmt::format("{} (the zero of {})", b.moved.label(), b.drift.label());
-        if (std::find(su.ambiguous_with.begin(), su.ambiguous_with.end(), alt) !=
-            su.ambiguous_with.end())
-          continue;
-        su.ambiguous_with.push_back(alt);
         const std::string text = fmt::format(
             "measure along {} on its own (an ISO 230-2 line): on these points a drift in "
             "proportion to the position fits alike in {} and {}, and its zero, a uniform "
             "drift, takes the direction of whichever is chosen",
             axis_name(b.drift.direction), axis_name(pt.direction), axis_name(b.drift.direction));
-        if (su.separate_by.empty()) su.separate_by = text;
+        if (!add_alternative(su, alt, text)) continue;
         // The proportional drift's own alternative, where no form of that
         // family is one yet.
         SelectedTerm& sp = effects[p];
         const std::string label = b.drift.label();
-        const std::string family = label.substr(0, label.find(" ("));
-        const bool listed = std::any_of(
-            sp.ambiguous_with.begin(), sp.ambiguous_with.end(),
-            [&](const std::string& a) { return a == family || a.rfind(family + " (", 0) == 0; });
-        if (!listed) {
-          sp.ambiguous_with.push_back(label + " (with its zero, " + b.moved.label() + ")");
-          if (sp.separate_by.empty()) sp.separate_by = text;
-        }
+        if (!lists_family(sp, label.substr(0, label.find(" ("))))
+          add_alternative(sp, label + " (with its zero, " + b.moved.label() + ")", text);
         log.push_back(fmt::format(
             "data: {} beside {} (ΔRSS {:.6g}) is not preferred over {} beside {}, each with "
             "its zero free (ΔRSS {:.6g}, margin {:.3g})",
@@ -309,28 +317,17 @@ void mark_arm_offsets_as_coupling_centres(const Problem& pb, const Mat& D, std::
         const std::string alt = fmt::format("{} off its travel centre (its linear parts {} and {})",
                                             k.label(), position_term(k.axis, k.direction).label(),
                                             position_term(k.with_axis, k.direction).label());
-        if (std::find(sa.ambiguous_with.begin(), sa.ambiguous_with.end(), alt) !=
-            sa.ambiguous_with.end())
-          continue;
-        sa.ambiguous_with.push_back(alt);
         const std::string text = fmt::format(
             "measure {} along {} at several {} apart from the other axes (lines parallel to "
             "the axes, or a grid): on these points an arm offset fits alike a coupling whose "
             "centre is not the travel's, or its linear part",
             axis_name(k.direction), variable_name(k.axis), variable_name(k.with_axis));
-        if (sa.separate_by.empty()) sa.separate_by = text;
+        if (!add_alternative(sa, alt, text)) continue;
         SelectedTerm& sc = effects[c];
-        if (!alone && !same_effect(k, sc.term)) {
-          const std::string label = k.label();
-          const bool listed = std::any_of(
-              sc.ambiguous_with.begin(), sc.ambiguous_with.end(),
-              [&](const std::string& x) { return x == label || x.rfind(label + " ", 0) == 0; });
-          if (!listed) {
-            sc.ambiguous_with.push_back(label + " (off its travel centre, in place of " +
-                                        sa.term.label() + ")");
-            if (sc.separate_by.empty()) sc.separate_by = text;
-          }
-        }
+        if (!alone && !same_effect(k, sc.term) && !lists_family(sc, k.label()))
+          add_alternative(
+              sc, k.label() + " (off its travel centre, in place of " + sa.term.label() + ")",
+              text);
         log.push_back(fmt::format(
             "data: {}{}{} (ΔRSS {:.6g}) is not preferred over {} with its centre free (ΔRSS "
             "{:.6g}{}, margin {:.3g})",
