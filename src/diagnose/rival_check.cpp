@@ -50,6 +50,21 @@ std::optional<SwapTest> swap_test(const Problem& pb, const Mat& D, const std::ve
   return t;
 }
 
+// The swap test of effects e and f together (f may be e), their columns
+// `pair` put in e's block for the test (`cols` is as it was after), beside
+// the datum and the other named effects but the smooth functions.
+std::optional<SwapTest> pair_swap_test(const Problem& pb, const Mat& D, std::vector<Mat>& cols,
+                                       const std::vector<SelectedTerm>& effects, std::size_t e,
+                                       std::size_t f, Mat& pair, double alpha) {
+  std::vector<bool> rest(effects.size());
+  for (std::size_t g = 0; g < effects.size(); ++g)
+    rest[g] = g != e && g != f && effects[g].term.kind != TermKind::unexplained;
+  std::swap(cols[e], pair);
+  std::optional<SwapTest> t = swap_test(pb, D, cols, rest, e, alpha, 0.0);
+  std::swap(cols[e], pair);
+  return t;
+}
+
 bool is_proportional_drift(const Term& t) {
   return t.kind == TermKind::thermal_drift && t.with_axis >= 0;
 }
@@ -188,12 +203,7 @@ void mark_uniform_drifts_as_zero(const Problem& pb, const Mat& D, std::vector<Ma
       const Mat P = with_uniform_drift(pb, pt, cols[p]);
       Mat pair(P.rows(), P.cols() + cols[u].cols());
       pair << P, cols[u];
-      std::vector<bool> rest(effects.size());
-      for (std::size_t f = 0; f < effects.size(); ++f)
-        rest[f] = f != p && f != u && effects[f].term.kind != TermKind::unexplained;
-      std::swap(cols[p], pair);
-      const std::optional<SwapTest> t = swap_test(pb, D, cols, rest, p, o.alpha, 0.0);
-      std::swap(cols[p], pair);
+      const std::optional<SwapTest> t = pair_swap_test(pb, D, cols, effects, p, u, pair, o.alpha);
       if (!t) continue;
       // The best time constant of each family that stands in: the drift,
       // the uniform drift moved to its direction, what the two remove.
@@ -300,12 +310,7 @@ void mark_arm_offsets_as_coupling_centres(const Problem& pb, const Mat& D, std::
         named << cols[a], P;
       }
       const Eigen::Index named_cols = named.cols();
-      std::vector<bool> rest(effects.size());
-      for (std::size_t f = 0; f < effects.size(); ++f)
-        rest[f] = f != a && f != c && effects[f].term.kind != TermKind::unexplained;
-      std::swap(cols[a], named);
-      const std::optional<SwapTest> t = swap_test(pb, D, cols, rest, a, o.alpha, 0.0);
-      std::swap(cols[a], named);
+      const std::optional<SwapTest> t = pair_swap_test(pb, D, cols, effects, a, c, named, o.alpha);
       if (!t) continue;
       const double margin = std::max(t->margin, t->s2 * floor_sigmas);
       for (const Term& k : couplings) {

@@ -2503,6 +2503,26 @@ TEST(DiagnoseDesigns, AUniformDriftIsTheZeroOfEveryProportionalDriftThatFitsAsMu
   EXPECT_EQ(w.verdict, Verdict::wrong) << w.found;
 }
 
+// A case of the diagonals' sweep (five runs; an off-centre coupling with
+// direction X) `ambiguous` with `alternative` beside its arm offset, and a
+// wrong name with `without`.
+void expect_arm_offset_ambiguous_only_with(int i, const std::string& alternative,
+                                           const RivalOptions& without) {
+  const auto [h, seed] = sweep_case(Design::diagonals_runs, i);
+  ASSERT_EQ(h.shape, Shape::coupling);
+  ASSERT_EQ(h.dir, 0);
+  const Case c = run_case(Design::diagonals_runs, h, seed);
+  EXPECT_EQ(c.verdict, Verdict::ambiguous) << c.found;
+  EXPECT_NE(c.found.find(alternative), std::string::npos) << c.found;
+  bool told = false;
+  for (const SelectedTerm& st : c.effects)
+    told = told || (st.term.kind == TermKind::arm_offset &&
+                    st.separate_by.find("lines parallel to the axes") != std::string::npos);
+  EXPECT_TRUE(told) << c.found;
+  const Case w = run_case(Design::diagonals_runs, h, seed, 0.0, nullptr, false, nullptr, &without);
+  EXPECT_EQ(w.verdict, Verdict::wrong) << w.found;
+}
+
 // An arm offset can be the linear part of a coupling off its travel
 // centre. Five runs, case 801 (an off-centre coupling x·z→X, +9.5 µm): the
 // catalogue's coupling about the travel centre left its linear parts (a
@@ -2514,23 +2534,10 @@ TEST(DiagnoseDesigns, AUniformDriftIsTheZeroOfEveryProportionalDriftThatFitsAsMu
 // x·z→X off its centre removes more than the pair: the arm offset is
 // `ambiguous` with it.
 TEST(DiagnoseDesigns, AnArmOffsetIsTheLinearPartOfACouplingOffItsCentre) {
-  const auto [h, seed] = sweep_case(Design::diagonals_runs, 801);
-  ASSERT_EQ(h.shape, Shape::coupling);
-  ASSERT_EQ(h.dir, 0);
-  const Case c = run_case(Design::diagonals_runs, h, seed);
-  EXPECT_EQ(c.verdict, Verdict::ambiguous) << c.found;
-  EXPECT_NE(c.found.find("arm_offset εZ×ΔY 0.74 ~ coupling x·z→X off its travel centre"),
-            std::string::npos)
-      << c.found;
-  bool told = false;
-  for (const SelectedTerm& st : c.effects)
-    told = told || (st.term.kind == TermKind::arm_offset &&
-                    st.separate_by.find("lines parallel to the axes") != std::string::npos);
-  EXPECT_TRUE(told) << c.found;
   RivalOptions centred;
   centred.arm_offset_as_coupling_centre = false;
-  const Case w = run_case(Design::diagonals_runs, h, seed, 0.0, nullptr, false, nullptr, &centred);
-  EXPECT_EQ(w.verdict, Verdict::wrong) << w.found;
+  expect_arm_offset_ambiguous_only_with(
+      801, "arm_offset εZ×ΔY 0.74 ~ coupling x·z→X off its travel centre", centred);
 }
 
 // The same where no coupling is named beside the arm offset. On the generic
@@ -2541,19 +2548,10 @@ TEST(DiagnoseDesigns, AnArmOffsetIsTheLinearPartOfACouplingOffItsCentre) {
 // removes more even after the price of its two extra columns: `ambiguous`.
 TEST(DiagnoseDesigns, AnArmOffsetAloneIsACouplingOffItsCentreAsMuch) {
   const OnMachine on(generic5_vm(), "generic, seed 5");
-  const auto [h, seed] = sweep_case(Design::diagonals_runs, 870);
-  ASSERT_EQ(h.shape, Shape::coupling);
-  ASSERT_EQ(h.dir, 0);
-  const Case c = run_case(Design::diagonals_runs, h, seed);
-  EXPECT_EQ(c.verdict, Verdict::ambiguous) << c.found;
-  EXPECT_NE(c.found.find("arm_offset εZ×ΔY 0.70 ~ coupling x·z→X off its travel centre"),
-            std::string::npos)
-      << c.found;
   RivalOptions beside_a_coupling_only;
   beside_a_coupling_only.arm_offset_alone_as_coupling = false;
-  const Case w = run_case(Design::diagonals_runs, h, seed, 0.0, nullptr, false, nullptr,
-                          &beside_a_coupling_only);
-  EXPECT_EQ(w.verdict, Verdict::wrong) << w.found;
+  expect_arm_offset_ambiguous_only_with(
+      870, "arm_offset εZ×ΔY 0.70 ~ coupling x·z→X off its travel centre", beside_a_coupling_only);
 }
 
 // Along the four body diagonals a uniform drift's axis is told only by the
