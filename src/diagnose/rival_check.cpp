@@ -285,22 +285,26 @@ void mark_arm_offsets_as_coupling_centres(const Problem& pb, const Mat& D, std::
                                           std::vector<SelectedTerm>& effects,
                                           const CandidateSet& catalogue, double floor_sigmas,
                                           const RivalOptions& o, std::vector<std::string>& log) {
-  std::vector<Term> couplings;
+  if (std::none_of(effects.begin(), effects.end(),
+                   [](const SelectedTerm& st) { return st.term.kind == TermKind::arm_offset; }))
+    return;
+  // Every catalogue coupling with its centre free, the stand-ins.
+  std::vector<std::pair<Term, Mat>> couplings;
   for (const Term& t : catalogue.fixed)
-    if (t.kind == TermKind::coupling) couplings.push_back(t);
-  const bool coupling_named =
-      std::any_of(effects.begin(), effects.end(),
-                  [](const SelectedTerm& st) { return st.term.kind == TermKind::coupling; });
+    if (t.kind == TermKind::coupling) {
+      Mat K = with_linear_parts(pb, t, term_columns(pb, t));
+      if (K.squaredNorm() > 0.0) couplings.emplace_back(t, std::move(K));
+    }
+  // The couplings named (their index); none: the arm offset alone.
+  std::vector<std::size_t> named_couplings;
+  for (std::size_t c = 0; c < effects.size(); ++c)
+    if (effects[c].term.kind == TermKind::coupling) named_couplings.push_back(c);
   const double ln_n = std::log(static_cast<double>(pb.obs.size()));
   for (std::size_t a = 0; a < effects.size(); ++a) {
     SelectedTerm& sa = effects[a];
     if (sa.term.kind != TermKind::arm_offset || !sa.ambiguous_with.empty()) continue;
-    // The couplings named beside it (their index), or the arm offset alone
-    // (index a).
-    std::vector<std::size_t> partners;
-    for (std::size_t c = 0; c < effects.size(); ++c)
-      if (effects[c].term.kind == TermKind::coupling) partners.push_back(c);
-    if (!coupling_named && o.arm_offset_alone_as_coupling) partners.push_back(a);
+    std::vector<std::size_t> partners = named_couplings;
+    if (partners.empty() && o.arm_offset_alone_as_coupling) partners.push_back(a);
     for (const std::size_t c : partners) {
       const bool alone = c == a;
       Mat named = cols[a];
@@ -313,9 +317,7 @@ void mark_arm_offsets_as_coupling_centres(const Problem& pb, const Mat& D, std::
       const std::optional<SwapTest> t = pair_swap_test(pb, D, cols, effects, a, c, named, o.alpha);
       if (!t) continue;
       const double margin = std::max(t->margin, t->s2 * floor_sigmas);
-      for (const Term& k : couplings) {
-        const Mat K = with_linear_parts(pb, k, term_columns(pb, k));
-        if (!(K.squaredNorm() > 0.0)) continue;
+      for (const auto& [k, K] : couplings) {
         const double extra = static_cast<double>(std::max<Eigen::Index>(K.cols() - named_cols, 0));
         const double d_k = t->removes(K) - extra * ln_n * t->s2;
         if (d_k < t->d_e - margin) continue;
@@ -361,6 +363,10 @@ std::vector<std::string> mark_unrejected_rivals(const Problem& pb,
   const Mat Qd = orthonormal(D);
   std::vector<Mat> cols;
   for (const SelectedTerm& st : effects) cols.push_back(term_columns(pb, st.term));
+  // An arm offset's share of the practical floor (arm_offset_floor_share),
+  // in units of σ̂².
+  const double arm_floor_sigmas = o.arm_offset_floor_share * static_cast<double>(pb.obs.size()) *
+                                  min_effect_rms * min_effect_rms;
   // The rivals of a drift in proportion to a position found with their
   // zero free: the effect's index and the rival.
   std::vector<std::pair<std::size_t, Term>> zero_free_rivals;
@@ -410,11 +416,7 @@ std::vector<std::string> mark_unrejected_rivals(const Problem& pb,
     // The margin by which a rival may remove less: one column's χ², and
     // for an arm offset the share of the practical floor
     // (RivalOptions::arm_offset_floor_share), in units of σ̂².
-    const double floor_sigmas = se.term.kind == TermKind::arm_offset
-                                    ? o.arm_offset_floor_share *
-                                          static_cast<double>(pb.obs.size()) * min_effect_rms *
-                                          min_effect_rms
-                                    : 0.0;
+    const double floor_sigmas = se.term.kind == TermKind::arm_offset ? arm_floor_sigmas : 0.0;
     auto margin_of = [&](const SwapTest& t) { return std::max(t.margin, t.s2 * floor_sigmas); };
     std::vector<Term> rivals;
     for (const Term& cand : stand_ins(catalogue, se.term)) {
@@ -470,11 +472,7 @@ std::vector<std::string> mark_unrejected_rivals(const Problem& pb,
   if (o.uniform_drift_as_zero && o.zero_free_drifts)
     mark_uniform_drifts_as_zero(pb, D, cols, effects, catalogue, zero_free_rivals, o, log);
   if (o.arm_offset_as_coupling_centre)
-    mark_arm_offsets_as_coupling_centres(pb, D, cols, effects, catalogue,
-                                         o.arm_offset_floor_share *
-                                             static_cast<double>(pb.obs.size()) * min_effect_rms *
-                                             min_effect_rms,
-                                         o, log);
+    mark_arm_offsets_as_coupling_centres(pb, D, cols, effects, catalogue, arm_floor_sigmas, o, log);
   return log;
 }
 
